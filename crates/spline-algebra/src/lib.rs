@@ -1,0 +1,1 @@
+//! spline-algebra: see the crate description. Work in progress.

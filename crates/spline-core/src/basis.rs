@@ -1,0 +1,300 @@
+//! B-spline basis functions and their derivatives (The NURBS Book A2.2 and A2.3; the
+//! recurrences (1)–(2) of seed 000), without heap allocation.
+
+use crate::error::{Error, ErrorKind, Result};
+use crate::knots::{KnotVector, MAX_ORDER};
+use crate::scalar::{Scalar, from_count};
+
+/// The `p + 1` basis functions that may be non-zero at a parameter: `N_{first + r, p}(u)` is
+/// `values()[r]`. Lives on the stack.
+#[derive(Clone, Copy, Debug)]
+pub struct BasisValues<T> {
+    span: usize,
+    len: usize,
+    values: [T; MAX_ORDER],
+}
+
+impl<T: Scalar> BasisValues<T> {
+    /// The knot span `k` (`u_k ≤ u < u_{k+1}`).
+    #[inline]
+    #[must_use]
+    pub fn span(&self) -> usize {
+        self.span
+    }
+
+    /// Index of the first non-zero basis function, `k − p`.
+    #[inline]
+    #[must_use]
+    pub fn first(&self) -> usize {
+        self.span + 1 - self.len
+    }
+
+    /// The `p + 1` values.
+    #[inline]
+    #[must_use]
+    pub fn values(&self) -> &[T] {
+        &self.values[..self.len]
+    }
+}
+
+impl<T: Scalar> KnotVector<T> {
+    /// Writes the `p + 1` basis functions of degree `p` that may be non-zero in knot span
+    /// `span` at `u` into `out[..p + 1]`: `out[r] = N_{span − p + r, p}(u)` (The NURBS Book
+    /// A2.2, the triangular scheme of seed 000 Algorithm 1, stable and division-safe).
+    ///
+    /// # Panics
+    /// If `out` is shorter than `p + 1` or `span` is not a valid span (`p ≤ span < n`).
+    #[inline]
+    pub fn basis_values(&self, span: usize, u: T, out: &mut [T]) {
+        let p = self.degree();
+        let knots = self.knots();
+        assert!(span >= p && span < self.num_basis(), "invalid span {span}");
+        let out = &mut out[..=p];
+        let mut left = [T::zero(); MAX_ORDER];
+        let mut right = [T::zero(); MAX_ORDER];
+        out[0] = T::one();
+        for j in 1..=p {
+            left[j] = u - knots[span + 1 - j];
+            right[j] = knots[span + j] - u;
+            let mut saved = T::zero();
+            for r in 0..j {
+                let temp = out[r] / (right[r + 1] + left[j - r]);
+                out[r] = saved + right[r + 1] * temp;
+                saved = left[j - r] * temp;
+            }
+            out[j] = saved;
+        }
+    }
+
+    /// The non-zero basis functions at `u`, with their span.
+    ///
+    /// ```
+    /// use spline_core::KnotVector;
+    /// let knots = KnotVector::new(2, vec![0.0, 0.0, 0.0, 1.0, 2.0, 2.0, 2.0])?;
+    /// let basis = knots.eval_basis(0.5)?;
+    /// assert_eq!(basis.first(), 0);
+    /// assert_eq!(basis.values(), &[0.25, 0.625, 0.125]);
+    /// # Ok::<(), spline_core::Error>(())
+    /// ```
+    ///
+    /// # Errors
+    /// [`ErrorKind::NonFinite`] or [`ErrorKind::OutOfDomain`].
+    #[inline]
+    pub fn eval_basis(&self, u: T) -> Result<BasisValues<T>> {
+        let span = self.find_span(u)?;
+        let mut values = [T::zero(); MAX_ORDER];
+        self.basis_values(span, u, &mut values);
+        Ok(BasisValues {
+            span,
+            len: self.degree() + 1,
+            values,
+        })
+    }
+
+    /// Writes the basis functions of degree `p` non-zero in span `span` and their derivatives
+    /// of orders `0 … order` into `out`, row-major with rows of length `p + 1`:
+    /// `out[k (p + 1) + r]` $= N^{(k)}_{span − p + r, p}(u)$. Orders above `p` give zero rows.
+    ///
+    /// The NURBS Book A2.3, reorganised so that no table beyond `out` is needed: the rows
+    /// first receive the basis values of degrees `p − k` from the triangular scheme, then are
+    /// turned into derivatives in place (right to left) with the coefficients
+    /// $a_{k,j}$ of (2).
+    ///
+    /// # Panics
+    /// If `out.len() < (order + 1)(p + 1)` or `span` is invalid.
+    pub fn basis_derivatives(&self, span: usize, u: T, order: usize, out: &mut [T]) {
+        let p = self.degree();
+        let knots = self.knots();
+        let width = p + 1;
+        assert!(span >= p && span < self.num_basis(), "invalid span {span}");
+        assert!(out.len() >= (order + 1) * width, "output buffer too short");
+        let top = order.min(p);
+        for v in out[(top + 1) * width..(order + 1) * width].iter_mut() {
+            *v = T::zero();
+        }
+        // Triangular scheme, capturing the degree p − k values in row k.
+        let mut left = [T::zero(); MAX_ORDER];
+        let mut right = [T::zero(); MAX_ORDER];
+        let mut n = [T::zero(); MAX_ORDER];
+        n[0] = T::one();
+        if p <= top {
+            out[p * width] = T::one();
+        }
+        for j in 1..=p {
+            left[j] = u - knots[span + 1 - j];
+            right[j] = knots[span + j] - u;
+            let mut saved = T::zero();
+            for r in 0..j {
+                let temp = n[r] / (right[r + 1] + left[j - r]);
+                n[r] = saved + right[r + 1] * temp;
+                saved = left[j - r] * temp;
+            }
+            n[j] = saved;
+            if p - j <= top {
+                let row = p - j;
+                out[row * width..row * width + j + 1].copy_from_slice(&n[..=j]);
+            }
+        }
+        if top == 0 {
+            return;
+        }
+        // ndu[pk + 1][x] of A2.3: the knot difference u_{span+x+1} − u_{span+x−pk}.
+        let diff = |pk: usize, x: usize| knots[span + x + 1] - knots[span + x - pk];
+        let mut a = [[T::zero(); MAX_ORDER]; 2];
+        // Right to left: computing column r reads columns ≤ r of the degree-(p − k) rows.
+        for r in (0..=p).rev() {
+            let (mut s1, mut s2) = (0usize, 1usize);
+            a[0][0] = T::one();
+            for k in 1..=top {
+                let pk = p - k;
+                let row = k * width;
+                let mut d = T::zero();
+                if r >= k {
+                    let rk = r - k;
+                    a[s2][0] = a[s1][0] / diff(pk, rk);
+                    d = a[s2][0] * out[row + rk];
+                }
+                let j1 = if r >= k { 1 } else { k - r };
+                let j2 = if r < pk + 1 { k - 1 } else { p - r };
+                for j in j1..=j2 {
+                    let x = r + j - k;
+                    a[s2][j] = (a[s1][j] - a[s1][j - 1]) / diff(pk, x);
+                    d += a[s2][j] * out[row + x];
+                }
+                if r <= pk {
+                    a[s2][k] = -a[s1][k - 1] / diff(pk, r);
+                    d += a[s2][k] * out[row + r];
+                }
+                out[row + r] = d;
+                std::mem::swap(&mut s1, &mut s2);
+            }
+        }
+        // Multiply row k by p! / (p − k)!.
+        let mut factor = from_count::<T>(p);
+        for k in 1..=top {
+            for v in &mut out[k * width..(k + 1) * width] {
+                *v *= factor;
+            }
+            factor *= from_count::<T>(p - k);
+        }
+    }
+
+    /// All `n` basis functions at `u` (zeros included): a dense row of the collocation matrix.
+    ///
+    /// # Errors
+    /// [`ErrorKind::NonFinite`] or [`ErrorKind::OutOfDomain`].
+    pub fn dense_basis(&self, u: T) -> Result<Vec<T>> {
+        let basis = self.eval_basis(u)?;
+        let mut row = vec![T::zero(); self.num_basis()];
+        row[basis.first()..=basis.span()].copy_from_slice(basis.values());
+        Ok(row)
+    }
+
+    /// All `n` basis functions at `u` and their derivatives up to `order`: `[k][i]`
+    /// $= N^{(k)}_{i,p}(u)$.
+    ///
+    /// ```
+    /// use spline_core::KnotVector;
+    /// let knots = KnotVector::new(3, vec![0.0, 0.0, 0.0, 0.0, 1.0, 2.0, 3.0, 3.0, 3.0, 3.0])?;
+    /// let rows = knots.dense_basis_derivatives(0.0, 1)?;
+    /// assert_eq!(rows[0], vec![1.0, 0.0, 0.0, 0.0, 0.0, 0.0]);
+    /// assert_eq!(rows[1], vec![-3.0, 3.0, 0.0, 0.0, 0.0, 0.0]);
+    /// # Ok::<(), spline_core::Error>(())
+    /// ```
+    ///
+    /// # Errors
+    /// [`ErrorKind::NonFinite`] or [`ErrorKind::OutOfDomain`].
+    pub fn dense_basis_derivatives(&self, u: T, order: usize) -> Result<Vec<Vec<T>>> {
+        let span = self.find_span(u)?;
+        let p = self.degree();
+        let mut local = vec![T::zero(); (order + 1) * (p + 1)];
+        self.basis_derivatives(span, u, order, &mut local);
+        Ok((0..=order)
+            .map(|k| {
+                let mut row = vec![T::zero(); self.num_basis()];
+                row[span - p..=span].copy_from_slice(&local[k * (p + 1)..(k + 1) * (p + 1)]);
+                row
+            })
+            .collect())
+    }
+
+    /// The single basis function $N_{i,p}(u)$ (zero outside its support).
+    ///
+    /// # Errors
+    /// [`ErrorKind::InvalidArgument`] if `i ≥ n`; the errors of [`KnotVector::find_span`].
+    pub fn basis_function(&self, i: usize, u: T) -> Result<T> {
+        if i >= self.num_basis() {
+            return Err(Error::new(
+                ErrorKind::InvalidArgument,
+                format!(
+                    "basis function {i} does not exist (n = {})",
+                    self.num_basis()
+                ),
+            ));
+        }
+        let basis = self.eval_basis(u)?;
+        Ok(if i >= basis.first() && i <= basis.span() {
+            basis.values()[i - basis.first()]
+        } else {
+            T::zero()
+        })
+    }
+}
+
+/// The binomial coefficient $\binom{n}{k}$ as a scalar (exact in `f64` up to `n = 56`).
+#[must_use]
+pub fn binomial<T: Scalar>(n: usize, k: usize) -> T {
+    if k > n {
+        return T::zero();
+    }
+    let k = k.min(n - k);
+    let mut c = 1.0f64;
+    for i in 0..k {
+        #[allow(clippy::cast_precision_loss)]
+        {
+            c = c * (n - i) as f64 / (i + 1) as f64;
+        }
+    }
+    crate::cast(c.round())
+}
+
+/// The Bernstein polynomial $B_i^n(t) = \binom{n}{i} t^i (1-t)^{n-i}$.
+///
+/// ```
+/// assert!((spline_core::bernstein(3, 1, 0.5) - 0.375f64).abs() < 1e-15);
+/// ```
+#[must_use]
+pub fn bernstein<T: Scalar>(n: usize, i: usize, t: T) -> T {
+    if i > n {
+        return T::zero();
+    }
+    let mut value = binomial::<T>(n, i);
+    let s = T::one() - t;
+    for _ in 0..i {
+        value *= t;
+    }
+    for _ in 0..n - i {
+        value *= s;
+    }
+    value
+}
+
+/// All Bernstein polynomials of degree `n` at `t` into `out[..n + 1]` by the stable
+/// recurrence $B_i^n = (1-t) B_i^{n-1} + t B_{i-1}^{n-1}$ (The NURBS Book A1.3).
+///
+/// # Panics
+/// If `out.len() < n + 1`.
+pub fn bernstein_all<T: Scalar>(n: usize, t: T, out: &mut [T]) {
+    let out = &mut out[..=n];
+    out[0] = T::one();
+    let s = T::one() - t;
+    for j in 1..=n {
+        let mut saved = T::zero();
+        for k in 0..j {
+            let temp = out[k];
+            out[k] = saved + s * temp;
+            saved = t * temp;
+        }
+        out[j] = saved;
+    }
+}

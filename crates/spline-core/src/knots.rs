@@ -1,0 +1,591 @@
+//! Knot vectors: validated once at construction, then trusted.
+
+use crate::error::{Error, ErrorKind, Result};
+use crate::scalar::{Scalar, from_count, to_f64};
+
+/// The highest degree the library supports.
+///
+/// Per-point algorithms keep their working arrays on the stack, sized `MAX_DEGREE + 1`.
+/// Degrees this high are already numerically meaningless for B-splines in `f64`.
+pub const MAX_DEGREE: usize = 32;
+
+/// `MAX_DEGREE + 1`: the largest number of basis functions non-zero at a parameter.
+pub const MAX_ORDER: usize = MAX_DEGREE + 1;
+
+/// A knot vector together with the degree of the spline space it defines.
+///
+/// `n + p + 1` non-decreasing finite knots `u_0 ≤ … ≤ u_{n+p}` define `n` B-spline basis
+/// functions of degree `p`; the parametric domain is $[u_p, u_n]$, clamped or not.
+/// Construction checks every invariant (finite, sorted, multiplicity at most `p + 1`, at least
+/// `p + 1` basis functions, non-empty domain); afterwards the type carries them.
+///
+/// Evaluation conventions (shared with scipy, The NURBS Book and the exchange format):
+/// at an interior knot a parameter belongs to the span on its right (right limits); at the
+/// last knot of the domain it belongs to the last non-empty span (left limit).
+///
+/// ```
+/// use spline_core::KnotVector;
+/// let knots = KnotVector::new(3, vec![0.0, 0.0, 0.0, 0.0, 1.0, 2.0, 3.0, 3.0, 3.0, 3.0])?;
+/// assert_eq!(knots.num_basis(), 6);
+/// assert_eq!(knots.domain(), (0.0, 3.0));
+/// assert_eq!(knots.find_span(1.0)?, 4); // right limit at an interior knot
+/// assert_eq!(knots.find_span(3.0)?, 5); // left limit at the end of the domain
+/// # Ok::<(), spline_core::Error>(())
+/// ```
+#[derive(Clone, Debug, PartialEq)]
+pub struct KnotVector<T> {
+    degree: usize,
+    knots: Vec<T>,
+}
+
+impl<T: Scalar> KnotVector<T> {
+    /// Validates `knots` for degree `degree`.
+    ///
+    /// # Errors
+    /// [`ErrorKind::DegreeTooHigh`] above [`MAX_DEGREE`]; [`ErrorKind::InvalidLength`] with
+    /// fewer than `2(p + 1)` knots; [`ErrorKind::NonFinite`] for NaN or infinite knots;
+    /// [`ErrorKind::UnsortedKnots`]; [`ErrorKind::KnotMultiplicity`] when a knot appears more
+    /// than `p + 1` times; [`ErrorKind::EmptyDomain`] when `u_p = u_n`.
+    pub fn new(degree: usize, knots: Vec<T>) -> Result<Self> {
+        if degree > MAX_DEGREE {
+            return Err(Error::new(
+                ErrorKind::DegreeTooHigh,
+                format!("degree {degree} is above the supported maximum {MAX_DEGREE}"),
+            ));
+        }
+        let order = degree + 1;
+        if knots.len() < 2 * order {
+            return Err(Error::new(
+                ErrorKind::InvalidLength,
+                format!(
+                    "a degree-{degree} spline needs at least {} knots ({} control points + degree + 1), got {}",
+                    2 * order,
+                    order,
+                    knots.len()
+                ),
+            ));
+        }
+        if let Some(i) = knots.iter().position(|k| !k.is_finite()) {
+            return Err(Error::new(
+                ErrorKind::NonFinite,
+                format!("knot {i} is not finite ({})", to_f64(knots[i])),
+            ));
+        }
+        if let Some(i) = (1..knots.len()).find(|&i| knots[i] < knots[i - 1]) {
+            return Err(Error::new(
+                ErrorKind::UnsortedKnots,
+                format!(
+                    "knots must be non-decreasing: knot {i} ({}) is smaller than knot {} ({})",
+                    to_f64(knots[i]),
+                    i - 1,
+                    to_f64(knots[i - 1])
+                ),
+            ));
+        }
+        let mut start = 0;
+        while start < knots.len() {
+            let mut end = start + 1;
+            while end < knots.len() && knots[end] == knots[start] {
+                end += 1;
+            }
+            if end - start > order {
+                return Err(Error::new(
+                    ErrorKind::KnotMultiplicity,
+                    format!(
+                        "knot {} appears {} times; a degree-{degree} spline allows at most {order}",
+                        to_f64(knots[start]),
+                        end - start
+                    ),
+                ));
+            }
+            start = end;
+        }
+        let n = knots.len() - order;
+        if knots[degree] >= knots[n] {
+            return Err(Error::new(
+                ErrorKind::EmptyDomain,
+                format!(
+                    "the domain [u_{degree}, u_{n}] = [{}, {}] is empty",
+                    to_f64(knots[degree]),
+                    to_f64(knots[n])
+                ),
+            ));
+        }
+        Ok(Self { degree, knots })
+    }
+
+    /// Wraps knots that the caller guarantees valid (the output of the library's own
+    /// algorithms). The invariants are checked in debug builds.
+    ///
+    /// # Panics
+    /// In debug builds, if the knots are invalid.
+    #[must_use]
+    pub fn new_unchecked(degree: usize, knots: Vec<T>) -> Self {
+        #[cfg(debug_assertions)]
+        if let Err(e) = Self::new(degree, knots.clone()) {
+            panic!("invalid knot vector from a trusted caller: {e}");
+        }
+        Self { degree, knots }
+    }
+
+    /// `p + 1` copies of `a`, `n − p − 1` uniformly spaced interior knots, `p + 1` copies of `b`.
+    ///
+    /// ```
+    /// let k = spline_core::KnotVector::clamped_uniform(2, 5, 0.0, 1.0)?;
+    /// assert_eq!(k.knots(), &[0.0, 0.0, 0.0, 1.0 / 3.0, 2.0 / 3.0, 1.0, 1.0, 1.0]);
+    /// # Ok::<(), spline_core::Error>(())
+    /// ```
+    ///
+    /// # Errors
+    /// [`ErrorKind::TooFewPoints`] if `num_basis < degree + 1`; [`ErrorKind::EmptyDomain`]
+    /// unless `a < b`; the errors of [`KnotVector::new`].
+    pub fn clamped_uniform(degree: usize, num_basis: usize, a: T, b: T) -> Result<Self> {
+        check_count(degree, num_basis)?;
+        check_interval(a, b)?;
+        let segments = num_basis - degree;
+        let interior: Vec<T> = (1..segments)
+            .map(|j| a + (b - a) * from_count::<T>(j) / from_count::<T>(segments))
+            .collect();
+        Self::clamped(degree, a, b, &interior)
+    }
+
+    /// Uniformly spaced, unclamped knots whose domain `[u_p, u_n]` is `[a, b]`.
+    ///
+    /// # Errors
+    /// As [`KnotVector::clamped_uniform`].
+    pub fn uniform(degree: usize, num_basis: usize, a: T, b: T) -> Result<Self> {
+        check_count(degree, num_basis)?;
+        check_interval(a, b)?;
+        let segments = from_count::<T>(num_basis - degree);
+        let knots = (0..num_basis + degree + 1)
+            .map(|j| {
+                let offset = from_count::<T>(j) - from_count::<T>(degree);
+                a + (b - a) * offset / segments
+            })
+            .collect();
+        Self::new(degree, knots)
+    }
+
+    /// The knot vector of a single Bézier segment on `[a, b]`: `p + 1` copies of each end.
+    ///
+    /// # Errors
+    /// As [`KnotVector::new`]; [`ErrorKind::EmptyDomain`] unless `a < b`.
+    pub fn bezier(degree: usize, a: T, b: T) -> Result<Self> {
+        Self::clamped(degree, a, b, &[])
+    }
+
+    /// A clamped knot vector on `[a, b]` with the given interior knots (sorted, repeated as
+    /// wanted).
+    ///
+    /// # Errors
+    /// As [`KnotVector::new`].
+    pub fn clamped(degree: usize, a: T, b: T, interior: &[T]) -> Result<Self> {
+        check_interval(a, b)?;
+        let mut knots = Vec::with_capacity(interior.len() + 2 * degree + 2);
+        knots.extend(std::iter::repeat_n(a, degree + 1));
+        knots.extend_from_slice(interior);
+        knots.extend(std::iter::repeat_n(b, degree + 1));
+        if let Some(&k) = interior.iter().find(|&&k| !(k > a && k < b)) {
+            return Err(Error::new(
+                ErrorKind::InvalidArgument,
+                format!(
+                    "interior knot {} is not strictly inside ({}, {})",
+                    to_f64(k),
+                    to_f64(a),
+                    to_f64(b)
+                ),
+            ));
+        }
+        Self::new(degree, knots)
+    }
+
+    /// Knots by averaging the parameters of the data (seed 004 (7.6), The NURBS Book (9.8)):
+    /// clamped on `[ū_0, ū_m]` with interior knots $u_{j+p} = \frac1p \sum_{i=j}^{j+p-1} \bar u_i$,
+    /// `j = 1 … m − p`, for `m + 1` parameters. With these knots the interpolation matrix is
+    /// non-singular (Schoenberg–Whitney holds). Degree 0 uses the midpoints between parameters.
+    ///
+    /// ```
+    /// let k = spline_core::KnotVector::averaging(2, &[0.0, 0.25, 0.5, 0.75, 1.0])?;
+    /// assert_eq!(k.knots(), &[0.0, 0.0, 0.0, 0.375, 0.625, 1.0, 1.0, 1.0]);
+    /// # Ok::<(), spline_core::Error>(())
+    /// ```
+    ///
+    /// # Errors
+    /// [`ErrorKind::TooFewPoints`] with fewer than `p + 1` parameters; [`ErrorKind::NonFinite`];
+    /// [`ErrorKind::UnsortedKnots`] if the parameters decrease; the errors of
+    /// [`KnotVector::new`] (e.g. when repeated parameters give too many equal knots).
+    pub fn averaging(degree: usize, params: &[T]) -> Result<Self> {
+        check_count(degree, params.len())?;
+        check_params(params)?;
+        let count = params.len();
+        let (a, b) = (params[0], params[count - 1]);
+        let interior: Vec<T> = if degree == 0 {
+            params
+                .windows(2)
+                .map(|w| (w[0] + w[1]) * crate::cast(0.5))
+                .collect()
+        } else {
+            let p = from_count::<T>(degree);
+            (1..count - degree)
+                .map(|j| params[j..j + degree].iter().fold(T::zero(), |s, &x| s + x) / p)
+                .collect()
+        };
+        let mut knots = Vec::with_capacity(count + degree + 1);
+        knots.extend(std::iter::repeat_n(a, degree + 1));
+        knots.extend(interior);
+        knots.extend(std::iter::repeat_n(b, degree + 1));
+        Self::new(degree, knots)
+    }
+
+    /// The degree `p`.
+    #[inline]
+    #[must_use]
+    pub fn degree(&self) -> usize {
+        self.degree
+    }
+
+    /// The order `p + 1`.
+    #[inline]
+    #[must_use]
+    pub fn order(&self) -> usize {
+        self.degree + 1
+    }
+
+    /// All knots.
+    #[inline]
+    #[must_use]
+    pub fn knots(&self) -> &[T] {
+        &self.knots
+    }
+
+    /// Consumes the vector, returning the knots.
+    #[must_use]
+    pub fn into_knots(self) -> Vec<T> {
+        self.knots
+    }
+
+    /// Number of knots, `n + p + 1`.
+    #[inline]
+    #[must_use]
+    #[allow(clippy::len_without_is_empty)]
+    pub fn len(&self) -> usize {
+        self.knots.len()
+    }
+
+    /// Number of basis functions (control points) `n`.
+    #[inline]
+    #[must_use]
+    pub fn num_basis(&self) -> usize {
+        self.knots.len() - self.degree - 1
+    }
+
+    /// The parametric domain $[u_p, u_n]$.
+    #[inline]
+    #[must_use]
+    pub fn domain(&self) -> (T, T) {
+        (self.knots[self.degree], self.knots[self.num_basis()])
+    }
+
+    /// Whether the first and the last `p + 1` knots are equal (the curve interpolates its end
+    /// control points).
+    #[must_use]
+    pub fn is_clamped(&self) -> bool {
+        let p = self.degree;
+        let (a, b) = self.domain();
+        self.knots[..=p].iter().all(|&k| k == a)
+            && self.knots[self.len() - p - 1..].iter().all(|&k| k == b)
+    }
+
+    /// Whether `u` lies in the domain (inclusive).
+    #[inline]
+    #[must_use]
+    pub fn contains(&self, u: T) -> bool {
+        let (a, b) = self.domain();
+        u >= a && u <= b
+    }
+
+    /// Checks that `u` is finite and inside the domain.
+    ///
+    /// # Errors
+    /// [`ErrorKind::NonFinite`] or [`ErrorKind::OutOfDomain`].
+    pub fn check_param(&self, u: T) -> Result<()> {
+        if !u.is_finite() {
+            return Err(Error::new(
+                ErrorKind::NonFinite,
+                format!("parameter {} is not finite", to_f64(u)),
+            ));
+        }
+        if !self.contains(u) {
+            let (a, b) = self.domain();
+            return Err(Error::new(
+                ErrorKind::OutOfDomain,
+                format!(
+                    "parameter {} is outside the domain [{}, {}]",
+                    to_f64(u),
+                    to_f64(a),
+                    to_f64(b)
+                ),
+            ));
+        }
+        Ok(())
+    }
+
+    /// The knot span of `u`: the index `k`, `p ≤ k < n`, with $u_k \le u < u_{k+1}$ (right
+    /// limit at interior knots), or the last non-empty span when `u = u_n`.
+    ///
+    /// # Errors
+    /// [`ErrorKind::NonFinite`] or [`ErrorKind::OutOfDomain`].
+    #[inline]
+    pub fn find_span(&self, u: T) -> Result<usize> {
+        self.check_param(u)?;
+        Ok(self.span_in_domain(u))
+    }
+
+    /// [`KnotVector::find_span`] for a parameter already known to be in the domain; values
+    /// outside are clamped to the first or last span.
+    #[inline]
+    #[must_use]
+    pub fn span_in_domain(&self, u: T) -> usize {
+        let p = self.degree;
+        let n = self.num_basis();
+        let end = self.knots[n];
+        if u >= end {
+            // Left limit: the last span [u_k, u_{k+1}) with u_k < u_n.
+            return self.knots[..n].partition_point(|&k| k < end) - 1;
+        }
+        p + self.knots[p + 1..n].partition_point(|&k| k <= u)
+    }
+
+    /// [`KnotVector::span_in_domain`] starting from a previous span: constant time when
+    /// parameters arrive in increasing order, a binary search otherwise.
+    #[inline]
+    #[must_use]
+    pub fn span_in_domain_from(&self, u: T, hint: usize) -> usize {
+        let n = self.num_basis();
+        if hint >= self.degree && hint < n && self.knots[hint] <= u && u < self.knots[n] {
+            // Invariant: knots[k] <= u. A few linear steps, then fall back to bisection.
+            let mut k = hint;
+            for _ in 0..4 {
+                if u < self.knots[k + 1] {
+                    return k;
+                }
+                k += 1;
+            }
+        }
+        self.span_in_domain(u)
+    }
+
+    /// How many times `u` appears in the knot vector.
+    #[must_use]
+    pub fn multiplicity(&self, u: T) -> usize {
+        let lo = self.knots.partition_point(|&k| k < u);
+        let hi = self.knots.partition_point(|&k| k <= u);
+        hi - lo
+    }
+
+    /// The distinct knots with their multiplicities, in increasing order.
+    #[must_use]
+    pub fn breakpoints(&self) -> Vec<(T, usize)> {
+        let mut out: Vec<(T, usize)> = Vec::new();
+        for &k in &self.knots {
+            match out.last_mut() {
+                Some((last, m)) if *last == k => *m += 1,
+                _ => out.push((k, 1)),
+            }
+        }
+        out
+    }
+
+    /// The distinct knots inside the open domain, with multiplicities.
+    #[must_use]
+    pub fn interior_breakpoints(&self) -> Vec<(T, usize)> {
+        let (a, b) = self.domain();
+        self.breakpoints()
+            .into_iter()
+            .filter(|&(k, _)| k > a && k < b)
+            .collect()
+    }
+
+    /// Greville abscissae $u^*_i = (u_{i+1} + … + u_{i+p})/p$, `i = 0 … n − 1`: the
+    /// parameters at which the control polygon of a function is drawn. For degree 0, the
+    /// midpoints of the supports.
+    #[must_use]
+    pub fn greville(&self) -> Vec<T> {
+        let p = self.degree;
+        (0..self.num_basis())
+            .map(|i| {
+                if p == 0 {
+                    (self.knots[i] + self.knots[i + 1]) * crate::cast(0.5)
+                } else {
+                    self.knots[i + 1..=i + p]
+                        .iter()
+                        .fold(T::zero(), |s, &k| s + k)
+                        / from_count(p)
+                }
+            })
+            .collect()
+    }
+
+    /// The knot vector with `u` inserted `times` times.
+    ///
+    /// # Errors
+    /// [`ErrorKind::OutOfDomain`] outside the domain; [`ErrorKind::KnotMultiplicity`] if the
+    /// multiplicity would exceed `p + 1`.
+    pub fn with_inserted(&self, u: T, times: usize) -> Result<Self> {
+        self.check_param(u)?;
+        let at = self.knots.partition_point(|&k| k <= u);
+        let mut knots = Vec::with_capacity(self.len() + times);
+        knots.extend_from_slice(&self.knots[..at]);
+        knots.extend(std::iter::repeat_n(u, times));
+        knots.extend_from_slice(&self.knots[at..]);
+        Self::new(self.degree, knots)
+    }
+
+    /// The union of two knot vectors of the same degree: every distinct knot with the larger
+    /// of its two multiplicities.
+    ///
+    /// # Errors
+    /// [`ErrorKind::InvalidArgument`] if the degrees differ; the errors of [`KnotVector::new`].
+    pub fn merged(&self, other: &Self) -> Result<Self> {
+        if self.degree != other.degree {
+            return Err(Error::new(
+                ErrorKind::InvalidArgument,
+                format!(
+                    "cannot merge knot vectors of degrees {} and {}",
+                    self.degree, other.degree
+                ),
+            ));
+        }
+        Self::new(self.degree, merge_sorted_max(&self.knots, &other.knots))
+    }
+
+    /// The knot vector of the degree-elevated space: degree `p + times`, every distinct knot
+    /// repeated `times` more times.
+    ///
+    /// # Errors
+    /// [`ErrorKind::DegreeTooHigh`] above [`MAX_DEGREE`].
+    pub fn elevated(&self, times: usize) -> Result<Self> {
+        let mut knots = Vec::with_capacity(self.len() + times * self.len());
+        for (k, m) in self.breakpoints() {
+            knots.extend(std::iter::repeat_n(k, m + times));
+        }
+        Self::new(self.degree + times, knots)
+    }
+
+    /// The reversed knot vector `u ↦ a + b − u` (same domain `[a, b]`).
+    #[must_use]
+    pub fn reversed(&self) -> Self {
+        let (a, b) = self.domain();
+        let knots = self.knots.iter().rev().map(|&k| a + b - k).collect();
+        Self::new_unchecked(self.degree, knots)
+    }
+
+    /// The knot vector mapped affinely so that the domain becomes `[a, b]`.
+    ///
+    /// # Errors
+    /// [`ErrorKind::EmptyDomain`] unless `a < b`; [`ErrorKind::NonFinite`].
+    pub fn reparametrized(&self, a: T, b: T) -> Result<Self> {
+        check_interval(a, b)?;
+        let (c, d) = self.domain();
+        let scale = (b - a) / (d - c);
+        let knots = self.knots.iter().map(|&k| a + (k - c) * scale).collect();
+        Self::new(self.degree, knots)
+    }
+
+    /// The knots of the derivative space (degree `p − 1`): the first and last knots dropped.
+    ///
+    /// # Errors
+    /// [`ErrorKind::InvalidArgument`] for degree 0.
+    pub fn derivative_knots(&self) -> Result<Self> {
+        if self.degree == 0 {
+            return Err(Error::new(
+                ErrorKind::InvalidArgument,
+                "a degree-0 spline has no derivative space",
+            ));
+        }
+        Ok(Self::new_unchecked(
+            self.degree - 1,
+            self.knots[1..self.len() - 1].to_vec(),
+        ))
+    }
+}
+
+/// Sorted union keeping, for each value, the larger multiplicity.
+fn merge_sorted_max<T: Scalar>(a: &[T], b: &[T]) -> Vec<T> {
+    let mut out = Vec::with_capacity(a.len().max(b.len()));
+    let (mut i, mut j) = (0, 0);
+    while i < a.len() || j < b.len() {
+        if j >= b.len() || (i < a.len() && a[i] < b[j]) {
+            out.push(a[i]);
+            i += 1;
+        } else if i >= a.len() || b[j] < a[i] {
+            out.push(b[j]);
+            j += 1;
+        } else {
+            out.push(a[i]);
+            i += 1;
+            j += 1;
+        }
+    }
+    out
+}
+
+fn check_count(degree: usize, count: usize) -> Result<()> {
+    if count <= degree {
+        return Err(Error::new(
+            ErrorKind::TooFewPoints,
+            format!(
+                "degree {degree} needs at least {} control points or data points, got {count}",
+                degree + 1
+            ),
+        ));
+    }
+    if degree > MAX_DEGREE {
+        return Err(Error::new(
+            ErrorKind::DegreeTooHigh,
+            format!("degree {degree} is above the supported maximum {MAX_DEGREE}"),
+        ));
+    }
+    Ok(())
+}
+
+fn check_interval<T: Scalar>(a: T, b: T) -> Result<()> {
+    if !(a.is_finite() && b.is_finite()) {
+        return Err(Error::new(
+            ErrorKind::NonFinite,
+            format!("interval [{}, {}] is not finite", to_f64(a), to_f64(b)),
+        ));
+    }
+    if a >= b {
+        return Err(Error::new(
+            ErrorKind::EmptyDomain,
+            format!("interval [{}, {}] is empty", to_f64(a), to_f64(b)),
+        ));
+    }
+    Ok(())
+}
+
+/// Checks that parameters are finite and non-decreasing.
+///
+/// # Errors
+/// [`ErrorKind::NonFinite`] or [`ErrorKind::UnsortedKnots`].
+pub fn check_params<T: Scalar>(params: &[T]) -> Result<()> {
+    if let Some(i) = params.iter().position(|u| !u.is_finite()) {
+        return Err(Error::new(
+            ErrorKind::NonFinite,
+            format!("parameter {i} is not finite"),
+        ));
+    }
+    if let Some(i) = (1..params.len()).find(|&i| params[i] < params[i - 1]) {
+        return Err(Error::new(
+            ErrorKind::UnsortedKnots,
+            format!(
+                "parameters must be non-decreasing: parameter {i} ({}) < parameter {} ({})",
+                to_f64(params[i]),
+                i - 1,
+                to_f64(params[i - 1])
+            ),
+        ));
+    }
+    Ok(())
+}

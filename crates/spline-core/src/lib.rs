@@ -1,0 +1,33 @@
+//! The foundation of the `spline` library: the [`Scalar`] trait, the [`ControlPoint`] trait,
+//! validated [`KnotVector`]s, and B-spline basis functions with their derivatives.
+//!
+//! Everything here is generic over the scalar type, so `f32`, `f64` and dual numbers all
+//! work; with dual numbers a spline evaluation yields exact derivatives with respect to
+//! knots, parameters or control points.
+//!
+//! ```
+//! use spline_core::KnotVector;
+//! // The basis of FIG. 1 of Celikbas (2003): degree 3, knots [0,0,0,0,1,2,3,3,3,3].
+//! let knots = KnotVector::new(3, vec![0.0, 0.0, 0.0, 0.0, 1.0, 2.0, 3.0, 3.0, 3.0, 3.0])?;
+//! let basis = knots.eval_basis(1.5)?;
+//! let sum: f64 = basis.values().iter().sum();
+//! assert!((sum - 1.0).abs() < 1e-15); // partition of unity
+//! # Ok::<(), spline_core::Error>(())
+//! ```
+//!
+//! # Feature flags
+//! - `proptest-support`: exports proptest strategies for knot vectors in [`strategies`].
+
+mod basis;
+mod error;
+mod knots;
+mod point;
+mod scalar;
+#[cfg(feature = "proptest-support")]
+pub mod strategies;
+
+pub use basis::{BasisValues, bernstein, bernstein_all, binomial};
+pub use error::{Error, ErrorKind, Result};
+pub use knots::{KnotVector, MAX_DEGREE, MAX_ORDER, check_params};
+pub use point::{ControlPoint, lerp};
+pub use scalar::{Scalar, cast, from_count, to_f64};

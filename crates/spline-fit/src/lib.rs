@@ -1,0 +1,1 @@
+//! spline-fit: see the crate description. Work in progress.

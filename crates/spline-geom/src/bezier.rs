@@ -1,0 +1,239 @@
+//! Bézier curves: Bernstein form on a parameter interval.
+
+use crate::bspline::BSpline;
+use spline_core::{
+    ControlPoint, Error, ErrorKind, KnotVector, MAX_ORDER, Result, Scalar, bernstein_all, binomial,
+    from_count, to_f64,
+};
+
+/// A Bézier curve of degree `n` on `[a, b]`:
+/// $P(t) = \sum_{i=0}^{n} B_i^n\!\left(\frac{t-a}{b-a}\right) P_i$.
+///
+/// Any degree is accepted (interpolating Bézier curves of seed 003 have one control point per
+/// data point); degrees above [`spline_core::MAX_DEGREE`] fall back to heap memory in
+/// de Casteljau's algorithm and cannot become a [`BSpline`].
+///
+/// ```
+/// use spline_geom::Bezier;
+/// let b = Bezier::new(vec![0.0, 1.0, 0.0])?;
+/// assert_eq!(b.eval(0.5)?, 0.5);
+/// let (left, right) = b.subdivide(0.5)?;
+/// assert_eq!(left.control_points(), &[0.0, 0.5, 0.5]);
+/// assert_eq!(right.control_points(), &[0.5, 0.5, 0.0]);
+/// # Ok::<(), spline_core::Error>(())
+/// ```
+#[derive(Clone, Debug, PartialEq)]
+pub struct Bezier<T, P> {
+    control_points: Vec<P>,
+    start: T,
+    end: T,
+}
+
+impl<T: Scalar, P: ControlPoint<T>> Bezier<T, P> {
+    /// A Bézier curve on `[0, 1]`.
+    ///
+    /// # Errors
+    /// [`ErrorKind::InvalidLength`] without control points; [`ErrorKind::NonFinite`].
+    pub fn new(control_points: Vec<P>) -> Result<Self> {
+        Self::with_interval(control_points, T::zero(), T::one())
+    }
+
+    /// A Bézier curve on `[a, b]`.
+    ///
+    /// # Errors
+    /// As [`Bezier::new`]; [`ErrorKind::EmptyDomain`] unless `a < b`.
+    pub fn with_interval(control_points: Vec<P>, a: T, b: T) -> Result<Self> {
+        if control_points.is_empty() {
+            return Err(Error::new(
+                ErrorKind::InvalidLength,
+                "a Bézier curve needs at least one control point",
+            ));
+        }
+        if let Some(i) = control_points.iter().position(|p| !p.all_finite()) {
+            return Err(Error::new(
+                ErrorKind::NonFinite,
+                format!("control point {i} is not finite"),
+            ));
+        }
+        if !(a.is_finite() && b.is_finite()) {
+            return Err(Error::new(
+                ErrorKind::NonFinite,
+                "interval ends must be finite",
+            ));
+        }
+        if !(a < b) {
+            return Err(Error::new(
+                ErrorKind::EmptyDomain,
+                format!("interval [{}, {}] is empty", to_f64(a), to_f64(b)),
+            ));
+        }
+        Ok(Self::new_unchecked(control_points, a, b))
+    }
+
+    pub(crate) fn new_unchecked(control_points: Vec<P>, start: T, end: T) -> Self {
+        Self {
+            control_points,
+            start,
+            end,
+        }
+    }
+
+    /// The degree `n` (number of control points − 1).
+    #[must_use]
+    pub fn degree(&self) -> usize {
+        self.control_points.len() - 1
+    }
+
+    /// The control points.
+    #[must_use]
+    pub fn control_points(&self) -> &[P] {
+        &self.control_points
+    }
+
+    /// The parameter interval `[a, b]`.
+    #[must_use]
+    pub fn interval(&self) -> (T, T) {
+        (self.start, self.end)
+    }
+
+    fn local(&self, t: T) -> Result<T> {
+        if !t.is_finite() {
+            return Err(Error::new(ErrorKind::NonFinite, "parameter is not finite"));
+        }
+        if t < self.start || t > self.end {
+            return Err(Error::new(
+                ErrorKind::OutOfDomain,
+                format!(
+                    "parameter {} is outside the interval [{}, {}]",
+                    to_f64(t),
+                    to_f64(self.start),
+                    to_f64(self.end)
+                ),
+            ));
+        }
+        Ok((t - self.start) / (self.end - self.start))
+    }
+
+    /// The point at `t` by de Casteljau's algorithm (seed 003 TD1): repeated linear
+    /// interpolation, numerically the most stable evaluation.
+    ///
+    /// # Errors
+    /// [`ErrorKind::NonFinite`] or [`ErrorKind::OutOfDomain`].
+    pub fn eval(&self, t: T) -> Result<P> {
+        let s = self.local(t)?;
+        let n = self.degree();
+        let mut stack = [P::origin(); MAX_ORDER];
+        let mut heap;
+        let work: &mut [P] = if n < MAX_ORDER {
+            stack[..=n].copy_from_slice(&self.control_points);
+            &mut stack[..=n]
+        } else {
+            heap = self.control_points.clone();
+            &mut heap
+        };
+        let r = T::one() - s;
+        for level in 1..=n {
+            for i in 0..=n - level {
+                work[i] = work[i] * r + work[i + 1] * s;
+            }
+        }
+        Ok(work[0])
+    }
+
+    /// The point at `t` as $\sum B_i^n P_i$ with all Bernstein polynomials computed by their
+    /// recurrence (the original evaluation of seed 003 TD1).
+    ///
+    /// # Errors
+    /// [`ErrorKind::NonFinite`] or [`ErrorKind::OutOfDomain`].
+    pub fn eval_bernstein(&self, t: T) -> Result<P> {
+        let s = self.local(t)?;
+        let n = self.degree();
+        let mut b = vec![T::zero(); n + 1];
+        bernstein_all(n, s, &mut b);
+        Ok(self
+            .control_points
+            .iter()
+            .zip(&b)
+            .fold(P::origin(), |acc, (p, w)| acc + *p * *w))
+    }
+
+    /// Splits at `t` (seed 004 §8.4): the left and right Bézier curves on `[a, t]` and
+    /// `[t, b]`, whose control points are the two sides of the de Casteljau triangle.
+    ///
+    /// # Errors
+    /// [`ErrorKind::NonFinite`]; [`ErrorKind::OutOfDomain`] unless `a < t < b`.
+    pub fn subdivide(&self, t: T) -> Result<(Self, Self)> {
+        let s = self.local(t)?;
+        if !(t > self.start && t < self.end) {
+            return Err(Error::new(
+                ErrorKind::OutOfDomain,
+                "subdivision parameter must lie strictly inside the interval",
+            ));
+        }
+        let n = self.degree();
+        let mut work = self.control_points.clone();
+        let mut left = Vec::with_capacity(n + 1);
+        let mut right = Vec::with_capacity(n + 1);
+        left.push(work[0]);
+        right.push(work[n]);
+        let r = T::one() - s;
+        for level in 1..=n {
+            for i in 0..=n - level {
+                work[i] = work[i] * r + work[i + 1] * s;
+            }
+            left.push(work[0]);
+            right.push(work[n - level]);
+        }
+        right.reverse();
+        Ok((
+            Self::new_unchecked(left, self.start, t),
+            Self::new_unchecked(right, t, self.end),
+        ))
+    }
+
+    /// Raises the degree by `times`:
+    /// $Q_i = \sum_j \binom{n}{j}\binom{r}{i-j} / \binom{n+r}{i}\, P_j$.
+    #[must_use]
+    pub fn elevate_degree(&self, times: usize) -> Self {
+        let n = self.degree();
+        let nh = n + times;
+        let points = (0..=nh)
+            .map(|i| {
+                let inv = T::one() / binomial::<T>(nh, i);
+                (i.saturating_sub(times)..=n.min(i)).fold(P::origin(), |acc, j| {
+                    acc + self.control_points[j]
+                        * (inv * binomial::<T>(n, j) * binomial::<T>(times, i - j))
+                })
+            })
+            .collect();
+        Self::new_unchecked(points, self.start, self.end)
+    }
+
+    /// The derivative (hodograph) $\frac{n}{b-a}(P_{i+1} - P_i)$, degree `n − 1`; the
+    /// derivative of a constant is the zero curve of degree 0.
+    #[must_use]
+    pub fn derivative(&self) -> Self {
+        let n = self.degree();
+        if n == 0 {
+            return Self::new_unchecked(vec![P::origin()], self.start, self.end);
+        }
+        let scale = from_count::<T>(n) / (self.end - self.start);
+        let points = self
+            .control_points
+            .windows(2)
+            .map(|w| (w[1] - w[0]) * scale)
+            .collect();
+        Self::new_unchecked(points, self.start, self.end)
+    }
+
+    /// The same curve as a clamped B-spline on `[a, b]`.
+    ///
+    /// # Errors
+    /// [`ErrorKind::DegreeTooHigh`] above [`spline_core::MAX_DEGREE`].
+    pub fn to_bspline(&self) -> Result<BSpline<T, P>> {
+        BSpline::new(
+            KnotVector::bezier(self.degree(), self.start, self.end)?,
+            self.control_points.clone(),
+        )
+    }
+}

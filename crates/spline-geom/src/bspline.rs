@@ -1,0 +1,375 @@
+//! The B-spline container and its evaluation.
+
+use spline_core::{
+    ControlPoint, Error, ErrorKind, KnotVector, MAX_ORDER, Result, Scalar, from_count,
+};
+
+/// A B-spline: a degree, a [`KnotVector`] and `n` control points of any type `P` that forms a
+/// vector space over `T`.
+///
+/// $$ C(u) = \sum_{i=0}^{n-1} N_{i,p}(u)\, P_i, \qquad u \in [u_p, u_n]. $$
+///
+/// With `P = T` it is a B-spline *function*; with `P = nalgebra::SVector<T, D>` a curve in
+/// `R^D`; with homogeneous points it is the container behind a NURBS curve. The container
+/// is the SYNAPS `bspline::curve` of seed 000 §2.3.1; algorithms are written once on it.
+///
+/// ```
+/// use nalgebra::Vector2;
+/// use spline_geom::BSpline;
+/// // The example curve of seed 000 §2.3.3.
+/// let curve = BSpline::from_knots(
+///     3,
+///     vec![0.0, 0.0, 0.0, 0.0, 1.0, 2.0, 3.0, 3.0, 3.0, 3.0],
+///     vec![
+///         Vector2::new(0.41705, 0.10673), Vector2::new(0.28802, 0.60088),
+///         Vector2::new(0.90553, 0.46053), Vector2::new(1.3203, 0.79678),
+///         Vector2::new(1.8041, 0.63012), Vector2::new(1.477, 0.13012),
+///     ],
+/// )?;
+/// assert_eq!(curve.eval(0.0)?, Vector2::new(0.41705, 0.10673)); // clamped: first point
+/// assert_eq!(curve.eval(3.0)?, Vector2::new(1.477, 0.13012));   // and last point
+/// # Ok::<(), spline_core::Error>(())
+/// ```
+#[derive(Clone, Debug, PartialEq)]
+pub struct BSpline<T, P> {
+    knots: KnotVector<T>,
+    control_points: Vec<P>,
+}
+
+impl<T: Scalar, P: ControlPoint<T>> BSpline<T, P> {
+    /// A B-spline from a validated knot vector and its control points.
+    ///
+    /// # Errors
+    /// [`ErrorKind::InvalidLength`] unless there are exactly `n = len(knots) − p − 1` control
+    /// points; [`ErrorKind::NonFinite`] if a coordinate is NaN or infinite.
+    pub fn new(knots: KnotVector<T>, control_points: Vec<P>) -> Result<Self> {
+        if control_points.len() != knots.num_basis() {
+            return Err(Error::new(
+                ErrorKind::InvalidLength,
+                format!(
+                    "{} knots of a degree-{} spline need {} control points, got {}",
+                    knots.len(),
+                    knots.degree(),
+                    knots.num_basis(),
+                    control_points.len()
+                ),
+            ));
+        }
+        if let Some(i) = control_points.iter().position(|p| !p.all_finite()) {
+            return Err(Error::new(
+                ErrorKind::NonFinite,
+                format!("control point {i} is not finite"),
+            ));
+        }
+        Ok(Self {
+            knots,
+            control_points,
+        })
+    }
+
+    /// A B-spline from a degree, raw knots and control points; validates everything.
+    ///
+    /// # Errors
+    /// The errors of [`KnotVector::new`] and [`BSpline::new`].
+    pub fn from_knots(degree: usize, knots: Vec<T>, control_points: Vec<P>) -> Result<Self> {
+        Self::new(KnotVector::new(degree, knots)?, control_points)
+    }
+
+    /// A B-spline whose data the caller guarantees consistent (checked in debug builds).
+    ///
+    /// # Panics
+    /// In debug builds, if the number of control points does not match the knots.
+    #[must_use]
+    pub fn new_unchecked(knots: KnotVector<T>, control_points: Vec<P>) -> Self {
+        debug_assert_eq!(control_points.len(), knots.num_basis());
+        Self {
+            knots,
+            control_points,
+        }
+    }
+
+    /// The degree `p`.
+    #[inline]
+    #[must_use]
+    pub fn degree(&self) -> usize {
+        self.knots.degree()
+    }
+
+    /// The knot vector.
+    #[inline]
+    #[must_use]
+    pub fn knots(&self) -> &KnotVector<T> {
+        &self.knots
+    }
+
+    /// The control points.
+    #[inline]
+    #[must_use]
+    pub fn control_points(&self) -> &[P] {
+        &self.control_points
+    }
+
+    /// Mutable access to the control points (their number is fixed by the knots).
+    #[inline]
+    pub fn control_points_mut(&mut self) -> &mut [P] {
+        &mut self.control_points
+    }
+
+    /// Splits the spline into its knot vector and control points.
+    #[must_use]
+    pub fn into_parts(self) -> (KnotVector<T>, Vec<P>) {
+        (self.knots, self.control_points)
+    }
+
+    /// The parametric domain $[u_p, u_n]$.
+    #[inline]
+    #[must_use]
+    pub fn domain(&self) -> (T, T) {
+        self.knots.domain()
+    }
+
+    /// The same knots with other control points (of any type).
+    ///
+    /// # Errors
+    /// As [`BSpline::new`].
+    pub fn with_control_points<Q: ControlPoint<T>>(
+        &self,
+        control_points: Vec<Q>,
+    ) -> Result<BSpline<T, Q>> {
+        BSpline::new(self.knots.clone(), control_points)
+    }
+
+    /// Applies `f` to every control point: by affine invariance, applying an affine map to
+    /// the control points applies it to the curve.
+    #[must_use]
+    pub fn map_control_points<Q: ControlPoint<T>>(&self, f: impl FnMut(&P) -> Q) -> BSpline<T, Q> {
+        BSpline::new_unchecked(
+            self.knots.clone(),
+            self.control_points.iter().map(f).collect(),
+        )
+    }
+
+    /// The point at `u` from a known span (no checks).
+    #[inline]
+    pub(crate) fn eval_in_span(&self, span: usize, u: T) -> P {
+        let p = self.degree();
+        let mut basis = [T::zero(); MAX_ORDER];
+        self.knots.basis_values(span, u, &mut basis);
+        let points = &self.control_points[span - p..=span];
+        let mut acc = points[0] * basis[0];
+        for r in 1..=p {
+            acc += points[r] * basis[r];
+        }
+        acc
+    }
+
+    /// The point $C(u)$: basis functions (The NURBS Book A2.2) combined with the `p + 1`
+    /// control points of the span. See [`BSpline::de_boor`] for the classic triangular scheme.
+    ///
+    /// # Errors
+    /// [`ErrorKind::NonFinite`] or [`ErrorKind::OutOfDomain`].
+    #[inline]
+    pub fn eval(&self, u: T) -> Result<P> {
+        let span = self.knots.find_span(u)?;
+        Ok(self.eval_in_span(span, u))
+    }
+
+    /// The point $C(u)$ by de Boor's algorithm (seed 000 Algorithm 2): repeated affine
+    /// combinations of the `p + 1` control points of the span, in place on the stack.
+    ///
+    /// # Errors
+    /// [`ErrorKind::NonFinite`] or [`ErrorKind::OutOfDomain`].
+    pub fn de_boor(&self, u: T) -> Result<P> {
+        let span = self.knots.find_span(u)?;
+        let p = self.degree();
+        let knots = self.knots.knots();
+        let mut d = [P::origin(); MAX_ORDER];
+        d[..=p].copy_from_slice(&self.control_points[span - p..=span]);
+        for r in 1..=p {
+            for j in (r..=p).rev() {
+                let i = span - p + j;
+                let alpha = (u - knots[i]) / (knots[i + p + 1 - r] - knots[i]);
+                d[j] = d[j - 1] * (T::one() - alpha) + d[j] * alpha;
+            }
+        }
+        Ok(d[p])
+    }
+
+    /// $C(u), C'(u), …, C^{(k)}(u)$ with `k = out.len() − 1`, written into `out`. Orders above
+    /// the degree are zero. No heap allocation for `k ≤ 3`.
+    ///
+    /// # Errors
+    /// [`ErrorKind::NonFinite`] or [`ErrorKind::OutOfDomain`].
+    pub fn derivatives_into(&self, u: T, out: &mut [P]) -> Result<()> {
+        let span = self.knots.find_span(u)?;
+        self.derivatives_in_span(span, u, out);
+        Ok(())
+    }
+
+    pub(crate) fn derivatives_in_span(&self, span: usize, u: T, out: &mut [P]) {
+        if out.is_empty() {
+            return;
+        }
+        let order = out.len() - 1;
+        let p = self.degree();
+        let width = p + 1;
+        let mut stack = [T::zero(); 4 * MAX_ORDER];
+        let mut heap = Vec::new();
+        let table: &mut [T] = if order < 4 {
+            &mut stack[..(order + 1) * width]
+        } else {
+            heap.resize((order + 1) * width, T::zero());
+            &mut heap
+        };
+        self.knots.basis_derivatives(span, u, order, table);
+        let points = &self.control_points[span - p..=span];
+        for (k, slot) in out.iter_mut().enumerate() {
+            if k > p {
+                *slot = P::origin();
+                continue;
+            }
+            let row = &table[k * width..(k + 1) * width];
+            let mut acc = points[0] * row[0];
+            for r in 1..=p {
+                acc += points[r] * row[r];
+            }
+            *slot = acc;
+        }
+    }
+
+    /// The derivatives $C^{(j)}(u)$ for `j = 0 … order`.
+    ///
+    /// ```
+    /// use spline_geom::BSpline;
+    /// // f(u) = u² on [0, 1] as a quadratic Bézier function.
+    /// let f = BSpline::from_knots(2, vec![0.0, 0.0, 0.0, 1.0, 1.0, 1.0], vec![0.0, 0.0, 1.0])?;
+    /// assert_eq!(f.derivatives(0.5, 3)?, vec![0.25, 1.0, 2.0, 0.0]);
+    /// # Ok::<(), spline_core::Error>(())
+    /// ```
+    ///
+    /// # Errors
+    /// [`ErrorKind::NonFinite`] or [`ErrorKind::OutOfDomain`].
+    pub fn derivatives(&self, u: T, order: usize) -> Result<Vec<P>> {
+        let mut out = vec![P::origin(); order + 1];
+        self.derivatives_into(u, &mut out)?;
+        Ok(out)
+    }
+
+    /// Evaluates at many parameters into `out` (same length). Parameters in increasing order
+    /// take a constant-time span search; any order is accepted. All parameters are checked
+    /// before anything is written.
+    ///
+    /// # Errors
+    /// [`ErrorKind::InvalidLength`] if the lengths differ; [`ErrorKind::NonFinite`] or
+    /// [`ErrorKind::OutOfDomain`] for the first bad parameter.
+    pub fn eval_many_into(&self, params: &[T], out: &mut [P]) -> Result<()> {
+        check_same_len(params.len(), out.len())?;
+        for (i, &u) in params.iter().enumerate() {
+            self.knots
+                .check_param(u)
+                .map_err(|e| e.context(format_args!("parameter {i}")))?;
+        }
+        let mut span = self.degree();
+        for (slot, &u) in out.iter_mut().zip(params) {
+            span = self.knots.span_in_domain_from(u, span);
+            *slot = self.eval_in_span(span, u);
+        }
+        Ok(())
+    }
+
+    /// Evaluates at many parameters.
+    ///
+    /// # Errors
+    /// As [`BSpline::eval_many_into`].
+    pub fn eval_many(&self, params: &[T]) -> Result<Vec<P>> {
+        let mut out = vec![P::origin(); params.len()];
+        self.eval_many_into(params, &mut out)?;
+        Ok(out)
+    }
+
+    /// Derivatives up to `order` at many parameters: `out[i * (order + 1) + k]` $= C^{(k)}(u_i)$.
+    ///
+    /// # Errors
+    /// As [`BSpline::eval_many_into`]; `out.len()` must be `params.len() (order + 1)`.
+    pub fn derivatives_many_into(&self, params: &[T], order: usize, out: &mut [P]) -> Result<()> {
+        check_same_len(params.len() * (order + 1), out.len())?;
+        for (i, &u) in params.iter().enumerate() {
+            self.knots
+                .check_param(u)
+                .map_err(|e| e.context(format_args!("parameter {i}")))?;
+        }
+        let mut span = self.degree();
+        for (chunk, &u) in out.chunks_exact_mut(order + 1).zip(params) {
+            span = self.knots.span_in_domain_from(u, span);
+            self.derivatives_in_span(span, u, chunk);
+        }
+        Ok(())
+    }
+
+    /// The derivative of order `order` as a B-spline of degree `p − order` on the knots with
+    /// `order` knots dropped at each end (seed 000 (6)):
+    /// $Q_i = \frac{p}{u_{i+p+1} - u_{i+1}} (P_{i+1} - P_i)$, applied `order` times.
+    /// Where a knot of multiplicity `p + 1` (a discontinuity) makes the denominator vanish,
+    /// the coefficient multiplies an identically zero basis function: it is dropped with one
+    /// copy of the knot, so the result is the piecewise derivative (jumps are not Dirac
+    /// masses) and its knot vector stays valid.
+    ///
+    /// # Errors
+    /// [`ErrorKind::InvalidArgument`] if `order > p`.
+    pub fn derivative(&self, order: usize) -> Result<Self> {
+        if order > self.degree() {
+            return Err(Error::new(
+                ErrorKind::InvalidArgument,
+                format!(
+                    "derivative order {order} exceeds the degree {} (higher derivatives are zero)",
+                    self.degree()
+                ),
+            ));
+        }
+        let mut knots = self.knots.knots().to_vec();
+        let mut points = self.control_points.clone();
+        let mut p = self.degree();
+        for _ in 0..order {
+            let pt = from_count::<T>(p);
+            // Derivative coefficients; `None` marks a basis function with empty support
+            // (a knot of multiplicity p + 1), dropped together with one copy of that knot.
+            let coefficients: Vec<Option<P>> = (0..points.len() - 1)
+                .map(|i| {
+                    let denom = knots[i + p + 1] - knots[i + 1];
+                    (denom > T::zero()).then(|| (points[i + 1] - points[i]) * (pt / denom))
+                })
+                .collect();
+            let inner = &knots[1..knots.len() - 1];
+            let mut new_knots = Vec::with_capacity(inner.len());
+            let mut new_points = Vec::with_capacity(coefficients.len());
+            for (i, &k) in inner.iter().enumerate() {
+                match coefficients.get(i) {
+                    Some(None) => {}
+                    Some(Some(q)) => {
+                        new_points.push(*q);
+                        new_knots.push(k);
+                    }
+                    None => new_knots.push(k),
+                }
+            }
+            knots = new_knots;
+            points = new_points;
+            p -= 1;
+        }
+        Ok(Self::new_unchecked(
+            KnotVector::new_unchecked(p, knots),
+            points,
+        ))
+    }
+}
+
+pub(crate) fn check_same_len(expected: usize, got: usize) -> Result<()> {
+    if expected == got {
+        Ok(())
+    } else {
+        Err(Error::new(
+            ErrorKind::InvalidLength,
+            format!("output buffer holds {got} entries, {expected} needed"),
+        ))
+    }
+}

@@ -1,0 +1,39 @@
+//! Curves and surfaces: the generic containers of the `spline` library and every classic
+//! algorithm on them.
+//!
+//! - [`BSpline`]: degree + knot vector + control points of any [`ControlPoint`] type
+//!   (functions, curves in `R^D`, homogeneous points), with evaluation (de Boor and basis
+//!   form), derivatives of any order, the derivative curve, knot insertion, refinement and
+//!   removal, degree elevation, splitting, clamping, Bézier decomposition, reversal.
+//! - [`Bezier`]: de Casteljau, Bernstein evaluation, subdivision, elevation, hodograph.
+//! - Planar differential geometry, adaptive arc length, the variation-diminishing count.
+//! - Exchange-format (de)serialisation and export as gnuplot `.dat` and SVG.
+//!
+//! ```
+//! use nalgebra::Vector2;
+//! use spline_geom::BSpline;
+//! let curve = BSpline::from_knots(
+//!     2,
+//!     vec![0.0, 0.0, 0.0, 1.0, 1.0, 1.0],
+//!     vec![Vector2::new(0.0, 0.0), Vector2::new(1.0, 2.0), Vector2::new(2.0, 0.0)],
+//! )?;
+//! let split = curve.split(0.5)?;
+//! assert_eq!(split.0.eval(0.5)?, curve.eval(0.5)?);
+//! # Ok::<(), spline_core::Error>(())
+//! ```
+
+mod bezier;
+mod bspline;
+mod structural;
+
+pub use bezier::Bezier;
+pub use bspline::BSpline;
+pub use spline_core::{ControlPoint, Error, ErrorKind, KnotVector, Result, Scalar};
+pub use structural::DEFAULT_REMOVAL_TOLERANCE;
+
+/// A B-spline function (scalar control points).
+pub type BSplineFunction<T = f64> = BSpline<T, T>;
+/// A planar B-spline curve.
+pub type Curve2<T = f64> = BSpline<T, nalgebra::Vector2<T>>;
+/// A spatial B-spline curve.
+pub type Curve3<T = f64> = BSpline<T, nalgebra::Vector3<T>>;

@@ -1,0 +1,1 @@
+//! spline-shape: see the crate description. Work in progress.
