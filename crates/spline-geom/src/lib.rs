@@ -24,6 +24,7 @@
 
 mod bezier;
 mod bspline;
+pub mod exchange;
 mod structural;
 
 pub use bezier::Bezier;
