@@ -1,1 +1,3 @@
+//! Project automation: `cargo xtask ci | docs | bench | demo`.
+
 fn main() {}

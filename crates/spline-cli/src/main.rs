@@ -1,1 +1,128 @@
-fn main() {}
+//! `spline`: the command-line tool of the `spline` library.
+//!
+//! Every subcommand reads objects in the JSON exchange format (`docs/exchange-format.md`)
+//! from a file or `-` (standard input) and prints JSON on standard output. Invalid input
+//! gives a one-line message on standard error and exit status 2, never a panic or NaN.
+
+#![allow(unreachable_pub)]
+
+mod algebra;
+mod curves;
+mod fitting;
+mod io;
+mod shape;
+mod surfaces;
+
+use clap::{Parser, Subcommand};
+use std::process::ExitCode;
+
+/// B-spline and NURBS curves and surfaces from the command line.
+#[derive(Parser)]
+#[command(name = "spline", version, about, long_about = None)]
+struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Subcommand)]
+enum Command {
+    /// All basis functions N_i^(k)(u) at the parameters: [param][k][i].
+    Basis(curves::BasisArgs),
+    /// Evaluate a curve ([param][k][coord]) or surface ([param][k][l][coord]) with derivatives.
+    Eval(curves::EvalArgs),
+    /// Insert a knot (times R) without changing the shape.
+    Insert(curves::InsertArgs),
+    /// Insert many knots at once (knot refinement).
+    Refine(curves::RefineArgs),
+    /// Remove a knot if the shape moves by at most the tolerance.
+    Remove(curves::RemoveArgs),
+    /// Raise the degree; every distinct knot's multiplicity rises by the same amount.
+    Elevate(curves::ElevateArgs),
+    /// Split at a parameter into [left, right], both clamped there.
+    Split(curves::SplitArgs),
+    /// The Bézier segments of a curve, each clamped on its span.
+    Bezier(curves::ObjectArgs),
+    /// The derivative curve of order K (degree p - K).
+    Derivative(curves::DerivativeArgs),
+    /// Draw curves with their control polygons as SVG.
+    Plot(curves::PlotArgs),
+    /// Product of two B-spline functions, optionally with Jacobians.
+    Product(algebra::ProductArgs),
+    /// Signed curvature of a planar curve at parameters.
+    Curvature(algebra::CurvatureArgs),
+    /// Inflections and curvature extrema of a planar curve.
+    Features(curves::ObjectArgs),
+    /// Interpolate points with a B-spline curve.
+    Interpolate(fitting::InterpolateArgs),
+    /// The natural cubic spline function through (x, y) data.
+    Natural(fitting::NaturalArgs),
+    /// Least-squares approximation of points by a B-spline curve.
+    Approximate(fitting::ApproximateArgs),
+    /// Smooth points with a curve that has only the allowed curvature extrema.
+    Smooth(shape::SmoothArgs),
+    /// Build circles, arcs, conics, extrusions, ruled, conical, revolved surfaces, spheres, tori.
+    Make(surfaces::MakeArgs),
+    /// Triangulate a surface into an OBJ or OFF mesh.
+    Mesh(surfaces::MeshArgs),
+}
+
+fn run(command: Command) -> spline_core::Result<()> {
+    match command {
+        Command::Basis(args) => curves::basis(&args),
+        Command::Eval(args) => curves::eval(&args),
+        Command::Insert(args) => curves::insert(&args),
+        Command::Refine(args) => curves::refine(&args),
+        Command::Remove(args) => curves::remove(&args),
+        Command::Elevate(args) => curves::elevate(&args),
+        Command::Split(args) => curves::split(&args),
+        Command::Bezier(args) => curves::bezier(&args),
+        Command::Derivative(args) => curves::derivative(&args),
+        Command::Plot(args) => curves::plot(&args),
+        Command::Product(args) => algebra::product(&args),
+        Command::Curvature(args) => algebra::curvature(&args),
+        Command::Features(args) => algebra::features(&args),
+        Command::Interpolate(args) => fitting::interpolate(&args),
+        Command::Natural(args) => fitting::natural(&args),
+        Command::Approximate(args) => fitting::approximate(&args),
+        Command::Smooth(args) => shape::smooth(&args),
+        Command::Make(args) => surfaces::make(&args),
+        Command::Mesh(args) => surfaces::mesh(&args),
+    }
+}
+
+fn main() -> ExitCode {
+    let cli = match Cli::try_parse() {
+        Ok(cli) => cli,
+        Err(e) => {
+            use clap::error::ErrorKind;
+            if matches!(
+                e.kind(),
+                ErrorKind::DisplayHelp
+                    | ErrorKind::DisplayVersion
+                    | ErrorKind::DisplayHelpOnMissingArgumentOrSubcommand
+            ) {
+                let _ = e.print();
+                return if e.kind() == ErrorKind::DisplayHelpOnMissingArgumentOrSubcommand {
+                    ExitCode::from(2)
+                } else {
+                    ExitCode::SUCCESS
+                };
+            }
+            let text = e.render().to_string();
+            let first = text
+                .lines()
+                .find(|l| !l.trim().is_empty())
+                .unwrap_or("invalid arguments");
+            let first = first.trim_start_matches("error: ");
+            eprintln!("spline: {first} (see spline --help)");
+            return ExitCode::from(2);
+        }
+    };
+    match run(cli.command) {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(e) => {
+            eprintln!("spline: {e}");
+            ExitCode::from(2)
+        }
+    }
+}

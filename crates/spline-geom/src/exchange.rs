@@ -8,8 +8,8 @@ use crate::bspline::BSpline;
 use serde::{Deserialize, Deserializer, Serialize, Serializer};
 use spline_core::{ControlPoint, Error, ErrorKind, KnotVector, Result, Scalar, cast, to_f64};
 
-/// A curve as it appears in the exchange format, before validation. The `spline` tool works
-/// on this record so that curves of any dimension `d ≥ 1` are accepted.
+/// A curve as it appears in the exchange format, before validation (the dimension `d ≥ 1` of
+/// the points is only known at run time).
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct CurveRecord {
@@ -59,42 +59,6 @@ impl CurveRecord {
     /// The errors of [`KnotVector::new`].
     pub fn knot_vector(&self) -> Result<KnotVector<f64>> {
         KnotVector::new(self.degree, self.knots.clone())
-    }
-
-    /// The curve as one B-spline function per coordinate, all on the same knots: the form in
-    /// which the tool applies structural operations to curves of any dimension.
-    ///
-    /// # Errors
-    /// The errors of [`CurveRecord::dimension`], [`KnotVector::new`] and [`BSpline::new`].
-    pub fn coordinate_functions(&self) -> Result<Vec<BSpline<f64, f64>>> {
-        let d = self.dimension()?;
-        let knots = self.knot_vector()?;
-        (0..d)
-            .map(|c| {
-                BSpline::new(
-                    knots.clone(),
-                    self.control_points.iter().map(|p| p[c]).collect(),
-                )
-            })
-            .collect()
-    }
-
-    /// Reassembles coordinate functions (same knots) into a record.
-    ///
-    /// # Panics
-    /// If `functions` is empty or their sizes differ.
-    #[must_use]
-    pub fn from_coordinate_functions(functions: &[BSpline<f64, f64>]) -> Self {
-        let first = &functions[0];
-        let n = first.control_points().len();
-        Self {
-            degree: first.degree(),
-            knots: first.knots().knots().to_vec(),
-            control_points: (0..n)
-                .map(|i| functions.iter().map(|f| f.control_points()[i]).collect())
-                .collect(),
-            weights: None,
-        }
     }
 
     /// The record of a B-spline.
@@ -168,4 +132,78 @@ impl<'de, T: Scalar, P: ControlPoint<T>> Deserialize<'de> for BSpline<T, P> {
         let record = CurveRecord::deserialize(deserializer)?;
         record.to_bspline().map_err(serde::de::Error::custom)
     }
+}
+
+/// Parses a point file: a JSON array of arrays, or text with one point per line whose
+/// coordinates are separated by whitespace or commas. Lines starting with `#` and lines
+/// that are not all numbers (headers, notes, placeholders such as `......` in some UIUC
+/// airfoil files) are skipped; a number in parentheses, `(0.0022)`, is read as the number.
+///
+/// ```
+/// let points = spline_geom::exchange::parse_points("NACA 0012\n1.0 0.0\n0.5, 0.06\n# note\n0 0")?;
+/// assert_eq!(points, vec![vec![1.0, 0.0], vec![0.5, 0.06], vec![0.0, 0.0]]);
+/// # Ok::<(), spline_core::Error>(())
+/// ```
+///
+/// # Errors
+/// [`ErrorKind::Parse`] for malformed JSON; [`ErrorKind::DimensionMismatch`] if points differ
+/// in dimension (the message names the line); [`ErrorKind::NonFinite`];
+/// [`ErrorKind::TooFewPoints`] if no point was found.
+pub fn parse_points(text: &str) -> Result<Vec<Vec<f64>>> {
+    let points: Vec<(usize, Vec<f64>)> = if text.trim_start().starts_with('[') {
+        let rows: Vec<Vec<f64>> = serde_json::from_str(text).map_err(|e| {
+            Error::new(
+                ErrorKind::Parse,
+                format!("points are not a JSON array of number arrays: {e}"),
+            )
+        })?;
+        rows.into_iter()
+            .enumerate()
+            .map(|(i, r)| (i + 1, r))
+            .collect()
+    } else {
+        text.lines()
+            .enumerate()
+            .filter_map(|(i, line)| {
+                let line = line.trim();
+                if line.is_empty() || line.starts_with('#') {
+                    return None;
+                }
+                let values: Option<Vec<f64>> = line
+                    .split(|c: char| c.is_whitespace() || c == ',')
+                    .filter(|t| !t.is_empty())
+                    .map(|t| {
+                        let t = t
+                            .strip_prefix('(')
+                            .and_then(|t| t.strip_suffix(')'))
+                            .unwrap_or(t);
+                        t.parse::<f64>().ok()
+                    })
+                    .collect();
+                values.map(|v| (i + 1, v))
+            })
+            .collect()
+    };
+    let Some((_, first)) = points.first() else {
+        return Err(Error::new(ErrorKind::TooFewPoints, "no points found"));
+    };
+    let d = first.len();
+    for (line, p) in &points {
+        if p.len() != d || d == 0 {
+            return Err(Error::new(
+                ErrorKind::DimensionMismatch,
+                format!(
+                    "point on line {line} has {} coordinates, the first point has {d}",
+                    p.len()
+                ),
+            ));
+        }
+        if p.iter().any(|x| !x.is_finite()) {
+            return Err(Error::new(
+                ErrorKind::NonFinite,
+                format!("point on line {line} is not finite"),
+            ));
+        }
+    }
+    Ok(points.into_iter().map(|(_, p)| p).collect())
 }

@@ -22,15 +22,22 @@
 //! # Ok::<(), spline_core::Error>(())
 //! ```
 
+mod arclength;
 mod bezier;
 mod bspline;
 pub mod exchange;
+pub mod export;
+mod planar;
 mod structural;
+mod variation;
 
+pub use arclength::DEFAULT_ACCURACY;
 pub use bezier::Bezier;
 pub use bspline::BSpline;
+pub use planar::wedge;
 pub use spline_core::{ControlPoint, Error, ErrorKind, KnotVector, Result, Scalar};
 pub use structural::DEFAULT_REMOVAL_TOLERANCE;
+pub use variation::sign_changes;
 
 /// A B-spline function (scalar control points).
 pub type BSplineFunction<T = f64> = BSpline<T, T>;

@@ -1,0 +1,379 @@
+//! Subcommands on B-spline curves: basis, eval, insert, refine, remove, elevate, split,
+//! bezier, derivative, plot. NURBS curves and surfaces are handed to [`crate::surfaces`].
+
+use crate::io::{self, Curve, Object, Pt};
+use clap::{Args, ValueEnum};
+use serde_json::{Value, json};
+use spline_core::{Error, ErrorKind, KnotVector, Result};
+use spline_geom::BSpline;
+use spline_geom::export::SvgPlot;
+
+/// A parametric direction of a surface.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub enum Direction {
+    /// The first parameter.
+    U,
+    /// The second parameter.
+    V,
+}
+
+/// A structural operation, applied to curves here and to NURBS and surfaces in
+/// [`crate::surfaces`].
+#[derive(Clone, Debug)]
+pub enum Operation {
+    /// Insert `knot` `times` times.
+    Insert { knot: f64, times: usize },
+    /// Insert all `knots`.
+    Refine { knots: Vec<f64> },
+    /// Remove `knot` `times` times within the relative `tolerance`.
+    Remove {
+        knot: f64,
+        times: usize,
+        tolerance: f64,
+    },
+    /// Raise the degree by `times`.
+    Elevate { times: usize },
+    /// Split at `at`.
+    Split { at: f64 },
+    /// Bézier segments.
+    Bezier,
+    /// Derivative curve of order `order`.
+    Derivative { order: usize },
+}
+
+#[derive(Args)]
+pub struct BasisArgs {
+    /// Degree p.
+    #[arg(long)]
+    degree: usize,
+    /// Knot vector as a JSON array.
+    #[arg(long)]
+    knots: String,
+    /// Parameters as a JSON array.
+    #[arg(long)]
+    at: String,
+    /// Highest derivative order K.
+    #[arg(long, default_value_t = 0)]
+    derivatives: usize,
+}
+
+#[derive(Args)]
+pub struct EvalArgs {
+    /// Object file (JSON), or - for standard input.
+    object: String,
+    /// Parameters: [u, ...] for curves, [[u, v], ...] for surfaces.
+    #[arg(long)]
+    at: String,
+    /// Highest derivative order K.
+    #[arg(long, default_value_t = 0)]
+    derivatives: usize,
+}
+
+#[derive(Args)]
+pub struct ObjectArgs {
+    /// Object file (JSON), or - for standard input.
+    pub object: String,
+}
+
+#[derive(Args)]
+pub struct InsertArgs {
+    /// Object file (JSON), or - for standard input.
+    object: String,
+    /// The knot U to insert.
+    #[arg(long, allow_hyphen_values = true)]
+    knot: f64,
+    /// How many times.
+    #[arg(long, default_value_t = 1)]
+    times: usize,
+    /// Parametric direction (surfaces only).
+    #[arg(long, value_enum)]
+    direction: Option<Direction>,
+}
+
+#[derive(Args)]
+pub struct RefineArgs {
+    /// Object file (JSON), or - for standard input.
+    object: String,
+    /// Knots to insert, as a JSON array.
+    #[arg(long)]
+    knots: String,
+    /// Parametric direction (surfaces only).
+    #[arg(long, value_enum)]
+    direction: Option<Direction>,
+}
+
+#[derive(Args)]
+pub struct RemoveArgs {
+    /// Object file (JSON), or - for standard input.
+    object: String,
+    /// The interior knot U to remove.
+    #[arg(long, allow_hyphen_values = true)]
+    knot: f64,
+    /// How many times.
+    #[arg(long, default_value_t = 1)]
+    times: usize,
+    /// Largest allowed change of the shape, relative to the size of the control polygon.
+    #[arg(long, default_value_t = spline_geom::DEFAULT_REMOVAL_TOLERANCE)]
+    tolerance: f64,
+    /// Parametric direction (surfaces only).
+    #[arg(long, value_enum)]
+    direction: Option<Direction>,
+}
+
+#[derive(Args)]
+pub struct ElevateArgs {
+    /// Object file (JSON), or - for standard input.
+    object: String,
+    /// By how many degrees.
+    #[arg(long, default_value_t = 1)]
+    times: usize,
+    /// Parametric direction (surfaces only).
+    #[arg(long, value_enum)]
+    direction: Option<Direction>,
+}
+
+#[derive(Args)]
+pub struct SplitArgs {
+    /// Object file (JSON), or - for standard input.
+    object: String,
+    /// The parameter U strictly inside the domain.
+    #[arg(long, allow_hyphen_values = true)]
+    at: f64,
+    /// Parametric direction (surfaces only).
+    #[arg(long, value_enum)]
+    direction: Option<Direction>,
+}
+
+#[derive(Args)]
+pub struct DerivativeArgs {
+    /// Object file (JSON), or - for standard input.
+    object: String,
+    /// Derivative order K (at most the degree).
+    #[arg(long, default_value_t = 1)]
+    order: usize,
+}
+
+#[derive(Args)]
+pub struct PlotArgs {
+    /// Object files (JSON): planar curves, NURBS curves.
+    #[arg(required = true)]
+    objects: Vec<String>,
+    /// Output SVG file.
+    #[arg(short, long)]
+    output: String,
+    /// Add a curvature comb.
+    #[arg(long)]
+    comb: bool,
+    /// Mark inflections and curvature extrema.
+    #[arg(long)]
+    features: bool,
+}
+
+pub fn basis(args: &BasisArgs) -> Result<()> {
+    let knots: Vec<f64> = io::parse_arg("--knots", &args.knots)?;
+    let params: Vec<f64> = io::parse_arg("--at", &args.at)?;
+    let knots = KnotVector::new(args.degree, knots)?;
+    let rows = params
+        .iter()
+        .enumerate()
+        .map(|(i, &u)| {
+            knots
+                .dense_basis_derivatives(u, args.derivatives)
+                .map_err(|e| e.context(format_args!("parameter {i}")))
+        })
+        .collect::<Result<Vec<_>>>()?;
+    io::print_json(&rows)
+}
+
+/// `[param][k][coord]` for a curve.
+pub fn eval_curve(curve: &Curve, params: &[f64], order: usize) -> Result<Value> {
+    let mut ders = vec![Pt::zeros(); order + 1];
+    let out = params
+        .iter()
+        .enumerate()
+        .map(|(i, &u)| {
+            curve
+                .curve
+                .derivatives_into(u, &mut ders)
+                .map_err(|e| e.context(format_args!("parameter {i}")))?;
+            Ok(ders
+                .iter()
+                .map(|p| io::unpad(p, curve.dim))
+                .collect::<Vec<_>>())
+        })
+        .collect::<Result<Vec<_>>>()?;
+    Ok(json!(out))
+}
+
+pub fn eval(args: &EvalArgs) -> Result<()> {
+    let value = match io::read_object(&args.object)? {
+        Object::Curve(curve) => {
+            let params: Vec<f64> = io::parse_arg("--at", &args.at)?;
+            eval_curve(&curve, &params, args.derivatives)?
+        }
+        Object::Nurbs(record) => {
+            let params: Vec<f64> = io::parse_arg("--at", &args.at)?;
+            crate::surfaces::eval_nurbs(&record, &params, args.derivatives)?
+        }
+        Object::Surface(surface) => {
+            let params: Vec<[f64; 2]> = io::parse_arg("--at", &args.at)?;
+            crate::surfaces::eval_surface(surface, &params, args.derivatives)?
+        }
+    };
+    io::print_json(&value)
+}
+
+/// Applies a structural operation to a curve.
+pub fn apply_to_curve(curve: &Curve, operation: &Operation) -> Result<Value> {
+    let c = &curve.curve;
+    let one = |b: BSpline<f64, Pt>| json!(curve.with(b).to_record());
+    Ok(match operation {
+        Operation::Insert { knot, times } => one(c.insert_knot(*knot, *times)?),
+        Operation::Refine { knots } => one(c.refine(knots)?),
+        Operation::Remove {
+            knot,
+            times,
+            tolerance,
+        } => one(c.remove_knot(*knot, *times, *tolerance)?),
+        Operation::Elevate { times } => one(c.elevate_degree(*times)?),
+        Operation::Split { at } => {
+            let (left, right) = c.split(*at)?;
+            json!([curve.with(left).to_record(), curve.with(right).to_record()])
+        }
+        Operation::Bezier => {
+            let segments = c
+                .bezier_segments()
+                .into_iter()
+                .map(|b| Ok(json!(curve.with(b.to_bspline()?).to_record())))
+                .collect::<Result<Vec<_>>>()?;
+            json!(segments)
+        }
+        Operation::Derivative { order } => one(c.derivative(*order)?),
+    })
+}
+
+fn apply(object: &str, operation: &Operation, direction: Option<Direction>) -> Result<()> {
+    let value = match io::read_object(object)? {
+        Object::Curve(curve) => {
+            if direction.is_some() {
+                return Err(Error::new(
+                    ErrorKind::InvalidArgument,
+                    "--direction applies to surfaces only",
+                ));
+            }
+            apply_to_curve(&curve, operation)?
+        }
+        Object::Nurbs(record) => {
+            if direction.is_some() {
+                return Err(Error::new(
+                    ErrorKind::InvalidArgument,
+                    "--direction applies to surfaces only",
+                ));
+            }
+            crate::surfaces::apply_to_nurbs(&record, operation)?
+        }
+        Object::Surface(surface) => {
+            crate::surfaces::apply_to_surface(surface, operation, direction)?
+        }
+    };
+    io::print_json(&value)
+}
+
+pub fn insert(args: &InsertArgs) -> Result<()> {
+    apply(
+        &args.object,
+        &Operation::Insert {
+            knot: args.knot,
+            times: args.times,
+        },
+        args.direction,
+    )
+}
+
+pub fn refine(args: &RefineArgs) -> Result<()> {
+    let knots: Vec<f64> = io::parse_arg("--knots", &args.knots)?;
+    apply(&args.object, &Operation::Refine { knots }, args.direction)
+}
+
+pub fn remove(args: &RemoveArgs) -> Result<()> {
+    let operation = Operation::Remove {
+        knot: args.knot,
+        times: args.times,
+        tolerance: args.tolerance,
+    };
+    apply(&args.object, &operation, args.direction)
+}
+
+pub fn elevate(args: &ElevateArgs) -> Result<()> {
+    apply(
+        &args.object,
+        &Operation::Elevate { times: args.times },
+        args.direction,
+    )
+}
+
+pub fn split(args: &SplitArgs) -> Result<()> {
+    apply(
+        &args.object,
+        &Operation::Split { at: args.at },
+        args.direction,
+    )
+}
+
+pub fn bezier(args: &ObjectArgs) -> Result<()> {
+    apply(&args.object, &Operation::Bezier, None)
+}
+
+pub fn derivative(args: &DerivativeArgs) -> Result<()> {
+    apply(
+        &args.object,
+        &Operation::Derivative { order: args.order },
+        None,
+    )
+}
+
+/// A planar curve from a tool-level curve.
+pub fn planar(curve: &Curve) -> Result<spline_geom::Curve2> {
+    if curve.dim != 2 {
+        return Err(Error::new(
+            ErrorKind::DimensionMismatch,
+            format!("expected a planar curve (2 coordinates), got {}", curve.dim),
+        ));
+    }
+    Ok(curve
+        .curve
+        .map_control_points(|p| nalgebra::Vector2::new(p[0], p[1])))
+}
+
+pub fn plot(args: &PlotArgs) -> Result<()> {
+    let mut svg = SvgPlot::new();
+    for path in &args.objects {
+        match io::read_object(path)? {
+            Object::Curve(curve) => {
+                let c = planar(&curve).map_err(|e| e.context(path))?;
+                svg.add_curve(&c);
+                if args.comb {
+                    svg.add_curvature_comb(&c, 200);
+                }
+                if args.features {
+                    let features = crate::algebra::planar_features(&c)?;
+                    svg.add_markers(&c.eval_many(&features.inflections)?, "inflection");
+                    svg.add_markers(&c.eval_many(&features.curvature_extrema)?, "extremum");
+                }
+            }
+            Object::Nurbs(record) => crate::surfaces::plot_nurbs(&mut svg, &record, args.comb)?,
+            Object::Surface(_) => {
+                return Err(Error::new(
+                    ErrorKind::InvalidArgument,
+                    format!("{path}: plot draws curves; use `spline mesh` for surfaces"),
+                ));
+            }
+        }
+    }
+    std::fs::write(&args.output, svg.render()).map_err(|e| {
+        Error::new(
+            ErrorKind::InvalidArgument,
+            format!("cannot write {}: {e}", args.output),
+        )
+    })
+}

@@ -1,0 +1,295 @@
+//! Export: gnuplot `.dat` files (seed 000's `drawCurve` and `drawPoly`) and SVG pictures of
+//! planar curves with their control polygons, curvature combs and marked points.
+
+use crate::bspline::BSpline;
+use nalgebra::Vector2;
+use spline_core::{ControlPoint, Scalar, from_count, to_f64};
+use std::fmt::Write;
+
+/// Parameters covering the domain: `per_span` equal steps in every non-empty knot span, so
+/// that every knot is a sample.
+#[must_use]
+pub fn sample_params<T: Scalar, P: ControlPoint<T>>(
+    curve: &BSpline<T, P>,
+    per_span: usize,
+) -> Vec<T> {
+    let per_span = per_span.max(1);
+    let (a, b) = curve.domain();
+    let mut breaks: Vec<T> = vec![a];
+    breaks.extend(
+        curve
+            .knots()
+            .knots()
+            .iter()
+            .copied()
+            .filter(|&k| k > a && k < b),
+    );
+    breaks.push(b);
+    breaks.dedup();
+    let mut params = Vec::with_capacity((breaks.len() - 1) * per_span + 1);
+    for w in breaks.windows(2) {
+        for j in 0..per_span {
+            params.push(w[0] + (w[1] - w[0]) * from_count::<T>(j) / from_count::<T>(per_span));
+        }
+    }
+    params.push(b);
+    params
+}
+
+fn row<T: Scalar, P: ControlPoint<T>>(p: &P) -> String {
+    (0..P::DIM)
+        .map(|i| format!("{}", to_f64(p.coord(i))))
+        .collect::<Vec<_>>()
+        .join(" ")
+}
+
+/// The curve sampled for gnuplot: one point per line, coordinates separated by spaces
+/// (`per_span` samples per knot span).
+#[must_use]
+pub fn gnuplot_curve<T: Scalar, P: ControlPoint<T>>(
+    curve: &BSpline<T, P>,
+    per_span: usize,
+) -> String {
+    let params = sample_params(curve, per_span);
+    let points = curve.eval_many(&params).expect("samples lie in the domain");
+    points.iter().map(|p| row(p) + "\n").collect()
+}
+
+/// The control polygon for gnuplot: one control point per line.
+#[must_use]
+pub fn gnuplot_polygon<T: Scalar, P: ControlPoint<T>>(curve: &BSpline<T, P>) -> String {
+    curve
+        .control_points()
+        .iter()
+        .map(|p| row(p) + "\n")
+        .collect()
+}
+
+#[derive(Clone, Debug)]
+enum Element {
+    Polyline {
+        points: Vec<Vector2<f64>>,
+        class: String,
+    },
+    Dots {
+        points: Vec<Vector2<f64>>,
+        class: String,
+    },
+    Segments {
+        segments: Vec<(Vector2<f64>, Vector2<f64>)>,
+        class: String,
+    },
+}
+
+/// An SVG picture of planar geometry, drawn with equal scales on both axes and y upwards.
+///
+/// ```
+/// use nalgebra::Vector2;
+/// use spline_geom::{BSpline, export::SvgPlot};
+/// let c = BSpline::from_knots(2, vec![0.0, 0.0, 0.0, 1.0, 1.0, 1.0],
+///     vec![Vector2::new(0.0, 0.0), Vector2::new(0.5, 1.0), Vector2::new(1.0, 0.0)])?;
+/// let mut plot = SvgPlot::new();
+/// plot.add_curve(&c);
+/// assert!(plot.render().starts_with("<svg"));
+/// # Ok::<(), spline_core::Error>(())
+/// ```
+#[derive(Clone, Debug, Default)]
+pub struct SvgPlot {
+    elements: Vec<Element>,
+    title: Option<String>,
+    width: f64,
+}
+
+impl SvgPlot {
+    /// An empty picture, 800 pixels wide.
+    #[must_use]
+    pub fn new() -> Self {
+        Self {
+            elements: Vec::new(),
+            title: None,
+            width: 800.0,
+        }
+    }
+
+    /// Sets a caption drawn in the top-left corner.
+    pub fn set_title(&mut self, title: impl Into<String>) {
+        self.title = Some(title.into());
+    }
+
+    /// Sets the width in pixels (the height follows the aspect ratio of the drawing).
+    pub fn set_width(&mut self, width: f64) {
+        self.width = width;
+    }
+
+    /// Draws a polyline with a CSS class (`curve`, `polygon`, `curve2`, `curve3`, `data`…).
+    pub fn add_polyline(&mut self, points: &[Vector2<f64>], class: &str) {
+        self.elements.push(Element::Polyline {
+            points: points.to_vec(),
+            class: class.to_owned(),
+        });
+    }
+
+    /// Draws points as small dots with a CSS class (`data`, `control`, `inflection`,
+    /// `extremum`).
+    pub fn add_markers(&mut self, points: &[Vector2<f64>], class: &str) {
+        self.elements.push(Element::Dots {
+            points: points.to_vec(),
+            class: class.to_owned(),
+        });
+    }
+
+    /// Draws line segments with a CSS class (`comb`).
+    pub fn add_segments(&mut self, segments: &[(Vector2<f64>, Vector2<f64>)], class: &str) {
+        self.elements.push(Element::Segments {
+            segments: segments.to_vec(),
+            class: class.to_owned(),
+        });
+    }
+
+    /// Draws a planar curve (class `curve`) with its control polygon and control points.
+    pub fn add_curve(&mut self, curve: &BSpline<f64, Vector2<f64>>) {
+        self.add_curve_styled(curve, "curve");
+    }
+
+    /// [`SvgPlot::add_curve`] with another CSS class for the curve.
+    pub fn add_curve_styled(&mut self, curve: &BSpline<f64, Vector2<f64>>, class: &str) {
+        self.add_polyline(curve.control_points(), "polygon");
+        self.add_markers(curve.control_points(), "control");
+        let params = sample_params(curve, 64);
+        let points = curve.eval_many(&params).expect("samples lie in the domain");
+        self.add_polyline(&points, class);
+    }
+
+    /// Draws the curvature comb: at `samples` parameters, a tooth along the normal of length
+    /// proportional to the signed curvature, scaled so the longest tooth is a fifth of the
+    /// picture; the teeth's ends are joined.
+    pub fn add_curvature_comb(&mut self, curve: &BSpline<f64, Vector2<f64>>, samples: usize) {
+        let (a, b) = curve.domain();
+        let mut teeth = Vec::new();
+        for j in 0..=samples.max(1) {
+            #[allow(clippy::cast_precision_loss)]
+            let u = a + (b - a) * j as f64 / samples.max(1) as f64;
+            if let (Ok(p), Ok(n), Ok(k)) = (
+                curve.eval(u),
+                curve.unit_normal(u),
+                curve.signed_curvature(u),
+            ) {
+                teeth.push((p, n * k));
+            }
+        }
+        let max = teeth.iter().fold(0.0f64, |m, (_, v)| m.max(v.norm()));
+        if max == 0.0 || teeth.is_empty() {
+            return;
+        }
+        let (lo, hi) = bounds(&curve.control_points().iter().copied().collect::<Vec<_>>());
+        let size = (hi - lo).norm().max(1e-300);
+        let scale = 0.2 * size / max;
+        // Teeth point away from the centre of curvature.
+        let segments: Vec<_> = teeth.iter().map(|(p, v)| (*p, p - v * scale)).collect();
+        let ends: Vec<_> = segments.iter().map(|s| s.1).collect();
+        self.add_segments(&segments, "comb");
+        self.add_polyline(&ends, "comb");
+    }
+
+    /// The SVG document.
+    #[must_use]
+    pub fn render(&self) -> String {
+        let all: Vec<Vector2<f64>> = self
+            .elements
+            .iter()
+            .flat_map(|e| match e {
+                Element::Polyline { points, .. } | Element::Dots { points, .. } => points.clone(),
+                Element::Segments { segments, .. } => {
+                    segments.iter().flat_map(|s| [s.0, s.1]).collect()
+                }
+            })
+            .filter(|p| p.x.is_finite() && p.y.is_finite())
+            .collect();
+        let (lo, hi) = if all.is_empty() {
+            (Vector2::zeros(), Vector2::new(1.0, 1.0))
+        } else {
+            bounds(&all)
+        };
+        let extent = (hi - lo).map(|x| x.max(1e-12));
+        let margin = 20.0;
+        let scale = (self.width - 2.0 * margin) / extent.x.max(extent.y * 0.25);
+        let height = (extent.y * scale + 2.0 * margin).max(80.0);
+        let map = |p: &Vector2<f64>| {
+            let x = margin + (p.x - lo.x) * scale;
+            let y = height - margin - (p.y - lo.y) * scale;
+            format!("{x:.2},{y:.2}")
+        };
+        let mut out = String::new();
+        let _ = writeln!(
+            out,
+            r#"<svg xmlns="http://www.w3.org/2000/svg" width="{w:.0}" height="{height:.0}" viewBox="0 0 {w:.0} {height:.0}">"#,
+            w = self.width
+        );
+        out.push_str(
+            "<style>\n\
+             .curve{fill:none;stroke:#1f5fbf;stroke-width:2}\n\
+             .curve2{fill:none;stroke:#c0392b;stroke-width:1.5}\n\
+             .curve3{fill:none;stroke:#27ae60;stroke-width:1.5;stroke-dasharray:6 3}\n\
+             .polygon{fill:none;stroke:#999;stroke-width:1;stroke-dasharray:4 3}\n\
+             .control{fill:#666}\n.data{fill:#e67e22}\n\
+             .comb{fill:none;stroke:#8e44ad;stroke-width:0.6}\n\
+             .inflection{fill:#c0392b}\n.extremum{fill:#27ae60}\n\
+             text{font:14px sans-serif;fill:#333}\n</style>\n",
+        );
+        out.push_str(r#"<rect width="100%" height="100%" fill="white"/>"#);
+        out.push('\n');
+        for e in &self.elements {
+            match e {
+                Element::Polyline { points, class } => {
+                    let pts: Vec<String> = points.iter().map(map).collect();
+                    let _ = writeln!(
+                        out,
+                        r#"<polyline class="{class}" points="{}"/>"#,
+                        pts.join(" ")
+                    );
+                }
+                Element::Dots { points, class } => {
+                    let r = if class == "data" || class == "control" {
+                        2.5
+                    } else {
+                        4.5
+                    };
+                    for p in points {
+                        let xy = map(p);
+                        let (x, y) = xy.split_once(',').expect("x,y");
+                        let _ = writeln!(
+                            out,
+                            r#"<circle class="{class}" cx="{x}" cy="{y}" r="{r}"/>"#
+                        );
+                    }
+                }
+                Element::Segments { segments, class } => {
+                    let mut d = String::new();
+                    for (a, b) in segments {
+                        let _ = write!(d, "M{}L{}", map(a), map(b));
+                    }
+                    let _ = writeln!(out, r#"<path class="{class}" d="{d}"/>"#);
+                }
+            }
+        }
+        if let Some(title) = &self.title {
+            let escaped = title
+                .replace('&', "&amp;")
+                .replace('<', "&lt;")
+                .replace('>', "&gt;");
+            let _ = writeln!(out, r#"<text x="{margin}" y="16">{escaped}</text>"#);
+        }
+        out.push_str("</svg>\n");
+        out
+    }
+}
+
+fn bounds(points: &[Vector2<f64>]) -> (Vector2<f64>, Vector2<f64>) {
+    let mut lo = Vector2::repeat(f64::INFINITY);
+    let mut hi = Vector2::repeat(f64::NEG_INFINITY);
+    for p in points {
+        lo = lo.inf(p);
+        hi = hi.sup(p);
+    }
+    (lo, hi)
+}
