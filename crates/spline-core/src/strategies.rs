@@ -2,10 +2,12 @@
 
 use crate::KnotVector;
 use proptest::prelude::*;
+use std::collections::BTreeMap;
 
-/// Random valid knot vectors of degree `0..=max_degree` with `p + 1 ..= p + 1 + extra` basis
-/// functions on `[0, 1]` (scaled by `scale`): clamped or unclamped, with repeated interior
-/// knots (up to multiplicity `p`, or `p + 1` when `allow_discontinuity`).
+/// Random valid knot vectors of degree `0..=max_degree` with up to `extra` interior knots
+/// (so `p + 1 ..= p + 1 + extra` basis functions) on `[0, 1]` times `scale`: clamped, or
+/// unclamped with `p` extra knots outside each end; interior knots on a grid of `1/1000`,
+/// repeated up to multiplicity `p` (or `p + 1` when `allow_discontinuity`).
 pub fn knot_vector(
     max_degree: usize,
     extra: usize,
@@ -14,61 +16,33 @@ pub fn knot_vector(
 ) -> impl Strategy<Value = KnotVector<f64>> {
     (
         0..=max_degree,
-        0..=extra,
         any::<bool>(),
-        proptest::collection::vec((0.0f64..1.0, 1usize..4), 0..=extra),
+        proptest::collection::vec((1u32..1000, 1usize..=4), 0..=extra),
     )
-        .prop_map(move |(p, extra, clamped, raw)| {
-            let n = p + 1 + extra;
+        .prop_map(move |(p, clamped, raw)| {
             let max_mult = if allow_discontinuity { p + 1 } else { p.max(1) };
-            let interior_count = n - p - 1;
-            let mut interior = Vec::new();
-            for &(x, m) in raw.iter().cycle().take(raw.len().max(1) * 8) {
-                if interior.len() >= interior_count {
-                    break;
-                }
-                let x = (x * 1e6).round() / 1e6;
-                if x <= 0.0 || x >= 1.0 {
-                    continue;
-                }
-                let m = m.min(max_mult).min(interior_count - interior.len());
-                interior.extend(std::iter::repeat_n(x, m));
+            let mut distinct: BTreeMap<u32, usize> = BTreeMap::new();
+            for (v, m) in raw {
+                let e = distinct.entry(v).or_insert(0);
+                *e = (*e).max(m.min(max_mult));
             }
-            let mut k = 1;
-            while interior.len() < interior_count {
-                interior.push(k as f64 / (interior_count + 1) as f64);
-                k += 1;
+            let mut interior: Vec<f64> = Vec::new();
+            for (v, m) in distinct {
+                interior.extend(std::iter::repeat_n(f64::from(v) / 1000.0, m));
             }
-            interior.sort_by(f64::total_cmp);
-            // Cap multiplicities that merged values may have created.
-            let mut capped: Vec<f64> = Vec::new();
-            for x in interior {
-                let count = capped.iter().filter(|&&y| y == x).count();
-                if count < max_mult {
-                    capped.push(x);
-                } else {
-                    let mut y = x;
-                    while capped.contains(&y) || y >= 1.0 {
-                        y = (y + 1e-3).min(0.999_999);
-                    }
-                    capped.push(y);
-                    capped.sort_by(f64::total_cmp);
-                }
-            }
-            let knots: Vec<f64> = if clamped {
-                let mut v = vec![0.0; p + 1];
-                v.extend(&capped);
-                v.extend(vec![1.0; p + 1]);
-                v
+            interior.truncate(extra);
+            let mut knots: Vec<f64> = Vec::with_capacity(interior.len() + 2 * p + 2);
+            if clamped {
+                knots.extend(std::iter::repeat_n(0.0, p + 1));
+                knots.extend(&interior);
+                knots.extend(std::iter::repeat_n(1.0, p + 1));
             } else {
-                // Unclamped: spread p knots below 0 and above 1.
-                let mut v: Vec<f64> = (0..p).map(|j| -((p - j) as f64) * 0.1).collect();
-                v.push(0.0);
-                v.extend(&capped);
-                v.push(1.0);
-                v.extend((1..=p).map(|j| 1.0 + j as f64 * 0.1));
-                v
-            };
+                knots.extend((0..p).map(|j| -0.1 * (p - j) as f64));
+                knots.push(0.0);
+                knots.extend(&interior);
+                knots.push(1.0);
+                knots.extend((1..=p).map(|j| 1.0 + 0.1 * j as f64));
+            }
             KnotVector::new(p, knots.into_iter().map(|k| k * scale).collect())
                 .expect("strategy builds valid knot vectors")
         })
