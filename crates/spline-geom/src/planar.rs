@@ -83,7 +83,7 @@ impl<T: Scalar> BSpline<T, Vector2<T>> {
     /// // y = x² at x = 0 has curvature 2.
     /// let parabola = BSpline::from_knots(2, vec![-1.0, -1.0, -1.0, 1.0, 1.0, 1.0],
     ///     vec![Vector2::new(-1.0, 1.0), Vector2::new(0.0, -1.0), Vector2::new(1.0, 1.0)])?;
-    /// assert!((parabola.signed_curvature(0.0)? - 2.0).abs() < 1e-14);
+    /// assert!((parabola.signed_curvature(0.0)? - 2.0f64).abs() < 1e-14);
     /// # Ok::<(), spline_core::Error>(())
     /// ```
     ///

@@ -1,0 +1,717 @@
+//! Curve algorithms checked against independent facts: invariance of the curve under every
+//! structural operation, finite differences and dual numbers for derivatives, closed forms
+//! from the seeds, and error cases.
+
+use approx::assert_relative_eq;
+use nalgebra::{Vector2, Vector3};
+use num_dual::{Dual64, DualNum};
+use proptest::prelude::*;
+use spline_core::strategies::knot_vector;
+use spline_core::{ErrorKind, KnotVector};
+use spline_geom::{BSpline, Bezier, Curve2, sign_changes};
+
+fn curve_strategy(
+    max_degree: usize,
+    extra: usize,
+    discontinuous: bool,
+) -> impl Strategy<Value = BSpline<f64, Vector3<f64>>> {
+    knot_vector(max_degree, extra, 1.0, discontinuous).prop_flat_map(|knots| {
+        let n = knots.num_basis();
+        proptest::collection::vec((-1.0f64..1.0, -1.0f64..1.0, -1.0f64..1.0), n).prop_map(
+            move |pts| {
+                BSpline::new(
+                    knots.clone(),
+                    pts.into_iter()
+                        .map(|(x, y, z)| Vector3::new(x, y, z))
+                        .collect(),
+                )
+                .unwrap()
+            },
+        )
+    })
+}
+
+/// Parameters covering the domain, including every knot in it.
+fn samples(curve: &BSpline<f64, Vector3<f64>>) -> Vec<f64> {
+    let (a, b) = curve.domain();
+    let mut us: Vec<f64> = (0..=60)
+        .map(|i| a + (b - a) * f64::from(i) / 60.0)
+        .collect();
+    us.extend(
+        curve
+            .knots()
+            .knots()
+            .iter()
+            .copied()
+            .filter(|&k| k >= a && k <= b),
+    );
+    us
+}
+
+fn assert_same_shape(
+    a: &BSpline<f64, Vector3<f64>>,
+    b: &BSpline<f64, Vector3<f64>>,
+    us: &[f64],
+) -> Result<(), TestCaseError> {
+    for &u in us {
+        let (pa, pb) = (a.eval(u).unwrap(), b.eval(u).unwrap());
+        prop_assert!((pa - pb).norm() < 1e-11, "u = {}: {:?} vs {:?}", u, pa, pb);
+    }
+    Ok(())
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(200))]
+
+    #[test]
+    fn insertion_keeps_the_curve(curve in curve_strategy(6, 8, false), t in 0.0f64..=1.0, times in 1usize..4) {
+        let (a, b) = curve.domain();
+        let u = a + (b - a) * t;
+        let room = curve.degree() + 1 - curve.knots().multiplicity(u);
+        match curve.insert_knot(u, times) {
+            Ok(c) => {
+                prop_assert!(times <= room);
+                prop_assert_eq!(c.knots().multiplicity(u), curve.knots().multiplicity(u) + times);
+                assert_same_shape(&curve, &c, &samples(&curve))?;
+            }
+            Err(e) => {
+                prop_assert!(times > room);
+                prop_assert_eq!(e.kind(), ErrorKind::KnotMultiplicity);
+            }
+        }
+    }
+
+    #[test]
+    fn refinement_keeps_the_curve_and_matches_repeated_insertion(curve in curve_strategy(5, 6, false), ts in proptest::collection::vec(0.0f64..1.0, 1..8)) {
+        let (a, b) = curve.domain();
+        let us: Vec<f64> = ts.iter().map(|t| a + (b - a) * ((t * 64.0).round() / 64.0)).collect();
+        if let Ok(refined) = curve.refine(&us) {
+            assert_same_shape(&curve, &refined, &samples(&curve))?;
+            let mut one_by_one = curve.clone();
+            for &u in &us {
+                one_by_one = one_by_one.insert_knot(u, 1).unwrap();
+            }
+            prop_assert_eq!(refined.knots(), one_by_one.knots());
+            for (p, q) in refined.control_points().iter().zip(one_by_one.control_points()) {
+                prop_assert!((p - q).norm() < 1e-12);
+            }
+        }
+    }
+
+    #[test]
+    fn elevation_keeps_the_curve_and_raises_every_multiplicity(curve in curve_strategy(5, 6, true), times in 1usize..4) {
+        let e = curve.elevate_degree(times).unwrap();
+        prop_assert_eq!(e.degree(), curve.degree() + times);
+        if curve.knots().is_clamped() {
+            for ((k, m), (k2, m2)) in curve.knots().breakpoints().iter().zip(e.knots().breakpoints()) {
+                prop_assert_eq!(*k, k2);
+                prop_assert_eq!(m + times, m2);
+            }
+        }
+        assert_same_shape(&curve, &e, &samples(&curve))?;
+    }
+
+    #[test]
+    fn split_and_bezier_decomposition_keep_the_curve(curve in curve_strategy(5, 6, true), t in 0.01f64..0.99) {
+        let (a, b) = curve.domain();
+        let u = a + (b - a) * t;
+        let (left, right) = curve.split(u).unwrap();
+        prop_assert_eq!(left.domain(), (a, u));
+        prop_assert_eq!(right.domain(), (u, b));
+        prop_assert_eq!(left.knots().multiplicity(u), curve.degree() + 1);
+        for &s in &samples(&curve) {
+            let part = if s <= u { &left } else { &right };
+            prop_assert!((part.eval(s).unwrap() - curve.eval(s).unwrap()).norm() < 1e-11);
+        }
+        let segments = curve.bezier_segments();
+        let nonempty = curve.knots().knots().windows(2).filter(|w| w[0] < w[1] && w[0] >= a && w[1] <= b).count();
+        prop_assert_eq!(segments.len(), nonempty);
+        for seg in &segments {
+            prop_assert_eq!(seg.degree(), curve.degree());
+            let (s0, s1) = seg.interval();
+            for i in 0..=10 {
+                let s = if i == 10 { s1 } else { s0 + (s1 - s0) * f64::from(i) / 10.0 };
+                // Segments are closed on both ends: at an interior right end, the left limit.
+                let expected = if i == 10 && s1 < b { left_limit(&curve, s) } else { curve.eval(s).unwrap() };
+                prop_assert!((seg.eval(s).unwrap() - expected).norm() < 1e-11);
+            }
+        }
+    }
+
+    #[test]
+    fn derivatives_match_finite_differences_and_the_derivative_curve(curve in curve_strategy(6, 6, false), t in 0.0f64..=1.0) {
+        let (a, b) = curve.domain();
+        let u = a + (b - a) * t;
+        let p = curve.degree();
+        let ders = curve.derivatives(u, p + 2).unwrap();
+        prop_assert!(ders[p + 1].norm() == 0.0 && ders[p + 2].norm() == 0.0);
+        for k in 1..=p {
+            let d = curve.derivative(k).unwrap();
+            prop_assert_eq!(d.degree(), p - k);
+            let scale = 1.0 + ders[k].norm();
+            prop_assert!((d.eval(u).unwrap() - ders[k]).norm() <= 1e-9 * scale, "k={}", k);
+        }
+        // Central differences inside the span.
+        let span = curve.knots().find_span(u).unwrap();
+        let (lo, hi) = (curve.knots().knots()[span], curve.knots().knots()[span + 1]);
+        let h = 1e-5 * (hi - lo);
+        if p >= 1 && u - h > lo && u + h < hi {
+            let fd = (curve.eval(u + h).unwrap() - curve.eval(u - h).unwrap()) / (2.0 * h);
+            prop_assert!((fd - ders[1]).norm() <= 1e-5 * (1.0 + ders[1].norm()) * (1.0 + (1.0 / (hi - lo)).powi(2)));
+        }
+    }
+
+    #[test]
+    fn dual_numbers_give_exact_parameter_derivatives(curve in curve_strategy(6, 6, false), t in 0.0f64..=1.0) {
+        let (a, b) = curve.domain();
+        let u = a + (b - a) * t;
+        let dual: BSpline<Dual64, Vector3<Dual64>> = BSpline::from_knots(
+            curve.degree(),
+            curve.knots().knots().iter().map(|&k| Dual64::from(k)).collect(),
+            curve.control_points().iter().map(|p| p.map(Dual64::from)).collect(),
+        ).unwrap();
+        let value = dual.eval(Dual64::from(u).derivative()).unwrap();
+        let ders = curve.derivatives(u, 1).unwrap();
+        for c in 0..3 {
+            prop_assert!((value[c].re - ders[0][c]).abs() < 1e-12);
+            prop_assert!((value[c].eps - ders[1][c]).abs() <= 1e-9 * (1.0 + ders[1][c].abs()));
+        }
+    }
+
+    #[test]
+    fn dual_numbers_give_the_derivative_with_respect_to_a_control_point(curve in curve_strategy(6, 6, false), t in 0.0f64..=1.0, which in any::<prop::sample::Index>()) {
+        let (a, b) = curve.domain();
+        let u = a + (b - a) * t;
+        let i = which.index(curve.control_points().len());
+        // Seed the x coordinate of control point i: dC_x/dx_i = N_i(u), dC_y/dx_i = 0.
+        let points: Vec<Vector3<Dual64>> = curve.control_points().iter().enumerate().map(|(j, p)| {
+            let mut q = p.map(Dual64::from);
+            if j == i { q[0] = q[0].derivative(); }
+            q
+        }).collect();
+        let dual = BSpline::from_knots(curve.degree(), curve.knots().knots().iter().map(|&k| Dual64::from(k)).collect(), points).unwrap();
+        let value = dual.eval(Dual64::from(u)).unwrap();
+        let basis = curve.knots().basis_function(i, u).unwrap();
+        prop_assert!((value[0].eps - basis).abs() < 1e-14);
+        prop_assert!(value[1].eps == 0.0 && value[2].eps == 0.0);
+    }
+
+    #[test]
+    fn de_boor_basis_form_and_batches_agree(curve in curve_strategy(7, 8, true), ts in proptest::collection::vec(0.0f64..=1.0, 1..40)) {
+        let (a, b) = curve.domain();
+        let mut us: Vec<f64> = ts.iter().map(|t| a + (b - a) * t).collect();
+        let unsorted = curve.eval_many(&us).unwrap();
+        us.sort_by(f64::total_cmp);
+        let sorted = curve.eval_many(&us).unwrap();
+        for (&u, p) in us.iter().zip(&sorted) {
+            prop_assert!((curve.eval(u).unwrap() - p).norm() < 1e-15);
+            prop_assert!((curve.de_boor(u).unwrap() - p).norm() < 1e-12);
+        }
+        prop_assert_eq!(unsorted.len(), sorted.len());
+        let mut many = vec![Vector3::zeros(); us.len() * 3];
+        curve.derivatives_many_into(&us, 2, &mut many).unwrap();
+        for (i, &u) in us.iter().enumerate() {
+            let d = curve.derivatives(u, 2).unwrap();
+            prop_assert_eq!(&many[3 * i..3 * i + 3], &d[..]);
+        }
+    }
+
+    #[test]
+    fn removal_undoes_insertion(curve in curve_strategy(5, 6, false), t in 0.05f64..0.95, times in 1usize..3) {
+        let (a, b) = curve.domain();
+        let u = a + (b - a) * ((t * 128.0).round() / 128.0);
+        prop_assume!(curve.knots().multiplicity(u) + times <= curve.degree());
+        let inserted = curve.insert_knot(u, times).unwrap();
+        let back = inserted.remove_knot(u, times, 1e-9).unwrap();
+        prop_assert_eq!(back.knots(), curve.knots());
+        for (p, q) in back.control_points().iter().zip(curve.control_points()) {
+            prop_assert!((p - q).norm() < 1e-9);
+        }
+    }
+
+    #[test]
+    fn f32_and_f64_agree(curve in curve_strategy(5, 6, false), t in 0.0f64..=1.0) {
+        let single: BSpline<f32, Vector3<f32>> = BSpline::from_knots(
+            curve.degree(),
+            curve.knots().knots().iter().map(|&k| k as f32).collect(),
+            curve.control_points().iter().map(|p| p.map(|x| x as f32)).collect(),
+        ).unwrap();
+        let (a, b) = single.domain();
+        let u = a + (b - a) * t as f32;
+        let p32 = single.eval(u).unwrap();
+        let p64 = curve.eval(f64::from(u)).unwrap();
+        prop_assert!((p32.map(f64::from) - p64).norm() < 1e-4);
+        let e32 = single.elevate_degree(1).unwrap().eval(u).unwrap();
+        prop_assert!((e32.map(f64::from) - p64).norm() < 1e-4);
+    }
+
+    #[test]
+    fn variation_diminishing(knots in knot_vector(5, 8, 1.0, false), coefficients in proptest::collection::vec(-1.0f64..1.0, 14)) {
+        let f = BSpline::new(knots.clone(), coefficients[..knots.num_basis()].to_vec()).unwrap();
+        let (a, b) = f.domain();
+        let values: Vec<f64> = (0..=2000).map(|i| f.eval(a + (b - a) * f64::from(i) / 2000.0).unwrap()).collect();
+        prop_assert!(sign_changes(&values) <= f.coefficient_sign_changes());
+    }
+
+    #[test]
+    fn scaled_knots_keep_algorithms_exact(curve in curve_strategy(4, 5, false), exponent in prop::sample::select(vec![-6i32, 6]), t in 0.1f64..0.9) {
+        let s = 10f64.powi(exponent);
+        let scaled = BSpline::from_knots(curve.degree(), curve.knots().knots().iter().map(|k| k * s).collect(), curve.control_points().to_vec()).unwrap();
+        let (a, b) = curve.domain();
+        let u = a + (b - a) * t;
+        let p = curve.eval(u).unwrap();
+        prop_assert!((scaled.eval(u * s).unwrap() - p).norm() < 1e-12);
+        prop_assert!((scaled.insert_knot(u * s, 1).unwrap().eval(u * s).unwrap() - p).norm() < 1e-12);
+        prop_assert!((scaled.elevate_degree(1).unwrap().eval(u * s).unwrap() - p).norm() < 1e-11);
+        let d = curve.derivatives(u, 1).unwrap()[1];
+        prop_assert!((scaled.derivatives(u * s, 1).unwrap()[1] * s - d).norm() <= 1e-9 * (1.0 + d.norm()));
+    }
+}
+
+/// The left limit of a curve at `u` (from the segment to the left).
+fn left_limit(curve: &BSpline<f64, Vector3<f64>>, u: f64) -> Vector3<f64> {
+    let (a, _) = curve.domain();
+    let (left, _) = curve
+        .split(u)
+        .unwrap_or_else(|_| panic!("split at {u} (domain start {a})"));
+    left.eval(u).unwrap()
+}
+
+/// The example curve of seed 000 §2.3.3.
+fn seed_curve() -> Curve2 {
+    BSpline::from_knots(
+        3,
+        vec![0.0, 0.0, 0.0, 0.0, 1.0, 2.0, 3.0, 3.0, 3.0, 3.0],
+        vec![
+            Vector2::new(0.41705, 0.10673),
+            Vector2::new(0.28802, 0.60088),
+            Vector2::new(0.90553, 0.46053),
+            Vector2::new(1.3203, 0.79678),
+            Vector2::new(1.8041, 0.63012),
+            Vector2::new(1.477, 0.13012),
+        ],
+    )
+    .unwrap()
+}
+
+#[test]
+fn seed_000_example_insertion_at_1_5_and_elevation() {
+    let c = seed_curve();
+    let inserted = c.insert_knot(1.5, 1).unwrap();
+    assert_eq!(
+        inserted.knots().knots(),
+        &[0.0, 0.0, 0.0, 0.0, 1.0, 1.5, 2.0, 3.0, 3.0, 3.0, 3.0]
+    );
+    // Seed 000 Algorithm 3: k = 4 (u_4 = 1 ≤ 1.5 < 2), α_i = (u − u_i)/(u_{i+3} − u_i) for
+    // i = 2, 3, 4 and P̄_i = α_i P_i + (1 − α_i) P_{i−1}.
+    let p = c.control_points();
+    let u = c.knots().knots();
+    let alpha = |i: usize| (1.5 - u[i]) / (u[i + 3] - u[i]);
+    let expected = [
+        p[0],
+        p[1],
+        p[2] * alpha(2) + p[1] * (1.0 - alpha(2)),
+        p[3] * alpha(3) + p[2] * (1.0 - alpha(3)),
+        p[4] * alpha(4) + p[3] * (1.0 - alpha(4)),
+        p[4],
+        p[5],
+    ];
+    assert_eq!(alpha(2), 0.75);
+    assert_eq!(alpha(3), 0.5);
+    assert_eq!(alpha(4), 0.25);
+    for (a, b) in inserted.control_points().iter().zip(expected) {
+        assert_relative_eq!(*a, b, epsilon = 1e-15);
+    }
+    // Elevation adds one knot per distinct knot (4 here) and k − 1 = 3 control points.
+    let e = c.elevate_degree(1).unwrap();
+    assert_eq!(e.degree(), 4);
+    assert_eq!(e.knots().len(), c.knots().len() + 4);
+    assert_eq!(e.control_points().len(), c.control_points().len() + 3);
+    for i in 0..=300 {
+        let s = 3.0 * f64::from(i) / 300.0;
+        assert_relative_eq!(e.eval(s).unwrap(), c.eval(s).unwrap(), epsilon = 1e-14);
+    }
+    // Repeated elevation (FIG. 9: degree 7) brings the polygon close to the curve.
+    let e4 = c.elevate_degree(4).unwrap();
+    assert_eq!(e4.degree(), 7);
+    let dist = |curve: &Curve2| {
+        curve
+            .control_points()
+            .iter()
+            .zip(curve.knots().greville())
+            .fold(0.0f64, |m, (p, g)| m.max((c.eval(g).unwrap() - p).norm()))
+    };
+    assert!(dist(&e4) < dist(&e) && dist(&e) < dist(&c));
+}
+
+#[test]
+fn figure_20_of_seed_004() {
+    // N on [0 1 2 3 4] (order 4) = (2.5/3) N̄_0 + (1.5/3) N̄_1 after inserting 2.5.
+    let knots = KnotVector::new(
+        3,
+        vec![0.0, 0.0, 0.0, 0.0, 1.0, 2.0, 3.0, 4.0, 4.0, 4.0, 4.0],
+    )
+    .unwrap();
+    let mut unit = vec![0.0; knots.num_basis()];
+    unit[3] = 1.0; // support [u_3, u_7] = [0, 4], simple knots 0 1 2 3 4
+    let f = BSpline::new(knots, unit).unwrap();
+    let g = f.insert_knot(2.5, 1).unwrap();
+    let expected = [0.0, 0.0, 0.0, 2.5 / 3.0, 1.5 / 3.0, 0.0, 0.0, 0.0];
+    for (a, b) in g.control_points().iter().zip(expected) {
+        assert_relative_eq!(*a, b, epsilon = 1e-15);
+    }
+}
+
+#[test]
+fn figure_21_of_seed_004() {
+    // Inserting 2.7 and 4.3 into [0 0 0 0 1 2 3 4 5 6 7 7 7 7] (order 4): new control points by
+    // (8.4)–(8.5) with α_i = (ū − u_i)/(u_{i+m−1} − u_i), m = 4.
+    let knots = vec![
+        0.0, 0.0, 0.0, 0.0, 1.0, 2.0, 3.0, 4.0, 5.0, 6.0, 7.0, 7.0, 7.0, 7.0,
+    ];
+    let points: Vec<Vector2<f64>> = (0..10)
+        .map(|i| Vector2::new(f64::from(i), (f64::from(i) * 1.3).sin()))
+        .collect();
+    let c = BSpline::from_knots(3, knots.clone(), points.clone()).unwrap();
+    let boehm = |u: &[f64], p: &[Vector2<f64>], x: f64| -> (Vec<f64>, Vec<Vector2<f64>>) {
+        let k = u.iter().rposition(|&t| t <= x).unwrap();
+        let q: Vec<Vector2<f64>> = (0..=p.len())
+            .map(|i| {
+                let a = if i + 3 <= k {
+                    1.0
+                } else if i > k {
+                    0.0
+                } else {
+                    (x - u[i]) / (u[i + 3] - u[i])
+                };
+                if i == 0 {
+                    p[0]
+                } else if i == p.len() {
+                    p[i - 1]
+                } else {
+                    p[i] * a + p[i - 1] * (1.0 - a)
+                }
+            })
+            .collect();
+        let mut v = u.to_vec();
+        v.insert(k + 1, x);
+        (v, q)
+    };
+    let (u1, p1) = boehm(&knots, &points, 2.7);
+    let (u2, p2) = boehm(&u1, &p1, 4.3);
+    let r = c.refine(&[4.3, 2.7]).unwrap();
+    assert_eq!(r.knots().knots(), &u2[..]);
+    for (a, b) in r.control_points().iter().zip(&p2) {
+        assert_relative_eq!(*a, *b, epsilon = 1e-14);
+    }
+}
+
+#[test]
+fn bezier_curves() {
+    let points = vec![
+        Vector2::new(0.0, 0.0),
+        Vector2::new(1.0, 2.0),
+        Vector2::new(3.0, 2.0),
+        Vector2::new(4.0, 0.0),
+    ];
+    let b = Bezier::new(points.clone()).unwrap();
+    for i in 0..=20 {
+        let t = f64::from(i) / 20.0;
+        let closed = points[0] * (1.0 - t).powi(3)
+            + points[1] * 3.0 * t * (1.0 - t).powi(2)
+            + points[2] * 3.0 * t * t * (1.0 - t)
+            + points[3] * t.powi(3);
+        assert_relative_eq!(b.eval(t).unwrap(), closed, epsilon = 1e-14);
+        assert_relative_eq!(b.eval_bernstein(t).unwrap(), closed, epsilon = 1e-14);
+        assert_relative_eq!(
+            b.elevate_degree(3).eval(t).unwrap(),
+            closed,
+            epsilon = 1e-14
+        );
+        let hodograph = (points[1] - points[0]) * 3.0 * (1.0 - t).powi(2)
+            + (points[2] - points[1]) * 6.0 * t * (1.0 - t)
+            + (points[3] - points[2]) * 3.0 * t * t;
+        assert_relative_eq!(b.derivative().eval(t).unwrap(), hodograph, epsilon = 1e-13);
+    }
+    // Seed 004 Proposition 8.3: halves at 1/2 are P(t) = Σ B_i(2t) P_i on [0, ½] etc.
+    let (left, right) = b.subdivide(0.5).unwrap();
+    for i in 0..=10 {
+        let s = f64::from(i) / 10.0;
+        assert_relative_eq!(
+            left.eval(0.5 * s).unwrap(),
+            b.eval(0.5 * s).unwrap(),
+            epsilon = 1e-14
+        );
+        assert_relative_eq!(
+            right.eval(0.5 + 0.5 * s).unwrap(),
+            b.eval(0.5 + 0.5 * s).unwrap(),
+            epsilon = 1e-14
+        );
+    }
+    assert_eq!(left.control_points()[0], points[0]);
+    assert_eq!(right.control_points()[3], points[3]);
+    assert_eq!(left.control_points()[3], right.control_points()[0]);
+    let as_bspline = b.to_bspline().unwrap();
+    assert_relative_eq!(
+        as_bspline.eval(0.3).unwrap(),
+        b.eval(0.3).unwrap(),
+        epsilon = 1e-15
+    );
+    // A high-degree Bézier curve uses heap memory in de Casteljau's algorithm.
+    let many: Vec<f64> = (0..60).map(|i| f64::from(i % 7)).collect();
+    let high = Bezier::new(many.clone()).unwrap();
+    assert_relative_eq!(
+        high.eval(0.37).unwrap(),
+        high.eval_bernstein(0.37).unwrap(),
+        epsilon = 1e-10
+    );
+    assert_eq!(
+        high.to_bspline().unwrap_err().kind(),
+        ErrorKind::DegreeTooHigh
+    );
+    assert_eq!(
+        Bezier::<f64, f64>::new(vec![]).unwrap_err().kind(),
+        ErrorKind::InvalidLength
+    );
+    assert_eq!(b.eval(1.5).unwrap_err().kind(), ErrorKind::OutOfDomain);
+    assert_eq!(b.subdivide(1.0).unwrap_err().kind(), ErrorKind::OutOfDomain);
+}
+
+#[test]
+fn planar_geometry_and_arc_length_against_closed_forms() {
+    // y = x² on [−1, 1] as a quadratic Bézier: κ(x) = 2 / (1 + 4x²)^{3/2}.
+    let parabola = BSpline::from_knots(
+        2,
+        vec![-1.0, -1.0, -1.0, 1.0, 1.0, 1.0],
+        vec![
+            Vector2::new(-1.0, 1.0),
+            Vector2::new(0.0, -1.0),
+            Vector2::new(1.0, 1.0),
+        ],
+    )
+    .unwrap();
+    for i in 0..=20 {
+        let x = -1.0 + f64::from(i) / 10.0;
+        let kappa = 2.0 / (1.0 + 4.0 * x * x).powf(1.5);
+        assert_relative_eq!(
+            parabola.signed_curvature(x).unwrap(),
+            kappa,
+            epsilon = 1e-13
+        );
+        assert_relative_eq!(
+            parabola.curvature_magnitude(x).unwrap(),
+            kappa,
+            epsilon = 1e-13
+        );
+        let t = parabola.unit_tangent(x).unwrap();
+        assert_relative_eq!(
+            t,
+            Vector2::new(1.0, 2.0 * x) / (1.0 + 4.0 * x * x).sqrt(),
+            epsilon = 1e-14
+        );
+        assert_relative_eq!(
+            parabola.unit_normal(x).unwrap(),
+            Vector2::new(-t.y, t.x),
+            epsilon = 1e-15
+        );
+    }
+    // Reversal flips the sign of the curvature.
+    assert_relative_eq!(
+        parabola.reversed().signed_curvature(0.3).unwrap(),
+        -parabola.signed_curvature(-0.3).unwrap(),
+        epsilon = 1e-13
+    );
+    // Arc length of y = x², 0 ≤ x ≤ 1: √5/2 + asinh(2)/4, at accuracies 1e-1 … 1e-12.
+    let exact = 5f64.sqrt() / 2.0 + 2f64.asinh() / 4.0;
+    for e in 1..=12 {
+        let accuracy = 10f64.powi(-e);
+        let len = parabola.arc_length_between(0.0, 1.0, accuracy).unwrap();
+        assert!(
+            (len - exact).abs() <= accuracy,
+            "accuracy {accuracy}: error {}",
+            (len - exact).abs()
+        );
+    }
+    // A curve with a cusp (zero velocity) still gets an accurate length: |t|·2 on [−1, 1].
+    let cusp = BSpline::from_knots(
+        2,
+        vec![-1.0, -1.0, -1.0, 1.0, 1.0, 1.0],
+        vec![
+            Vector2::new(1.0, 1.0),
+            Vector2::new(-1.0, -1.0),
+            Vector2::new(1.0, 1.0),
+        ],
+    )
+    .unwrap();
+    // C(t) = (t², t²): length = 2 · √2 · 1 = 2√2.
+    assert_relative_eq!(
+        cusp.arc_length(1e-12).unwrap(),
+        2.0 * 2f64.sqrt(),
+        epsilon = 1e-11
+    );
+    assert_eq!(
+        cusp.signed_curvature(0.0).unwrap_err().kind(),
+        ErrorKind::DegenerateGeometry
+    );
+    assert_eq!(
+        parabola.arc_length(0.0).unwrap_err().kind(),
+        ErrorKind::InvalidArgument
+    );
+    assert_eq!(
+        parabola
+            .arc_length_between(0.5, 0.0, 1e-6)
+            .unwrap_err()
+            .kind(),
+        ErrorKind::InvalidArgument
+    );
+}
+
+#[test]
+fn variation_diminishing_with_lines() {
+    let c = seed_curve();
+    // The horizontal line y = 0.4 crosses the polygon twice; the curve at most twice.
+    let crossings = c.polygon_line_crossings(0.0, 1.0, -0.4);
+    let values: Vec<f64> = (0..=1000)
+        .map(|i| c.eval(3.0 * f64::from(i) / 1000.0).unwrap().y - 0.4)
+        .collect();
+    assert!(sign_changes(&values) <= crossings);
+    assert_eq!(crossings, 2);
+    assert_eq!(sign_changes(&[1.0, 0.0, -1.0, 0.0, 0.0, -2.0, 3.0]), 2);
+}
+
+#[test]
+fn reversal_reparametrisation_and_affine_maps() {
+    let c = seed_curve();
+    let r = c.reversed();
+    let m = c.reparametrized(10.0, 16.0).unwrap();
+    let rotation = nalgebra::Rotation2::new(0.7);
+    let moved = c.map_control_points(|p| rotation * p + Vector2::new(2.0, -1.0));
+    for i in 0..=30 {
+        let u = 3.0 * f64::from(i) / 30.0;
+        assert_relative_eq!(
+            r.eval(3.0 - u).unwrap(),
+            c.eval(u).unwrap(),
+            epsilon = 1e-14
+        );
+        assert_relative_eq!(
+            m.eval(10.0 + 2.0 * u).unwrap(),
+            c.eval(u).unwrap(),
+            epsilon = 1e-14
+        );
+        assert_relative_eq!(
+            moved.eval(u).unwrap(),
+            rotation * c.eval(u).unwrap() + Vector2::new(2.0, -1.0),
+            epsilon = 1e-14
+        );
+    }
+}
+
+#[test]
+fn errors() {
+    let c = seed_curve();
+    assert_eq!(
+        c.eval(3.0000001).unwrap_err().kind(),
+        ErrorKind::OutOfDomain
+    );
+    assert_eq!(c.eval(f64::NAN).unwrap_err().kind(), ErrorKind::NonFinite);
+    assert_eq!(
+        c.derivative(4).unwrap_err().kind(),
+        ErrorKind::InvalidArgument
+    );
+    assert_eq!(c.split(0.0).unwrap_err().kind(), ErrorKind::OutOfDomain);
+    assert_eq!(c.split(3.0).unwrap_err().kind(), ErrorKind::OutOfDomain);
+    assert_eq!(
+        c.insert_knot(-1.0, 1).unwrap_err().kind(),
+        ErrorKind::OutOfDomain
+    );
+    assert_eq!(
+        c.insert_knot(1.0, 4).unwrap_err().kind(),
+        ErrorKind::KnotMultiplicity
+    );
+    assert_eq!(
+        c.refine(&[0.5, f64::NAN]).unwrap_err().kind(),
+        ErrorKind::NonFinite
+    );
+    // Removing a knot the curve really needs.
+    let e = c.remove_knot(1.0, 1, 1e-9).unwrap_err();
+    assert_eq!(e.kind(), ErrorKind::ToleranceExceeded);
+    assert!(e.message().contains("tolerance"), "{e}");
+    assert_eq!(
+        c.remove_knot(1.5, 1, 1e-9).unwrap_err().kind(),
+        ErrorKind::InvalidArgument
+    );
+    assert_eq!(
+        c.remove_knot(1.0, 2, 1e-9).unwrap_err().kind(),
+        ErrorKind::InvalidArgument
+    );
+    assert_eq!(
+        c.remove_knot(0.0, 1, 1e-9).unwrap_err().kind(),
+        ErrorKind::InvalidArgument
+    );
+    // …which a large enough tolerance allows.
+    assert!(c.remove_knot(1.0, 1, 10.0).is_ok());
+    let knots = KnotVector::new(1, vec![0.0, 0.0, 1.0, 1.0]).unwrap();
+    assert_eq!(
+        BSpline::new(knots.clone(), vec![0.0]).unwrap_err().kind(),
+        ErrorKind::InvalidLength
+    );
+    assert_eq!(
+        BSpline::new(knots, vec![0.0, f64::NAN]).unwrap_err().kind(),
+        ErrorKind::NonFinite
+    );
+    let mut out = [Vector2::zeros(); 2];
+    assert_eq!(
+        c.eval_many_into(&[0.0], &mut out).unwrap_err().kind(),
+        ErrorKind::InvalidLength
+    );
+    assert_eq!(
+        c.eval_many(&[0.0, 4.0]).unwrap_err().kind(),
+        ErrorKind::OutOfDomain
+    );
+    assert!(c.elevate_degree(40).is_err());
+}
+
+#[test]
+fn derivative_of_a_discontinuous_curve_drops_the_empty_basis_function() {
+    let f = BSpline::from_knots(
+        2,
+        vec![0.0, 0.0, 0.0, 0.5, 0.5, 0.5, 1.0, 1.0, 1.0],
+        vec![0.0, 1.0, 0.0, 2.0, 3.0, 5.0],
+    )
+    .unwrap();
+    let d = f.derivative(1).unwrap();
+    assert_eq!(d.degree(), 1);
+    assert_eq!(d.knots().knots(), &[0.0, 0.0, 0.5, 0.5, 1.0, 1.0]);
+    for &u in &[0.1, 0.3, 0.5, 0.7, 1.0] {
+        assert_relative_eq!(
+            d.eval(u).unwrap(),
+            f.derivatives(u, 1).unwrap()[1],
+            epsilon = 1e-13
+        );
+    }
+}
+
+#[test]
+fn unclamped_curves() {
+    let c = BSpline::from_knots(
+        2,
+        vec![0.0, 1.0, 2.0, 3.0, 4.0, 5.0, 6.0, 7.0],
+        vec![0.0, 3.0, -1.0, 2.0, 1.0],
+    )
+    .unwrap();
+    assert_eq!(c.domain(), (2.0, 5.0));
+    let clamped = c.clamped();
+    assert!(clamped.knots().is_clamped());
+    assert_eq!(clamped.domain(), (2.0, 5.0));
+    let elevated = c.elevate_degree(2).unwrap();
+    let (l, r) = c.split(3.5).unwrap();
+    for i in 0..=30 {
+        let u = 2.0 + 3.0 * f64::from(i) / 30.0;
+        let v = c.eval(u).unwrap();
+        assert_relative_eq!(clamped.eval(u).unwrap(), v, epsilon = 1e-13);
+        assert_relative_eq!(elevated.eval(u).unwrap(), v, epsilon = 1e-13);
+        let part = if u <= 3.5 { &l } else { &r };
+        assert_relative_eq!(part.eval(u).unwrap(), v, epsilon = 1e-13);
+    }
+    assert_eq!(c.bezier_segments().len(), 3);
+}
