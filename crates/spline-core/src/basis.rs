@@ -14,6 +14,14 @@ pub struct BasisValues<T> {
     values: [T; MAX_ORDER],
 }
 
+/// Reciprocal knot differences per span (see [`KnotVector::reciprocal_table`]).
+#[derive(Clone, Debug)]
+pub struct ReciprocalTable<T> {
+    degree: usize,
+    per_span: usize,
+    data: Vec<T>,
+}
+
 impl<T: Scalar> BasisValues<T> {
     /// The knot span `k` (`u_k ≤ u < u_{k+1}`).
     #[inline]
@@ -64,6 +72,144 @@ impl<T: Scalar> KnotVector<T> {
             }
             out[j] = saved;
         }
+    }
+
+    /// [`KnotVector::basis_values`] for a degree known at compile time (`N = p + 1`): the
+    /// working arrays have exactly `N` entries, which makes the hot path of low-degree
+    /// evaluation several times cheaper than the general routine.
+    ///
+    /// # Panics
+    /// If `N != p + 1` or `span` is invalid.
+    #[inline]
+    #[must_use]
+    pub fn basis_values_fixed<const N: usize>(&self, span: usize, u: T) -> [T; N] {
+        assert!(
+            N == self.degree() + 1,
+            "basis_values_fixed::<{N}> for degree {}",
+            self.degree()
+        );
+        let knots = &self.knots()[span + 1 - N..=span + N - 1];
+        // knots[j] is u_{span - p + j}; span itself is at index p = N - 1.
+        let mut out = [T::zero(); N];
+        let mut left = [T::zero(); N];
+        let mut right = [T::zero(); N];
+        out[0] = T::one();
+        for j in 1..N {
+            left[j] = u - knots[N - j];
+            right[j] = knots[N - 1 + j] - u;
+            let mut saved = T::zero();
+            for r in 0..j {
+                let temp = out[r] / (right[r + 1] + left[j - r]);
+                out[r] = saved + right[r + 1] * temp;
+                saved = left[j - r] * temp;
+            }
+            out[j] = saved;
+        }
+        out
+    }
+
+    /// The triangular scheme of [`KnotVector::basis_values_fixed`], keeping every degree:
+    /// row `d` holds the `d + 1` basis functions of degree `d` non-zero in `span`,
+    /// $N_{span - d + r,\,d}(u)$ at index `r` (the rest of the row is zero). Lower degrees
+    /// give curve derivatives through the derivative control points (The NURBS Book A3.4).
+    ///
+    /// # Panics
+    /// If `N != p + 1` or `span` is invalid.
+    #[inline]
+    #[must_use]
+    pub fn basis_by_degree_fixed<const N: usize>(&self, span: usize, u: T) -> [[T; N]; N] {
+        assert!(
+            N == self.degree() + 1,
+            "basis_by_degree_fixed::<{N}> for degree {}",
+            self.degree()
+        );
+        let knots = &self.knots()[span + 1 - N..=span + N - 1];
+        let mut rows = [[T::zero(); N]; N];
+        let mut left = [T::zero(); N];
+        let mut right = [T::zero(); N];
+        rows[0][0] = T::one();
+        for j in 1..N {
+            left[j] = u - knots[N - j];
+            right[j] = knots[N - 1 + j] - u;
+            let mut saved = T::zero();
+            for r in 0..j {
+                let temp = rows[j - 1][r] / (right[r + 1] + left[j - r]);
+                rows[j][r] = saved + right[r + 1] * temp;
+                saved = left[j - r] * temp;
+            }
+            rows[j][j] = saved;
+        }
+        rows
+    }
+
+    /// The reciprocal knot differences that the triangular scheme divides by, for every span:
+    /// with them [`KnotVector::basis_values_fixed_with`] needs no division. Worth building
+    /// when many parameters are evaluated on the same knots.
+    #[must_use]
+    pub fn reciprocal_table(&self) -> ReciprocalTable<T> {
+        let p = self.degree();
+        let per_span = p * (p + 1) / 2;
+        let n = self.num_basis();
+        let knots = self.knots();
+        let mut data = vec![T::zero(); (n - p) * per_span];
+        for span in p..n {
+            if knots[span] == knots[span + 1] {
+                continue;
+            }
+            let row = &mut data[(span - p) * per_span..(span - p + 1) * per_span];
+            let mut idx = 0;
+            for j in 1..=p {
+                for r in 0..j {
+                    row[idx] = T::one() / (knots[span + r + 1] - knots[span + 1 + r - j]);
+                    idx += 1;
+                }
+            }
+        }
+        ReciprocalTable {
+            degree: p,
+            per_span,
+            data,
+        }
+    }
+
+    /// [`KnotVector::basis_values_fixed`] with the divisions replaced by the precomputed
+    /// reciprocals of `table` (built from this knot vector).
+    ///
+    /// # Panics
+    /// If `N != p + 1`, `span` is invalid, or `table` belongs to another degree.
+    #[inline]
+    #[must_use]
+    pub fn basis_values_fixed_with<const N: usize>(
+        &self,
+        span: usize,
+        u: T,
+        table: &ReciprocalTable<T>,
+    ) -> [T; N] {
+        assert!(
+            N == self.degree() + 1 && table.degree == self.degree(),
+            "degree mismatch"
+        );
+        let p = N - 1;
+        let knots = &self.knots()[span + 1 - N..=span + N - 1];
+        let recips = &table.data[(span - p) * table.per_span..(span - p + 1) * table.per_span];
+        let mut out = [T::zero(); N];
+        let mut left = [T::zero(); N];
+        let mut right = [T::zero(); N];
+        out[0] = T::one();
+        let mut idx = 0;
+        for j in 1..N {
+            left[j] = u - knots[N - j];
+            right[j] = knots[N - 1 + j] - u;
+            let mut saved = T::zero();
+            for r in 0..j {
+                let temp = out[r] * recips[idx];
+                idx += 1;
+                out[r] = saved + right[r + 1] * temp;
+                saved = left[j - r] * temp;
+            }
+            out[j] = saved;
+        }
+        out
     }
 
     /// The non-zero basis functions at `u`, with their span.

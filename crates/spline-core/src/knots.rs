@@ -362,14 +362,13 @@ impl<T: Scalar> KnotVector<T> {
     #[must_use]
     pub fn span_in_domain_from(&self, u: T, hint: usize) -> usize {
         let n = self.num_basis();
-        if hint >= self.degree && hint < n && self.knots[hint] <= u && u < self.knots[n] {
-            // Invariant: knots[k] <= u. A few linear steps, then fall back to bisection.
-            let mut k = hint;
-            for _ in 0..4 {
-                if u < self.knots[k + 1] {
-                    return k;
-                }
-                k += 1;
+        if hint >= self.degree() && hint < n && self.knots[hint] <= u {
+            // Same span, or the next non-empty one; otherwise bisection.
+            if u < self.knots[hint + 1] {
+                return hint;
+            }
+            if hint + 2 <= n && u < self.knots[hint + 2] && u < self.knots[n] {
+                return hint + 1;
             }
         }
         self.span_in_domain(u)

@@ -26,7 +26,7 @@ mod scalar;
 #[cfg(feature = "proptest-support")]
 pub mod strategies;
 
-pub use basis::{BasisValues, bernstein, bernstein_all, binomial};
+pub use basis::{BasisValues, ReciprocalTable, bernstein, bernstein_all, binomial};
 pub use error::{Error, ErrorKind, Result};
 pub use knots::{KnotVector, MAX_DEGREE, MAX_ORDER, check_params};
 pub use point::{ControlPoint, lerp};

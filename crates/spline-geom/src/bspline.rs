@@ -149,9 +149,32 @@ impl<T: Scalar, P: ControlPoint<T>> BSpline<T, P> {
         )
     }
 
-    /// The point at `u` from a known span (no checks).
+    /// The point at `u` from a known span (no checks). Degrees 1 to 5 use fixed-size
+    /// kernels.
     #[inline]
     pub(crate) fn eval_in_span(&self, span: usize, u: T) -> P {
+        match self.degree() {
+            1 => self.combine_fixed::<2>(span, u),
+            2 => self.combine_fixed::<3>(span, u),
+            3 => self.combine_fixed::<4>(span, u),
+            4 => self.combine_fixed::<5>(span, u),
+            5 => self.combine_fixed::<6>(span, u),
+            _ => self.combine_general(span, u),
+        }
+    }
+
+    #[inline(always)]
+    fn combine_fixed<const N: usize>(&self, span: usize, u: T) -> P {
+        let basis = self.knots.basis_values_fixed::<N>(span, u);
+        let points = &self.control_points[span + 1 - N..=span];
+        let mut acc = points[0] * basis[0];
+        for r in 1..N {
+            acc += points[r] * basis[r];
+        }
+        acc
+    }
+
+    fn combine_general(&self, span: usize, u: T) -> P {
         let p = self.degree();
         let mut basis = [T::zero(); MAX_ORDER];
         self.knots.basis_values(span, u, &mut basis);
@@ -210,6 +233,14 @@ impl<T: Scalar, P: ControlPoint<T>> BSpline<T, P> {
         if out.is_empty() {
             return;
         }
+        match self.degree() {
+            1 => return self.derivatives_fixed::<2>(span, u, out),
+            2 => return self.derivatives_fixed::<3>(span, u, out),
+            3 => return self.derivatives_fixed::<4>(span, u, out),
+            4 => return self.derivatives_fixed::<5>(span, u, out),
+            5 => return self.derivatives_fixed::<6>(span, u, out),
+            _ => {}
+        }
         let order = out.len() - 1;
         let p = self.degree();
         let width = p + 1;
@@ -232,6 +263,35 @@ impl<T: Scalar, P: ControlPoint<T>> BSpline<T, P> {
             let mut acc = points[0] * row[0];
             for r in 1..=p {
                 acc += points[r] * row[r];
+            }
+            *slot = acc;
+        }
+    }
+
+    /// Derivatives for a fixed degree `N − 1` from the derivative control points of the span
+    /// and the basis functions of lower degrees (The NURBS Book A3.3–A3.4).
+    fn derivatives_fixed<const N: usize>(&self, span: usize, u: T, out: &mut [P]) {
+        let p = N - 1;
+        let rows = self.knots.basis_by_degree_fixed::<N>(span, u);
+        let knots = self.knots.knots();
+        let mut q = [P::origin(); N];
+        q.copy_from_slice(&self.control_points[span - p..=span]);
+        for (k, slot) in out.iter_mut().enumerate() {
+            if k > p {
+                *slot = P::origin();
+                continue;
+            }
+            if k > 0 {
+                let factor = from_count::<T>(p - k + 1);
+                for i in 0..=p - k {
+                    let den = knots[span + i + 1] - knots[span - p + i + k];
+                    q[i] = (q[i + 1] - q[i]) * (factor / den);
+                }
+            }
+            let basis = &rows[p - k];
+            let mut acc = q[0] * basis[0];
+            for i in 1..=p - k {
+                acc += q[i] * basis[i];
             }
             *slot = acc;
         }
@@ -269,12 +329,44 @@ impl<T: Scalar, P: ControlPoint<T>> BSpline<T, P> {
                 .check_param(u)
                 .map_err(|e| e.context(format_args!("parameter {i}")))?;
         }
+        if !params.windows(2).all(|w| w[0] <= w[1]) {
+            // Unsorted: a span hint would only cost a mispredicted branch per point.
+            for (slot, &u) in out.iter_mut().zip(params) {
+                *slot = self.eval_in_span(self.knots.span_in_domain(u), u);
+            }
+            return Ok(());
+        }
+        match self.degree() {
+            1 => self.eval_many_fixed::<2>(params, out),
+            2 => self.eval_many_fixed::<3>(params, out),
+            3 => self.eval_many_fixed::<4>(params, out),
+            4 => self.eval_many_fixed::<5>(params, out),
+            5 => self.eval_many_fixed::<6>(params, out),
+            _ => {
+                let mut span = self.degree();
+                for (slot, &u) in out.iter_mut().zip(params) {
+                    span = self.knots.span_in_domain_from(u, span);
+                    *slot = self.combine_general(span, u);
+                }
+            }
+        }
+        Ok(())
+    }
+
+    /// Batch evaluation for a fixed degree with division-free basis functions.
+    fn eval_many_fixed<const N: usize>(&self, params: &[T], out: &mut [P]) {
+        let table = self.knots.reciprocal_table();
         let mut span = self.degree();
         for (slot, &u) in out.iter_mut().zip(params) {
             span = self.knots.span_in_domain_from(u, span);
-            *slot = self.eval_in_span(span, u);
+            let basis = self.knots.basis_values_fixed_with::<N>(span, u, &table);
+            let points = &self.control_points[span + 1 - N..=span];
+            let mut acc = points[0] * basis[0];
+            for r in 1..N {
+                acc += points[r] * basis[r];
+            }
+            *slot = acc;
         }
-        Ok(())
     }
 
     /// Evaluates at many parameters.
