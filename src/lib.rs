@@ -15,3 +15,8 @@ pub use spline_shape as shape;
 
 pub use spline_core::{ControlPoint, Error, ErrorKind, KnotVector, Result, Scalar};
 pub use spline_geom::{BSpline, Bezier};
+
+/// The examples of the README, compiled and run as doc tests.
+#[doc = include_str!("../README.md")]
+#[cfg(doctest)]
+pub struct ReadmeDoctests;

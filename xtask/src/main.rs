@@ -1,3 +1,61 @@
-//! Project automation: `cargo xtask ci | docs | bench | demo`.
+//! Project automation: `cargo xtask <task>`.
+//!
+//! - `ci`: exactly what CI runs (`.ci/run`): format check, clippy with warnings denied, tests.
+//! - `docs`: regenerate the SVG pictures in `docs/`.
+//! - `bench fit`: criterion benchmarks of spline-fit against scipy in the same run.
+//! - `demo`: the main job — fit an airfoil shipped in `data/airfoils/`, print the result and
+//!   write `docs/airfoil.svg`.
 
-fn main() {}
+mod docs_curves;
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, ExitCode};
+
+fn repo_root() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+        .parent()
+        .expect("xtask lives in the repository")
+        .to_path_buf()
+}
+
+fn run_ci(root: &Path) -> Result<(), String> {
+    let status = Command::new("bash")
+        .arg(root.join(".ci/run"))
+        .current_dir(root)
+        .status()
+        .map_err(|e| format!("cannot run .ci/run: {e}"))?;
+    if status.success() {
+        Ok(())
+    } else {
+        Err(format!(".ci/run failed ({status})"))
+    }
+}
+
+fn run_docs(root: &Path) -> Result<(), String> {
+    let out = root.join("docs");
+    std::fs::create_dir_all(&out).map_err(|e| e.to_string())?;
+    docs_curves::render(&out)?;
+    println!("pictures written to {}", out.display());
+    Ok(())
+}
+
+fn usage() -> String {
+    "usage: cargo xtask <ci | docs | bench fit | demo>".into()
+}
+
+fn main() -> ExitCode {
+    let args: Vec<String> = std::env::args().skip(1).collect();
+    let root = repo_root();
+    let result = match args.first().map(String::as_str) {
+        Some("ci") => run_ci(&root),
+        Some("docs") => run_docs(&root),
+        _ => Err(usage()),
+    };
+    match result {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(e) => {
+            eprintln!("xtask: {e}");
+            ExitCode::FAILURE
+        }
+    }
+}

@@ -436,9 +436,9 @@ pub fn bernstein_all<T: Scalar>(n: usize, t: T, out: &mut [T]) {
     let s = T::one() - t;
     for j in 1..=n {
         let mut saved = T::zero();
-        for k in 0..j {
-            let temp = out[k];
-            out[k] = saved + s * temp;
+        for value in out.iter_mut().take(j) {
+            let temp = *value;
+            *value = saved + s * temp;
             saved = t * temp;
         }
         out[j] = saved;

@@ -8,6 +8,9 @@ use std::collections::BTreeMap;
 /// (so `p + 1 ..= p + 1 + extra` basis functions) on `[0, 1]` times `scale`: clamped, or
 /// unclamped with `p` extra knots outside each end; interior knots on a grid of `1/1000`,
 /// repeated up to multiplicity `p` (or `p + 1` when `allow_discontinuity`).
+///
+/// # Panics
+/// Never for `scale > 0`: the generated knots are valid by construction.
 pub fn knot_vector(
     max_degree: usize,
     extra: usize,

@@ -2,7 +2,7 @@
 //! of seed 004 §2.3, closed forms, dual numbers and finite differences.
 
 use approx::assert_relative_eq;
-use num_dual::{Dual64, DualNum};
+use num_dual::Dual64;
 use proptest::prelude::*;
 use spline_core::strategies::knot_vector;
 use spline_core::{ErrorKind, KnotVector, bernstein, bernstein_all};

@@ -237,3 +237,46 @@ impl<T: Scalar, P: ControlPoint<T>> Bezier<T, P> {
         )
     }
 }
+
+/// In the exchange format a Bézier curve is the clamped B-spline of one segment: knots
+/// `p + 1` copies of `a`, then `p + 1` copies of `b`.
+impl<T: Scalar, P: ControlPoint<T>> serde::Serialize for Bezier<T, P> {
+    fn serialize<S: serde::Serializer>(
+        &self,
+        serializer: S,
+    ) -> std::result::Result<S::Ok, S::Error> {
+        let n = self.degree();
+        crate::exchange::CurveRecord {
+            degree: n,
+            knots: std::iter::repeat_n(to_f64(self.start), n + 1)
+                .chain(std::iter::repeat_n(to_f64(self.end), n + 1))
+                .collect(),
+            control_points: self
+                .control_points
+                .iter()
+                .map(|p| (0..P::DIM).map(|i| to_f64(p.coord(i))).collect())
+                .collect(),
+            weights: None,
+        }
+        .serialize(serializer)
+    }
+}
+
+impl<'de, T: Scalar, P: ControlPoint<T>> serde::Deserialize<'de> for Bezier<T, P> {
+    fn deserialize<D: serde::Deserializer<'de>>(
+        deserializer: D,
+    ) -> std::result::Result<Self, D::Error> {
+        use serde::de::Error as _;
+        let curve: BSpline<T, P> = BSpline::deserialize(deserializer)?;
+        let (a, b) = curve.domain();
+        if curve.control_points().len() != curve.degree() + 1 {
+            return Err(D::Error::custom(format!(
+                "a Bézier curve of degree {} has {} control points and knots [a; p+1] + [b; p+1], got {} control points",
+                curve.degree(),
+                curve.degree() + 1,
+                curve.control_points().len()
+            )));
+        }
+        Self::with_interval(curve.control_points().to_vec(), a, b).map_err(D::Error::custom)
+    }
+}

@@ -45,6 +45,9 @@ fn row<T: Scalar, P: ControlPoint<T>>(p: &P) -> String {
 
 /// The curve sampled for gnuplot: one point per line, coordinates separated by spaces
 /// (`per_span` samples per knot span).
+///
+/// # Panics
+/// Never: the samples lie in the domain.
 #[must_use]
 pub fn gnuplot_curve<T: Scalar, P: ControlPoint<T>>(
     curve: &BSpline<T, P>,
@@ -121,7 +124,8 @@ impl SvgPlot {
         self.width = width;
     }
 
-    /// Draws a polyline with a CSS class (`curve`, `polygon`, `curve2`, `curve3`, `data`…).
+    /// Draws a polyline with a CSS class: `curve`, `curve2`, `curve3`, `polygon`, `comb`,
+    /// `axis`, or `c0` … `c7` (a palette for families of functions).
     pub fn add_polyline(&mut self, points: &[Vector2<f64>], class: &str) {
         self.elements.push(Element::Polyline {
             points: points.to_vec(),
@@ -152,6 +156,9 @@ impl SvgPlot {
     }
 
     /// [`SvgPlot::add_curve`] with another CSS class for the curve.
+    ///
+    /// # Panics
+    /// Never: the samples lie in the domain.
     pub fn add_curve_styled(&mut self, curve: &BSpline<f64, Vector2<f64>>, class: &str) {
         self.add_polyline(curve.control_points(), "polygon");
         self.add_markers(curve.control_points(), "control");
@@ -181,7 +188,7 @@ impl SvgPlot {
         if max == 0.0 || teeth.is_empty() {
             return;
         }
-        let (lo, hi) = bounds(&curve.control_points().iter().copied().collect::<Vec<_>>());
+        let (lo, hi) = bounds(curve.control_points());
         let size = (hi - lo).norm().max(1e-300);
         let scale = 0.2 * size / max;
         // Teeth point away from the centre of curvature.
@@ -192,6 +199,9 @@ impl SvgPlot {
     }
 
     /// The SVG document.
+    ///
+    /// # Panics
+    /// Never.
     #[must_use]
     pub fn render(&self) -> String {
         let all: Vec<Vector2<f64>> = self
@@ -213,7 +223,12 @@ impl SvgPlot {
         let extent = (hi - lo).map(|x| x.max(1e-12));
         let margin = 20.0;
         let scale = (self.width - 2.0 * margin) / extent.x.max(extent.y * 0.25);
-        let height = (extent.y * scale + 2.0 * margin).max(80.0);
+        let top = if self.title.is_some() {
+            margin + 24.0
+        } else {
+            margin
+        };
+        let height = (extent.y * scale + margin + top).max(80.0);
         let map = |p: &Vector2<f64>| {
             let x = margin + (p.x - lo.x) * scale;
             let y = height - margin - (p.y - lo.y) * scale;
@@ -234,6 +249,11 @@ impl SvgPlot {
              .control{fill:#666}\n.data{fill:#e67e22}\n\
              .comb{fill:none;stroke:#8e44ad;stroke-width:0.6}\n\
              .inflection{fill:#c0392b}\n.extremum{fill:#27ae60}\n\
+             .c0{fill:none;stroke:#1f77b4;stroke-width:2}\n.c1{fill:none;stroke:#ff7f0e;stroke-width:2}\n\
+             .c2{fill:none;stroke:#2ca02c;stroke-width:2}\n.c3{fill:none;stroke:#d62728;stroke-width:2}\n\
+             .c4{fill:none;stroke:#9467bd;stroke-width:2}\n.c5{fill:none;stroke:#8c564b;stroke-width:2}\n\
+             .c6{fill:none;stroke:#e377c2;stroke-width:2}\n.c7{fill:none;stroke:#7f7f7f;stroke-width:2}\n\
+             .axis{fill:none;stroke:#444;stroke-width:0.8}\n\
              text{font:14px sans-serif;fill:#333}\n</style>\n",
         );
         out.push_str(r#"<rect width="100%" height="100%" fill="white"/>"#);

@@ -77,13 +77,13 @@ impl<T: Scalar, P: ControlPoint<T>> BSpline<T, P> {
                 .map_err(|e| e.context(format_args!("knot {j}")))?;
         }
         let mut x = new_knots.to_vec();
-        x.sort_by(|a, b| a.partial_cmp(b).expect("finite knots"));
+        x.sort_by(|a, b| a.partial_cmp(b).unwrap_or(std::cmp::Ordering::Equal));
         let p = self.degree();
         let old_knots = self.knots().knots();
         let mut merged = Vec::with_capacity(old_knots.len() + x.len());
         merged.extend_from_slice(old_knots);
         merged.extend_from_slice(&x);
-        merged.sort_by(|a, b| a.partial_cmp(b).expect("finite knots"));
+        merged.sort_by(|a, b| a.partial_cmp(b).unwrap_or(std::cmp::Ordering::Equal));
         let target = KnotVector::new(p, merged)?;
 
         let old = self.control_points();
@@ -259,6 +259,11 @@ impl<T: Scalar, P: ControlPoint<T>> BSpline<T, P> {
     ///
     /// # Errors
     /// [`ErrorKind::DegreeTooHigh`] if `p + times` exceeds [`MAX_DEGREE`].
+    ///
+    /// # Panics
+    /// Never: the internal `expect`s guard invariants of the algorithm.
+    // The loops mirror the indices of A5.9 so that the code can be checked against the book.
+    #[allow(clippy::needless_range_loop, clippy::explicit_counter_loop)]
     pub fn elevate_degree(&self, times: usize) -> Result<Self> {
         if times == 0 {
             return Ok(self.clone());
@@ -352,7 +357,11 @@ impl<T: Scalar, P: ControlPoint<T>> BSpline<T, P> {
             let oldr = r;
             r = p as isize - mul as isize;
             let lbz = if oldr > 0 { (oldr as usize + 2) / 2 } else { 1 };
-            let rbz = if r > 0 { ph - (r as usize + 1) / 2 } else { ph };
+            let rbz = if r > 0 {
+                ph - (r as usize).div_ceil(2)
+            } else {
+                ph
+            };
             if r > 0 {
                 // Insert u_b r times into the current Bézier segment.
                 let numer = ub - ua;
@@ -442,6 +451,9 @@ impl<T: Scalar, P: ControlPoint<T>> BSpline<T, P> {
     /// The curve on the same domain with clamped knots (`p + 1` copies of each domain end),
     /// so that it interpolates its first and last control points. Clamped curves are
     /// returned unchanged.
+    ///
+    /// # Panics
+    /// Never (the domain of a valid knot vector is not empty).
     #[must_use]
     pub fn clamped(&self) -> Self {
         let (a, b) = self.domain();
@@ -490,6 +502,9 @@ impl<T: Scalar, P: ControlPoint<T>> BSpline<T, P> {
     ///
     /// # Errors
     /// [`ErrorKind::NonFinite`]; [`ErrorKind::OutOfDomain`] unless `a < u < b`.
+    ///
+    /// # Panics
+    /// Never: both parts exist once `a < u < b` is checked.
     pub fn split(&self, u: T) -> Result<(Self, Self)> {
         self.knots().check_param(u)?;
         let (a, b) = self.domain();
@@ -510,6 +525,9 @@ impl<T: Scalar, P: ControlPoint<T>> BSpline<T, P> {
 
     /// The Bézier segments of the curve, one per non-empty knot span of the domain, each on
     /// its own parameter interval (interior knots raised to multiplicity `p` by refinement).
+    ///
+    /// # Panics
+    /// Never: the refinement only inserts interior knots up to multiplicity `p`.
     #[must_use]
     pub fn bezier_segments(&self) -> Vec<Bezier<T, P>> {
         let clamped = self.clamped();

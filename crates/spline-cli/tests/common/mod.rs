@@ -18,16 +18,26 @@ impl Run {
     /// The standard output as JSON, asserting success.
     pub fn json(&self) -> Value {
         assert_eq!(self.status, 0, "stderr: {}", self.stderr);
-        serde_json::from_str(&self.stdout).unwrap_or_else(|e| panic!("not JSON ({e}): {}", self.stdout))
+        serde_json::from_str(&self.stdout)
+            .unwrap_or_else(|e| panic!("not JSON ({e}): {}", self.stdout))
     }
 
     /// Asserts the contract for invalid input: exit status 2, one line on stderr, no panic,
     /// nothing on stdout. Returns the message.
     pub fn assert_clean_error(&self) -> String {
-        assert_eq!(self.status, 2, "expected exit status 2; stdout: {} stderr: {}", self.stdout, self.stderr);
+        assert_eq!(
+            self.status, 2,
+            "expected exit status 2; stdout: {} stderr: {}",
+            self.stdout, self.stderr
+        );
         assert!(self.stdout.is_empty(), "stdout not empty: {}", self.stdout);
         let lines: Vec<&str> = self.stderr.lines().collect();
-        assert_eq!(lines.len(), 1, "stderr should be one line: {:?}", self.stderr);
+        assert_eq!(
+            lines.len(),
+            1,
+            "stderr should be one line: {:?}",
+            self.stderr
+        );
         assert!(!self.stderr.contains("panicked"), "{}", self.stderr);
         assert!(lines[0].starts_with("spline: "), "{}", lines[0]);
         lines[0].to_owned()
@@ -36,7 +46,10 @@ impl Run {
 
 /// Runs `spline` with arguments.
 pub fn spline(args: &[&str]) -> Run {
-    let output: Output = Command::new(env!("CARGO_BIN_EXE_spline")).args(args).output().expect("run spline");
+    let output: Output = Command::new(env!("CARGO_BIN_EXE_spline"))
+        .args(args)
+        .output()
+        .expect("run spline");
     Run {
         status: output.status.code().unwrap_or(-1),
         stdout: String::from_utf8_lossy(&output.stdout).into_owned(),
@@ -58,7 +71,9 @@ pub fn temp_file(name: &str, contents: &str) -> String {
 
 /// The cases of a reference file of the repository.
 pub fn cases(name: &str) -> Vec<Value> {
-    let path = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../tests/data/reference").join(format!("{name}.json"));
+    let path = PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+        .join("../../tests/data/reference")
+        .join(format!("{name}.json"));
     let text = std::fs::read_to_string(&path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
     let data: Value = serde_json::from_str(&text).expect("reference JSON");
     data["cases"].as_array().expect("cases").clone()
@@ -78,7 +93,10 @@ pub fn flatten(v: &Value) -> Vec<f64> {
 pub fn assert_close_json(got: &Value, expected: &Value, tol: f64, what: &str) {
     fn shape(v: &Value) -> String {
         match v {
-            Value::Array(items) => format!("[{}]", items.iter().map(shape).collect::<Vec<_>>().join(",")),
+            Value::Array(items) => format!(
+                "[{}]",
+                items.iter().map(shape).collect::<Vec<_>>().join(",")
+            ),
             _ => "x".into(),
         }
     }
@@ -93,6 +111,16 @@ pub fn assert_close_json(got: &Value, expected: &Value, tol: f64, what: &str) {
 /// Compares exchange-format curves: degree, knots (1e-12 absolute), control points.
 pub fn assert_same_curve(got: &Value, expected: &Value, tol: f64, what: &str) {
     assert_eq!(got["degree"], expected["degree"], "{what}: degree");
-    assert_close_json(&got["knots"], &expected["knots"], 1e-12, &format!("{what}: knots"));
-    assert_close_json(&got["control_points"], &expected["control_points"], tol, &format!("{what}: control points"));
+    assert_close_json(
+        &got["knots"],
+        &expected["knots"],
+        1e-12,
+        &format!("{what}: knots"),
+    );
+    assert_close_json(
+        &got["control_points"],
+        &expected["control_points"],
+        tol,
+        &format!("{what}: control points"),
+    );
 }
