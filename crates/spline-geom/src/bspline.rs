@@ -465,3 +465,25 @@ pub(crate) fn check_same_len(expected: usize, got: usize) -> Result<()> {
         ))
     }
 }
+
+impl<T: Scalar, const D: usize> BSpline<T, nalgebra::SVector<T, D>> {
+    /// The curve under the affine map $x \mapsto A x + b$ (B-splines are affinely invariant:
+    /// mapping the control points maps the curve).
+    ///
+    /// ```
+    /// use nalgebra::{Matrix2, Vector2};
+    /// use spline_geom::BSpline;
+    /// let c = BSpline::from_knots(1, vec![0.0, 0.0, 1.0, 1.0], vec![Vector2::new(1.0, 0.0), Vector2::new(2.0, 0.0)])?;
+    /// let rotated = c.transformed(&Matrix2::new(0.0, -1.0, 1.0, 0.0), &Vector2::new(0.0, 1.0));
+    /// assert_eq!(rotated.eval(1.0)?, Vector2::new(0.0, 3.0));
+    /// # Ok::<(), spline_core::Error>(())
+    /// ```
+    #[must_use]
+    pub fn transformed(
+        &self,
+        matrix: &nalgebra::SMatrix<T, D, D>,
+        translation: &nalgebra::SVector<T, D>,
+    ) -> Self {
+        self.map_control_points(|p| matrix * p + translation)
+    }
+}
