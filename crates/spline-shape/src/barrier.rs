@@ -1,0 +1,409 @@
+//! A log-barrier interior-point method for smooth inequality-constrained problems on sparse
+//! matrices (Boyd & Vandenberghe ch. 11; thesis §5.2).
+//!
+//! Minimise $f_0(x)$ subject to $f_i(x) < 0$, `i = 1 … m`, by following the central path:
+//! for increasing `t`, minimise $t f_0(x) - \sum_i \log(-f_i(x))$ with Newton's method and a
+//! backtracking line search that keeps every iterate strictly feasible. The Hessian of a
+//! non-convex problem (curvature constraints) can be indefinite: the Newton matrix is then
+//! shifted by a multiple of the identity until its Cholesky factorisation succeeds.
+//! A phase-I problem finds a strictly feasible start when the given one is not.
+
+use nalgebra::DVector;
+use nalgebra_sparse::factorization::CscCholesky;
+use nalgebra_sparse::{CooMatrix, CscMatrix, CsrMatrix};
+use spline_core::{Error, ErrorKind, Result};
+
+/// A smooth problem `min f0(x) s.t. f_i(x) < 0` with first and second derivatives.
+pub trait BarrierProblem {
+    /// The number of unknowns `n`.
+    fn dimension(&self) -> usize;
+    /// The number of constraints `m`.
+    fn num_constraints(&self) -> usize;
+    /// $f_0(x)$.
+    fn objective(&self, x: &DVector<f64>) -> f64;
+    /// $\nabla f_0(x)$.
+    fn objective_gradient(&self, x: &DVector<f64>) -> DVector<f64>;
+    /// $\nabla^2 f_0(x)$ (`n × n`, symmetric; both triangles stored).
+    fn objective_hessian(&self, x: &DVector<f64>) -> CsrMatrix<f64>;
+    /// The constraint values $f_i(x)$; the point is strictly feasible when all are negative.
+    fn constraints(&self, x: &DVector<f64>) -> DVector<f64>;
+    /// The Jacobian of the constraints (`m × n`): row `i` is $\nabla f_i(x)^T$.
+    fn constraint_jacobian(&self, x: &DVector<f64>) -> CsrMatrix<f64>;
+    /// $\sum_i w_i \nabla^2 f_i(x)$, or `None` when every constraint is linear.
+    fn weighted_constraint_hessian(
+        &self,
+        x: &DVector<f64>,
+        weights: &DVector<f64>,
+    ) -> Option<CsrMatrix<f64>>;
+}
+
+/// Settings of [`minimize`].
+#[derive(Clone, Debug)]
+pub struct BarrierOptions {
+    /// Stop when the duality-gap bound `m / t` is below this.
+    pub gap_tolerance: f64,
+    /// Stop Newton's method when half the squared Newton decrement is below this times
+    /// `1 + |barrier value|`.
+    pub newton_tolerance: f64,
+    /// Factor by which `t` grows between centring steps (μ).
+    pub t_growth: f64,
+    /// Initial `t`; `None` chooses `t` so that both terms of the first gradient balance.
+    pub t_initial: Option<f64>,
+    /// Armijo parameter α ∈ (0, ½).
+    pub armijo: f64,
+    /// Backtracking factor β ∈ (0, 1).
+    pub backtracking: f64,
+    /// Newton iterations per centring step.
+    pub max_newton_iterations: usize,
+    /// Centring steps.
+    pub max_outer_iterations: usize,
+}
+
+impl Default for BarrierOptions {
+    fn default() -> Self {
+        Self {
+            gap_tolerance: 1e-8,
+            newton_tolerance: 1e-10,
+            t_growth: 10.0,
+            t_initial: None,
+            armijo: 0.01,
+            backtracking: 0.5,
+            max_newton_iterations: 200,
+            max_outer_iterations: 60,
+        }
+    }
+}
+
+/// The outcome of [`minimize`].
+#[derive(Clone, Debug)]
+pub struct BarrierReport {
+    /// The solution (strictly feasible).
+    pub x: DVector<f64>,
+    /// $f_0$ at the solution.
+    pub objective: f64,
+    /// The final barrier parameter.
+    pub t: f64,
+    /// The bound `m / t` on the gap to the optimum (for convex problems).
+    pub duality_gap: f64,
+    /// Centring steps taken.
+    pub outer_iterations: usize,
+    /// Newton steps taken in total.
+    pub newton_iterations: usize,
+    /// The largest constraint value at the solution (negative).
+    pub max_constraint: f64,
+}
+
+/// Minimises `problem` from a strictly feasible `x0`.
+///
+/// # Errors
+/// [`ErrorKind::InvalidArgument`] if `x0` has the wrong size or is not strictly feasible
+/// (see [`find_feasible`]); [`ErrorKind::NonFinite`] if the problem produces NaN;
+/// [`ErrorKind::NoConvergence`] if the iteration limits are reached;
+/// [`ErrorKind::SingularSystem`] if no shift makes the Newton matrix positive definite.
+pub fn minimize(
+    problem: &impl BarrierProblem,
+    x0: DVector<f64>,
+    options: &BarrierOptions,
+) -> Result<BarrierReport> {
+    let n = problem.dimension();
+    let m = problem.num_constraints();
+    if x0.len() != n {
+        return Err(Error::new(
+            ErrorKind::InvalidArgument,
+            format!(
+                "starting point has {} entries, the problem {n} unknowns",
+                x0.len()
+            ),
+        ));
+    }
+    let c0 = problem.constraints(&x0);
+    if let Some(i) = c0.iter().position(|&c| !(c < 0.0)) {
+        return Err(Error::new(
+            ErrorKind::InvalidArgument,
+            format!(
+                "the starting point is not strictly feasible: constraint {i} = {:.3e} ≥ 0",
+                c0[i]
+            ),
+        ));
+    }
+    let mut x = x0;
+    let mut t = match options.t_initial {
+        Some(t) => t,
+        None => initial_t(problem, &x),
+    };
+    let mut newton_total = 0;
+    for outer in 1..=options.max_outer_iterations {
+        newton_total += centre(problem, &mut x, t, options)?;
+        let gap = if m == 0 { 0.0 } else { m as f64 / t };
+        if gap < options.gap_tolerance {
+            let c = problem.constraints(&x);
+            return Ok(BarrierReport {
+                objective: problem.objective(&x),
+                x,
+                t,
+                duality_gap: gap,
+                outer_iterations: outer,
+                newton_iterations: newton_total,
+                max_constraint: c.iter().copied().fold(f64::NEG_INFINITY, f64::max),
+            });
+        }
+        t *= options.t_growth;
+    }
+    Err(Error::new(
+        ErrorKind::NoConvergence,
+        format!(
+            "the barrier method did not reach the gap {:.1e} in {} centring steps",
+            options.gap_tolerance, options.max_outer_iterations
+        ),
+    ))
+}
+
+/// Balances `t ∇f0` against `∇φ` at the start: `t = ‖∇φ‖ / ‖∇f0‖` (clamped to a sane range).
+fn initial_t(problem: &impl BarrierProblem, x: &DVector<f64>) -> f64 {
+    let g0 = problem.objective_gradient(x);
+    let c = problem.constraints(x);
+    let jac = problem.constraint_jacobian(x);
+    let w = c.map(|ci| 1.0 / -ci);
+    let gphi = jac.transpose() * &w;
+    let (a, b) = (g0.norm(), gphi.norm());
+    if a > 0.0 && b > 0.0 {
+        (b / a).clamp(1e-6, 1e6)
+    } else {
+        1.0
+    }
+}
+
+/// Value of the barrier objective `t f0 − Σ log(−f_i)`, or `None` outside the domain.
+fn barrier_value(problem: &impl BarrierProblem, x: &DVector<f64>, t: f64) -> Option<f64> {
+    let c = problem.constraints(x);
+    if c.iter().any(|&ci| !(ci < 0.0)) {
+        return None;
+    }
+    let f = t * problem.objective(x) - c.iter().map(|&ci| (-ci).ln()).sum::<f64>();
+    f.is_finite().then_some(f)
+}
+
+/// Newton's method on the barrier objective for fixed `t`; returns the number of steps.
+fn centre(
+    problem: &impl BarrierProblem,
+    x: &mut DVector<f64>,
+    t: f64,
+    options: &BarrierOptions,
+) -> Result<usize> {
+    let n = problem.dimension();
+    for step in 0..options.max_newton_iterations {
+        let c = problem.constraints(x);
+        let jac = problem.constraint_jacobian(x);
+        let inv = c.map(|ci| 1.0 / -ci);
+        // Gradient: t ∇f0 + Σ ∇f_i / (−f_i).
+        let gradient = problem.objective_gradient(x) * t + jac.transpose() * &inv;
+        if gradient.iter().any(|g| !g.is_finite()) {
+            return Err(Error::new(
+                ErrorKind::NonFinite,
+                "the barrier gradient is not finite",
+            ));
+        }
+        // Hessian: t ∇²f0 + Σ ∇f_i ∇f_iᵀ / f_i² + Σ ∇²f_i / (−f_i).
+        let mut coo = CooMatrix::new(n, n);
+        for (i, j, v) in problem.objective_hessian(x).triplet_iter() {
+            coo.push(i, j, t * v);
+        }
+        for (row, &w) in jac.row_iter().zip(inv.iter()) {
+            let (cols, vals) = (row.col_indices(), row.values());
+            for (a, &ca) in cols.iter().enumerate() {
+                for (b, &cb) in cols.iter().enumerate() {
+                    coo.push(ca, cb, vals[a] * vals[b] * w * w);
+                }
+            }
+        }
+        if let Some(h) = problem.weighted_constraint_hessian(x, &inv) {
+            for (i, j, v) in h.triplet_iter() {
+                coo.push(i, j, *v);
+            }
+        }
+        let direction = solve_shifted(&coo, &gradient)?;
+        let decrement = -gradient.dot(&direction);
+        let f = barrier_value(problem, x, t)
+            .ok_or_else(|| Error::new(ErrorKind::NonFinite, "iterate left the barrier domain"))?;
+        // Relative to the barrier value: at large t the gradient is a difference of large terms.
+        if decrement / 2.0 <= options.newton_tolerance * (1.0 + f.abs()) {
+            return Ok(step);
+        }
+        // Backtracking: stay strictly feasible, then Armijo.
+        let slope = gradient.dot(&direction);
+        let mut s = 1.0;
+        loop {
+            let candidate = &*x + &direction * s;
+            if let Some(fc) = barrier_value(problem, &candidate, t) {
+                if fc <= f + options.armijo * s * slope {
+                    *x = candidate;
+                    break;
+                }
+            }
+            s *= options.backtracking;
+            if s < 1e-16 {
+                // No progress possible at this t: the point is as central as rounding allows.
+                return Ok(step);
+            }
+        }
+    }
+    Err(Error::new(
+        ErrorKind::NoConvergence,
+        format!(
+            "Newton's method did not converge in {} steps (t = {t:.3e})",
+            options.max_newton_iterations
+        ),
+    ))
+}
+
+/// Solves `H d = −g`, adding `δ I` with growing `δ` while `H` is not positive definite.
+fn solve_shifted(hessian: &CooMatrix<f64>, gradient: &DVector<f64>) -> Result<DVector<f64>> {
+    let n = gradient.len();
+    let base = CscMatrix::from(hessian);
+    let scale = (0..n)
+        .map(|i| base.get_entry(i, i).map_or(0.0, |e| e.into_value().abs()))
+        .fold(0.0, f64::max)
+        .max(1e-300);
+    let mut shift = 0.0;
+    for _ in 0..40 {
+        let matrix = if shift == 0.0 {
+            base.clone()
+        } else {
+            let mut coo = hessian.clone();
+            for i in 0..n {
+                coo.push(i, i, shift);
+            }
+            CscMatrix::from(&coo)
+        };
+        if let Ok(factor) = CscCholesky::factor(&matrix) {
+            let rhs = -gradient;
+            let d = factor.solve(&rhs);
+            let d = DVector::from_column_slice(d.as_slice());
+            if d.iter().all(|v| v.is_finite()) {
+                return Ok(d);
+            }
+        }
+        shift = if shift == 0.0 {
+            1e-10 * scale
+        } else {
+            shift * 10.0
+        };
+    }
+    Err(Error::new(
+        ErrorKind::SingularSystem,
+        "the Newton matrix could not be made positive definite",
+    ))
+}
+
+/// Phase I: a strictly feasible point near `x0`, found by minimising `s` subject to
+/// `f_i(x) < s` from `s = max f_i(x0) + 1` and stopping as soon as `s < −margin`.
+/// Returns `x0` unchanged if it is already strictly feasible with that margin.
+///
+/// # Errors
+/// [`ErrorKind::NoConvergence`] if no point with all `f_i < −margin` is found (the
+/// constraints may be inconsistent); the errors of [`minimize`].
+pub fn find_feasible(
+    problem: &impl BarrierProblem,
+    x0: DVector<f64>,
+    margin: f64,
+    options: &BarrierOptions,
+) -> Result<DVector<f64>> {
+    let c = problem.constraints(&x0);
+    let worst = c.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+    if worst < -margin || problem.num_constraints() == 0 {
+        return Ok(x0);
+    }
+    let phase = PhaseOne {
+        inner: problem,
+        margin,
+    };
+    let n = problem.dimension();
+    let mut start = DVector::zeros(n + 1);
+    start.rows_mut(0, n).copy_from(&x0);
+    start[n] = worst + 1.0;
+    let mut x = start;
+    let mut t = 1.0;
+    for _ in 0..options.max_outer_iterations {
+        // Centre, then check whether the inner point is already feasible.
+        let _ = centre(&phase, &mut x, t, options)?;
+        if x[n] < -margin {
+            return Ok(x.rows(0, n).into_owned());
+        }
+        t *= options.t_growth;
+    }
+    Err(Error::new(
+        ErrorKind::NoConvergence,
+        format!(
+            "no strictly feasible point found (best max f_i = {:.3e})",
+            x[n]
+        ),
+    ))
+}
+
+/// `min s` over `(x, s)` with `f_i(x) − s < 0` and `s > −2 margin − 1` (keeps it bounded).
+struct PhaseOne<'a, P> {
+    inner: &'a P,
+    margin: f64,
+}
+
+impl<P: BarrierProblem> BarrierProblem for PhaseOne<'_, P> {
+    fn dimension(&self) -> usize {
+        self.inner.dimension() + 1
+    }
+    fn num_constraints(&self) -> usize {
+        self.inner.num_constraints() + 1
+    }
+    fn objective(&self, x: &DVector<f64>) -> f64 {
+        x[self.inner.dimension()]
+    }
+    fn objective_gradient(&self, x: &DVector<f64>) -> DVector<f64> {
+        let mut g = DVector::zeros(x.len());
+        g[self.inner.dimension()] = 1.0;
+        g
+    }
+    fn objective_hessian(&self, x: &DVector<f64>) -> CsrMatrix<f64> {
+        CsrMatrix::zeros(x.len(), x.len())
+    }
+    fn constraints(&self, x: &DVector<f64>) -> DVector<f64> {
+        let n = self.inner.dimension();
+        let s = x[n];
+        let inner = self.inner.constraints(&x.rows(0, n).into_owned());
+        let mut c = DVector::zeros(inner.len() + 1);
+        for (i, v) in inner.iter().enumerate() {
+            c[i] = v - s;
+        }
+        c[inner.len()] = -s - 2.0 * self.margin - 1.0;
+        c
+    }
+    fn constraint_jacobian(&self, x: &DVector<f64>) -> CsrMatrix<f64> {
+        let n = self.inner.dimension();
+        let inner = self.inner.constraint_jacobian(&x.rows(0, n).into_owned());
+        let m = inner.nrows();
+        let mut coo = CooMatrix::new(m + 1, n + 1);
+        for (i, j, v) in inner.triplet_iter() {
+            coo.push(i, j, *v);
+        }
+        for i in 0..m {
+            coo.push(i, n, -1.0);
+        }
+        coo.push(m, n, -1.0);
+        CsrMatrix::from(&coo)
+    }
+    fn weighted_constraint_hessian(
+        &self,
+        x: &DVector<f64>,
+        weights: &DVector<f64>,
+    ) -> Option<CsrMatrix<f64>> {
+        let n = self.inner.dimension();
+        let w = weights.rows(0, self.inner.num_constraints()).into_owned();
+        self.inner
+            .weighted_constraint_hessian(&x.rows(0, n).into_owned(), &w)
+            .map(|h| {
+                let mut coo = CooMatrix::new(n + 1, n + 1);
+                for (i, j, v) in h.triplet_iter() {
+                    coo.push(i, j, *v);
+                }
+                CsrMatrix::from(&coo)
+            })
+    }
+}
