@@ -1,1 +1,77 @@
-//! spline-algebra: see the crate description. Work in progress.
+//! B-spline algebra: every structural operation as a sparse linear map, products with
+//! their Jacobians and (constant) second derivatives, curvature invariants of planar curves
+//! with Jacobians and Hessians, bivariate differential quantities, and root isolation.
+//!
+//! The idea (Demers 2017, §5.3): every derived quantity — a derivative, a product, a
+//! knot-inserted or degree-elevated form — is itself a B-spline whose coefficients are
+//! functions of the input coefficients `x`. Linear operations are sparse matrices
+//! ([`SplineMap`], [`TensorMap`]) that are their own Jacobians and compose by the chain rule;
+//! products are sparse bilinear maps ([`SparseBilinear`], [`ProductMap`]) whose partial
+//! contractions are the Jacobians and which are themselves the constant second derivative.
+//! Sign conditions on the resulting coefficients are then sufficient conditions on the shape
+//! (variation diminishing), ready for an interior-point solver.
+//!
+//! - Maps: [`SplineMap::derivative`], [`SplineMap::insertion`], [`SplineMap::refinement`],
+//!   [`SplineMap::elevation`], [`SplineMap::bezier_extraction`], [`SplineMap::restriction`],
+//!   exact [`SplineMap::knot_removal`]; applying one to control points of any type gives
+//!   exactly what spline-geom computes. Tensor-product versions act as `A_u ⊗ A_v`.
+//! - Products: [`product_knots`] (minimal multiplicities), [`ProductMap`] (per-segment
+//!   Bernstein product (5.38), exact conversion to the minimal space by blossoming),
+//!   [`dot`], [`wedge`], [`square`], [`sum`], [`difference`], [`linear_combination`].
+//! - Planar curves: [`PlanarInvariants`] for `h1 … h4` and `g = h1 h2 − 3 h3 h4` in B-spline
+//!   or per-segment Bernstein [`Form`]; [`planar_features`] (inflections, curvature extrema).
+//! - Bivariate functions: [`partials`], [`tensor_product`], [`hessian_determinant`]
+//!   (`s_uu s_vv − s_uv²` with gradient and constant Hessian), [`ridge_polynomials`].
+//! - Roots: [`zeros`] and [`sign_changes`] of any B-spline function.
+//!
+//! Everything is generic over [`spline_core::Scalar`], so the same code runs on dual numbers
+//! (the tests check every Jacobian and Hessian that way).
+//!
+//! ```
+//! use spline_algebra::{ProductMap, SplineMap};
+//! use spline_core::KnotVector;
+//! use spline_geom::BSpline;
+//! // s(u) and its derivative s'(u); the square s'(u)² with its Jacobian w.r.t. s's coefficients.
+//! let knots = KnotVector::new(3, vec![0.0f64, 0., 0., 0., 0.5, 1., 1., 1., 1.])?;
+//! let s = BSpline::new(knots.clone(), vec![0.0, 1.0, -1.0, 2.0, 0.5])?;
+//! let d = SplineMap::derivative(&knots, 1)?;
+//! let ds = d.apply_to(&s)?;
+//! let square = ProductMap::new(d.target(), d.target())?;
+//! let value = square.product(&ds, &ds)?;
+//! assert!((value.eval(0.3)? - s.derivatives(0.3, 1)?[1].powi(2)).abs() < 1e-12);
+//! // Chain rule: ∂(s'²)/∂x = (B(·, s') + B(s', ·)) · D.
+//! let bilinear = square.bilinear();
+//! let (_, inner) = bilinear.quadratic(ds.control_points())?;
+//! let jacobian = &inner * d.matrix();
+//! assert_eq!(jacobian.ncols(), 5);
+//! # Ok::<(), spline_core::Error>(())
+//! ```
+//!
+//! # Feature flags
+//! None.
+
+mod bilinear;
+mod blossom;
+mod curves;
+mod maps;
+mod product;
+mod roots;
+mod sparse;
+mod tensor;
+
+pub use bilinear::SparseBilinear;
+pub use curves::{
+    Differentiated, Form, Invariant, PlanarFeatures, PlanarInvariants, curvature_extrema,
+    inflections, planar_features,
+};
+pub use maps::{SplineMap, bernstein_space};
+pub use nalgebra_sparse::CsrMatrix;
+pub use product::{
+    ProductJacobians, ProductMap, Square, bernstein_product, common_space, difference, dot,
+    linear_combination, product, product_knots, product_with_jacobians, scale, square, sum, wedge,
+};
+pub use roots::{Zero, sign_changes, zeros};
+pub use tensor::{
+    Partial, QuadraticFunction, TensorMap, TensorProductMap, TensorSpline, hessian_determinant,
+    partial, partials, ridge_polynomials, tensor_linear_combination, tensor_product,
+};

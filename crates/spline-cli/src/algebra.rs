@@ -1,30 +1,35 @@
-//! Spline-algebra subcommands: product, curvature, features.
+//! Spline-algebra subcommands: `product` (with `--jacobian`), `curvature`, `features`; and
+//! the features of `plot --features`.
 
-use crate::curves::ObjectArgs;
+use crate::curves::{ObjectArgs, planar};
+use crate::io::{self, Curve, Object};
 use clap::Args;
+use nalgebra::{Vector2, Vector3};
+use serde_json::{Value, json};
+use spline_algebra::{CsrMatrix, ProductMap};
 use spline_core::{Error, ErrorKind, Result};
+use spline_geom::BSpline;
+use spline_geom::exchange::CurveRecord;
 
-fn not_yet(what: &str) -> Error {
-    Error::new(
-        ErrorKind::InvalidArgument,
-        format!("{what} is not supported yet"),
-    )
-}
+/// Root accuracy of `features`, relative to the length of the domain.
+const RELATIVE_ACCURACY: f64 = 1e-12;
 
 #[derive(Args)]
 pub struct ProductArgs {
-    /// First factor: a B-spline function (1-D control points).
+    /// First factor: a B-spline function (1-D control points), file or - for standard input.
     a: String,
-    /// Second factor, on the same domain.
+    /// Second factor: a B-spline function on the same domain.
     b: String,
-    /// Also print the Jacobians of the product's coefficients.
+    /// Also print the Jacobians of the product's coefficients with respect to those of A and
+    /// of B: {"product": OBJ, "jacobian_a": M, "jacobian_b": M} with
+    /// M = {"rows": r, "cols": c, "entries": [[i, j, value], ...]}.
     #[arg(long)]
     jacobian: bool,
 }
 
 #[derive(Args)]
 pub struct CurvatureArgs {
-    /// A planar curve (JSON).
+    /// A planar curve (JSON; B-spline or NURBS), or - for standard input.
     object: String,
     /// Parameters as a JSON array.
     #[arg(long)]
@@ -39,19 +44,190 @@ pub struct PlanarFeatures {
     pub curvature_extrema: Vec<f64>,
 }
 
-/// Finds inflections and curvature extrema.
-pub fn planar_features(_curve: &spline_geom::Curve2) -> Result<PlanarFeatures> {
-    Err(not_yet("curve features"))
+/// Finds inflections and curvature extrema (located to `1e-12` times the domain length).
+pub fn planar_features(curve: &spline_geom::Curve2) -> Result<PlanarFeatures> {
+    let (a, b) = curve.domain();
+    let features = spline_algebra::planar_features(curve, RELATIVE_ACCURACY * (b - a))?;
+    Ok(PlanarFeatures {
+        inflections: features.inflections,
+        curvature_extrema: features.curvature_extrema,
+    })
+}
+
+/// A scalar B-spline function from an object file.
+fn read_function(path: &str) -> Result<BSpline<f64, f64>> {
+    match io::read_object(path)? {
+        Object::Curve(Curve { curve, dim: 1 }) => Ok(curve.map_control_points(|p| p[0])),
+        Object::Curve(Curve { dim, .. }) => Err(Error::new(
+            ErrorKind::DimensionMismatch,
+            format!(
+                "{path}: product needs B-spline functions (1-D control points), got {dim}-D points"
+            ),
+        )),
+        Object::Nurbs(_) => Err(Error::new(
+            ErrorKind::InvalidArgument,
+            format!("{path}: product needs non-rational B-spline functions, got a NURBS curve"),
+        )),
+        Object::Surface(_) => Err(Error::new(
+            ErrorKind::InvalidArgument,
+            format!("{path}: product needs B-spline functions, got a surface"),
+        )),
+    }
+}
+
+fn function_record(f: &BSpline<f64, f64>) -> CurveRecord {
+    CurveRecord {
+        degree: f.degree(),
+        knots: f.knots().knots().to_vec(),
+        control_points: f.control_points().iter().map(|&c| vec![c]).collect(),
+        weights: None,
+    }
+}
+
+fn matrix_json(m: &CsrMatrix<f64>) -> Value {
+    let entries: Vec<Value> = m
+        .triplet_iter()
+        .filter(|(_, _, v)| **v != 0.0)
+        .map(|(i, j, v)| json!([i, j, v]))
+        .collect();
+    json!({"rows": m.nrows(), "cols": m.ncols(), "entries": entries})
 }
 
 pub fn product(args: &ProductArgs) -> Result<()> {
-    Err(not_yet(&format!("product of {} and {}", args.a, args.b)))
+    let a = read_function(&args.a)?;
+    let b = read_function(&args.b)?;
+    let map = ProductMap::new(a.knots(), b.knots())?;
+    let c = map.product(&a, &b)?;
+    if args.jacobian {
+        let ja = map.jacobian_left(b.control_points())?;
+        let jb = map.jacobian_right(a.control_points())?;
+        io::print_json(&json!({
+            "product": function_record(&c),
+            "jacobian_a": matrix_json(&ja),
+            "jacobian_b": matrix_json(&jb),
+        }))
+    } else {
+        io::print_json(&function_record(&c))
+    }
+}
+
+/// Signed curvature of a planar NURBS curve from the derivatives of its homogeneous form
+/// `(w x, w y, w)`: `C' = (A' − w' C)/w`, `C'' = (A'' − 2 w' C' − w'' C)/w`.
+fn nurbs_curvature(record: &CurveRecord, params: &[f64]) -> Result<Vec<f64>> {
+    let dim = record.dimension()?;
+    if dim != 2 {
+        return Err(Error::new(
+            ErrorKind::DimensionMismatch,
+            format!("expected a planar curve (2 coordinates), got {dim}"),
+        ));
+    }
+    let weights = record.weights.as_deref().unwrap_or_default();
+    if weights.len() != record.control_points.len() {
+        return Err(Error::new(
+            ErrorKind::InvalidLength,
+            format!(
+                "{} control points need as many weights, got {}",
+                record.control_points.len(),
+                weights.len()
+            ),
+        ));
+    }
+    if let Some(i) = weights.iter().position(|w| !(w.is_finite() && *w > 0.0)) {
+        return Err(Error::new(
+            ErrorKind::InvalidWeight,
+            format!("weight {i} must be positive and finite, got {}", weights[i]),
+        ));
+    }
+    let points: Vec<Vector3<f64>> = record
+        .control_points
+        .iter()
+        .zip(weights)
+        .map(|(p, &w)| Vector3::new(w * p[0], w * p[1], w))
+        .collect();
+    let homogeneous = BSpline::from_knots(record.degree, record.knots.clone(), points)?;
+    params
+        .iter()
+        .enumerate()
+        .map(|(i, &u)| {
+            let d = homogeneous
+                .derivatives(u, 2)
+                .map_err(|e| e.context(format_args!("parameter {i}")))?;
+            let (a0, a1, a2) = (d[0].xy(), d[1].xy(), d[2].xy());
+            let (w0, w1, w2) = (d[0].z, d[1].z, d[2].z);
+            let c0 = a0 / w0;
+            let c1 = (a1 - c0 * w1) / w0;
+            let c2 = (a2 - c1 * (2.0 * w1) - c0 * w2) / w0;
+            let s2 = c1.norm_squared();
+            if !(s2 > 0.0) {
+                return Err(Error::new(
+                    ErrorKind::DegenerateGeometry,
+                    format!("parameter {i}: the curve has zero velocity at u = {u}: curvature is undefined there"),
+                ));
+            }
+            Ok(wedge(c1, c2) / (s2 * s2.sqrt()))
+        })
+        .collect()
+}
+
+fn wedge(a: Vector2<f64>, b: Vector2<f64>) -> f64 {
+    a.x * b.y - a.y * b.x
 }
 
 pub fn curvature(args: &CurvatureArgs) -> Result<()> {
-    Err(not_yet(&format!("curvature of {}", args.object)))
+    let params: Vec<f64> = io::parse_arg("--at", &args.at)?;
+    let values = match io::read_object(&args.object)? {
+        Object::Curve(curve) => {
+            let c = planar(&curve).map_err(|e| e.context(&args.object))?;
+            params
+                .iter()
+                .enumerate()
+                .map(|(i, &u)| {
+                    c.signed_curvature(u)
+                        .map_err(|e| e.context(format_args!("parameter {i}")))
+                })
+                .collect::<Result<Vec<f64>>>()?
+        }
+        Object::Nurbs(record) => {
+            nurbs_curvature(&record, &params).map_err(|e| e.context(&args.object))?
+        }
+        Object::Surface(_) => {
+            return Err(Error::new(
+                ErrorKind::InvalidArgument,
+                format!(
+                    "{}: curvature needs a planar curve, got a surface",
+                    args.object
+                ),
+            ));
+        }
+    };
+    io::print_json(&values)
 }
 
 pub fn features(args: &ObjectArgs) -> Result<()> {
-    Err(not_yet(&format!("features of {}", args.object)))
+    let curve = match io::read_object(&args.object)? {
+        Object::Curve(curve) => planar(&curve).map_err(|e| e.context(&args.object))?,
+        Object::Nurbs(_) => {
+            return Err(Error::new(
+                ErrorKind::InvalidArgument,
+                format!(
+                    "{}: features of NURBS curves are not supported (only non-rational B-spline curves)",
+                    args.object
+                ),
+            ));
+        }
+        Object::Surface(_) => {
+            return Err(Error::new(
+                ErrorKind::InvalidArgument,
+                format!(
+                    "{}: features need a planar curve, got a surface",
+                    args.object
+                ),
+            ));
+        }
+    };
+    let features = planar_features(&curve).map_err(|e| e.context(&args.object))?;
+    io::print_json(&json!({
+        "inflections": features.inflections,
+        "curvature_extrema": features.curvature_extrema,
+    }))
 }

@@ -1,0 +1,99 @@
+//! Linear cost of the algebra: the product of two cubic functions with 10³–10⁵ coefficients
+//! (unshared knots), and `g` with its Jacobian for curves with 10²–10⁴ control points.
+
+#![allow(missing_docs)]
+
+use criterion::{BenchmarkId, Criterion, Throughput, criterion_group, criterion_main};
+use nalgebra::Vector2;
+use spline_algebra::{Form, PlanarInvariants, ProductMap, product};
+use spline_core::KnotVector;
+use spline_geom::BSpline;
+use std::hint::black_box;
+use std::time::Duration;
+
+fn function(n: usize, shift: f64) -> BSpline<f64, f64> {
+    let segments = n - 3;
+    let interior: Vec<f64> = (1..segments)
+        .map(|j| (j as f64 + shift) / segments as f64)
+        .collect();
+    let knots = KnotVector::clamped(3, 0.0, 1.0, &interior).unwrap();
+    let values = (0..n)
+        .map(|i| ((i * 7919) % 1000) as f64 / 500.0 - 1.0)
+        .collect();
+    BSpline::new(knots, values).unwrap()
+}
+
+fn curve(n: usize) -> BSpline<f64, Vector2<f64>> {
+    let knots = KnotVector::clamped_uniform(3, n, 0.0, 1.0).unwrap();
+    let points = (0..n)
+        .map(|i| {
+            let t = i as f64 / n as f64 * 20.0;
+            Vector2::new(t + 0.3 * t.sin(), (1.7 * t).cos())
+        })
+        .collect();
+    BSpline::new(knots, points).unwrap()
+}
+
+fn products(c: &mut Criterion) {
+    let mut group = c.benchmark_group("product_cubic");
+    group.sample_size(10);
+    group.warm_up_time(Duration::from_millis(300));
+    group.measurement_time(Duration::from_secs(2));
+    for n in [1_000usize, 10_000, 100_000] {
+        let a = function(n, 0.0);
+        let b = function(n, 0.5);
+        group.throughput(Throughput::Elements(n as u64));
+        group.bench_with_input(BenchmarkId::new("value", n), &n, |bench, _| {
+            bench.iter(|| product(black_box(&a), black_box(&b)).unwrap());
+        });
+        group.bench_with_input(
+            BenchmarkId::new("value_and_jacobians", n),
+            &n,
+            |bench, _| {
+                bench.iter(|| {
+                    let map = ProductMap::new(a.knots(), b.knots()).unwrap();
+                    let c = map.apply(a.control_points(), b.control_points()).unwrap();
+                    let ja = map.jacobian_left(b.control_points()).unwrap();
+                    let jb = map.jacobian_right(a.control_points()).unwrap();
+                    (c, ja, jb)
+                });
+            },
+        );
+    }
+    group.finish();
+}
+
+fn curvature_numerator(c: &mut Criterion) {
+    let mut group = c.benchmark_group("g_cubic_curve");
+    group.sample_size(10);
+    group.warm_up_time(Duration::from_millis(300));
+    group.measurement_time(Duration::from_secs(2));
+    for n in [100usize, 1_000, 10_000] {
+        let curve = curve(n);
+        let algebra = PlanarInvariants::new(curve.knots()).unwrap();
+        group.throughput(Throughput::Elements(n as u64));
+        group.bench_with_input(BenchmarkId::new("with_jacobian", n), &n, |bench, _| {
+            bench.iter(|| {
+                algebra
+                    .g(black_box(curve.control_points()), Form::BSpline)
+                    .unwrap()
+            });
+        });
+        group.bench_with_input(
+            BenchmarkId::new("setup_and_with_jacobian", n),
+            &n,
+            |bench, _| {
+                bench.iter(|| {
+                    PlanarInvariants::new(curve.knots())
+                        .unwrap()
+                        .g(black_box(curve.control_points()), Form::BSpline)
+                        .unwrap()
+                });
+            },
+        );
+    }
+    group.finish();
+}
+
+criterion_group!(benches, products, curvature_numerator);
+criterion_main!(benches);

@@ -1,0 +1,659 @@
+//! Tensor-product (bivariate) splines: structural maps with Kronecker structure, products,
+//! all partial derivatives, the convexity function `s_uu s_vv − s_uv²` with its gradient and
+//! constant Hessian (thesis §5.6), and the ridge polynomials of §5.7.
+
+use crate::bilinear::SparseBilinear;
+use crate::maps::SplineMap;
+use crate::product::{ProductMap, common_space};
+use crate::sparse::{check_len, kron};
+use nalgebra_sparse::CsrMatrix;
+use spline_core::{ControlPoint, Error, ErrorKind, KnotVector, Result, Scalar, binomial, cast};
+
+/// A tensor-product spline: knot vectors in `u` and `v` and a row-major grid of
+/// coefficients, `coefficients[i · n_v + j]` multiplying $N_i(u) M_j(v)$ (`i` along `u`).
+///
+/// This is the layout of the exchange format (`control_points[i][j]`) and of a surface
+/// container's control net; `into_parts` and [`TensorSpline::new`] convert both ways.
+///
+/// ```
+/// use spline_algebra::TensorSpline;
+/// use spline_core::KnotVector;
+/// let k = KnotVector::new(1, vec![0.0, 0.0, 1.0, 1.0])?;
+/// // s(u, v) = u v.
+/// let s = TensorSpline::new(k.clone(), k, vec![0.0, 0.0, 0.0, 1.0])?;
+/// assert_eq!(s.eval(0.5, 0.25)?, 0.125);
+/// # Ok::<(), spline_core::Error>(())
+/// ```
+#[derive(Clone, Debug, PartialEq)]
+pub struct TensorSpline<T, P> {
+    knots_u: KnotVector<T>,
+    knots_v: KnotVector<T>,
+    coefficients: Vec<P>,
+}
+
+impl<T: Scalar, P: ControlPoint<T>> TensorSpline<T, P> {
+    /// A tensor-product spline from its knot vectors and row-major coefficients.
+    ///
+    /// # Errors
+    /// [`ErrorKind::InvalidLength`] unless there are `n_u · n_v` coefficients;
+    /// [`ErrorKind::NonFinite`] for a non-finite coefficient.
+    pub fn new(
+        knots_u: KnotVector<T>,
+        knots_v: KnotVector<T>,
+        coefficients: Vec<P>,
+    ) -> Result<Self> {
+        check_len(
+            "tensor-product coefficients",
+            knots_u.num_basis() * knots_v.num_basis(),
+            coefficients.len(),
+        )?;
+        if let Some(i) = coefficients.iter().position(|p| !p.all_finite()) {
+            return Err(Error::new(
+                ErrorKind::NonFinite,
+                format!("coefficient {i} is not finite"),
+            ));
+        }
+        Ok(Self {
+            knots_u,
+            knots_v,
+            coefficients,
+        })
+    }
+
+    pub(crate) fn new_unchecked(
+        knots_u: KnotVector<T>,
+        knots_v: KnotVector<T>,
+        coefficients: Vec<P>,
+    ) -> Self {
+        debug_assert_eq!(
+            coefficients.len(),
+            knots_u.num_basis() * knots_v.num_basis()
+        );
+        Self {
+            knots_u,
+            knots_v,
+            coefficients,
+        }
+    }
+
+    /// The knot vector in `u`.
+    #[must_use]
+    pub fn knots_u(&self) -> &KnotVector<T> {
+        &self.knots_u
+    }
+
+    /// The knot vector in `v`.
+    #[must_use]
+    pub fn knots_v(&self) -> &KnotVector<T> {
+        &self.knots_v
+    }
+
+    /// The row-major coefficients.
+    #[must_use]
+    pub fn coefficients(&self) -> &[P] {
+        &self.coefficients
+    }
+
+    /// The knot vectors and coefficients.
+    #[must_use]
+    pub fn into_parts(self) -> (KnotVector<T>, KnotVector<T>, Vec<P>) {
+        (self.knots_u, self.knots_v, self.coefficients)
+    }
+
+    /// The value at `(u, v)`.
+    ///
+    /// # Errors
+    /// [`ErrorKind::OutOfDomain`] or [`ErrorKind::NonFinite`] for bad parameters.
+    pub fn eval(&self, u: T, v: T) -> Result<P> {
+        self.derivative_at(u, v, 0, 0)
+    }
+
+    /// The partial derivative $\partial^{k+l} s / \partial u^k \partial v^l$ at `(u, v)`,
+    /// from the basis derivatives (zero above the degree).
+    ///
+    /// # Errors
+    /// [`ErrorKind::OutOfDomain`] or [`ErrorKind::NonFinite`] for bad parameters.
+    pub fn derivative_at(&self, u: T, v: T, k: usize, l: usize) -> Result<P> {
+        let bu = self.knots_u.dense_basis_derivatives(u, k)?;
+        let bv = self.knots_v.dense_basis_derivatives(v, l)?;
+        let (ru, rv) = (&bu[k], &bv[l]);
+        let nv = self.knots_v.num_basis();
+        let mut acc = P::origin();
+        for (i, &a) in ru.iter().enumerate() {
+            if a == T::zero() {
+                continue;
+            }
+            for (j, &b) in rv.iter().enumerate() {
+                if b != T::zero() {
+                    acc += self.coefficients[i * nv + j] * (a * b);
+                }
+            }
+        }
+        Ok(acc)
+    }
+}
+
+/// Applies `A_u ⊗ A_v` to a row-major grid without forming the Kronecker product.
+pub(crate) fn apply_tensor<T: Scalar, P: ControlPoint<T>>(
+    mu: &CsrMatrix<T>,
+    mv: &CsrMatrix<T>,
+    grid: &[P],
+) -> Vec<P> {
+    let (nu, nv) = (mu.ncols(), mv.ncols());
+    debug_assert_eq!(grid.len(), nu * nv);
+    // Along v for every row.
+    let mut rows = Vec::with_capacity(nu * mv.nrows());
+    for i in 0..nu {
+        rows.extend(crate::sparse::apply_points(mv, &grid[i * nv..(i + 1) * nv]));
+    }
+    let mv_rows = mv.nrows();
+    let mut out = vec![P::origin(); mu.nrows() * mv_rows];
+    for (r, row) in mu.row_iter().enumerate() {
+        for (&i, &w) in row.col_indices().iter().zip(row.values()) {
+            for j in 0..mv_rows {
+                out[r * mv_rows + j] += rows[i * mv_rows + j] * w;
+            }
+        }
+    }
+    out
+}
+
+/// A linear map between tensor-product spline spaces with Kronecker structure: a
+/// [`SplineMap`] in `u` and one in `v`, acting on row-major grids as $A_u \otimes A_v$.
+///
+/// ```
+/// use spline_algebra::{TensorMap, TensorSpline};
+/// use spline_core::KnotVector;
+/// let k = KnotVector::new(2, vec![0.0f64, 0.0, 0.0, 1.0, 1.0, 1.0])?;
+/// // s(u, v) = u² v².
+/// let mut c = vec![0.0; 9];
+/// c[8] = 1.0;
+/// let s = TensorSpline::new(k.clone(), k.clone(), c)?;
+/// let d = TensorMap::partial_derivative(&k, &k, 1, 2)?; // ∂³/∂u∂v²
+/// let suvv = d.apply(&s)?;
+/// assert!((suvv.eval(0.5, 0.3)? - 2.0 * 0.5 * 2.0).abs() < 1e-14);
+/// assert_eq!(d.matrix().nrows(), suvv.coefficients().len());
+/// # Ok::<(), spline_core::Error>(())
+/// ```
+#[derive(Clone, Debug)]
+pub struct TensorMap<T> {
+    u: SplineMap<T>,
+    v: SplineMap<T>,
+}
+
+impl<T: Scalar> TensorMap<T> {
+    /// The map `u ⊗ v`.
+    #[must_use]
+    pub fn new(u: SplineMap<T>, v: SplineMap<T>) -> Self {
+        Self { u, v }
+    }
+
+    /// A map acting in `u` only (identity in `v`).
+    #[must_use]
+    pub fn along_u(u: SplineMap<T>, knots_v: &KnotVector<T>) -> Self {
+        Self::new(u, SplineMap::identity(knots_v))
+    }
+
+    /// A map acting in `v` only (identity in `u`).
+    #[must_use]
+    pub fn along_v(knots_u: &KnotVector<T>, v: SplineMap<T>) -> Self {
+        Self::new(SplineMap::identity(knots_u), v)
+    }
+
+    /// The partial derivative $\partial^{k+l} / \partial u^k \partial v^l$.
+    ///
+    /// # Errors
+    /// [`ErrorKind::InvalidArgument`] if an order exceeds the degree in its direction.
+    pub fn partial_derivative(
+        knots_u: &KnotVector<T>,
+        knots_v: &KnotVector<T>,
+        k: usize,
+        l: usize,
+    ) -> Result<Self> {
+        Ok(Self::new(
+            SplineMap::derivative(knots_u, k)?,
+            SplineMap::derivative(knots_v, l)?,
+        ))
+    }
+
+    /// The map in `u`.
+    #[must_use]
+    pub fn u(&self) -> &SplineMap<T> {
+        &self.u
+    }
+
+    /// The map in `v`.
+    #[must_use]
+    pub fn v(&self) -> &SplineMap<T> {
+        &self.v
+    }
+
+    /// The full matrix $A_u \otimes A_v$ on row-major grids (the Jacobian of the output
+    /// coefficients with respect to the input ones).
+    #[must_use]
+    pub fn matrix(&self) -> CsrMatrix<T> {
+        kron(self.u.matrix(), self.v.matrix())
+    }
+
+    /// First `self`, then `next`.
+    ///
+    /// # Errors
+    /// As [`SplineMap::then`] in either direction.
+    pub fn then(&self, next: &Self) -> Result<Self> {
+        Ok(Self::new(self.u.then(&next.u)?, self.v.then(&next.v)?))
+    }
+
+    /// Applies the map to row-major coefficients of any point type.
+    ///
+    /// # Errors
+    /// [`ErrorKind::InvalidLength`] for a wrong number of coefficients.
+    pub fn apply_coefficients<P: ControlPoint<T>>(&self, grid: &[P]) -> Result<Vec<P>> {
+        check_len(
+            "tensor map input",
+            self.u.matrix().ncols() * self.v.matrix().ncols(),
+            grid.len(),
+        )?;
+        Ok(apply_tensor(self.u.matrix(), self.v.matrix(), grid))
+    }
+
+    /// Applies the map to a tensor-product spline on its source spaces.
+    ///
+    /// # Errors
+    /// [`ErrorKind::InvalidArgument`] if the spline is not on the source knot vectors.
+    pub fn apply<P: ControlPoint<T>>(&self, s: &TensorSpline<T, P>) -> Result<TensorSpline<T, P>> {
+        if s.knots_u() != self.u.source() || s.knots_v() != self.v.source() {
+            return Err(Error::new(
+                ErrorKind::InvalidArgument,
+                "the spline's knot vectors are not the source spaces of the map",
+            ));
+        }
+        Ok(TensorSpline::new_unchecked(
+            self.u.target().clone(),
+            self.v.target().clone(),
+            apply_tensor(self.u.matrix(), self.v.matrix(), s.coefficients()),
+        ))
+    }
+}
+
+/// The partial derivative $\partial^{k+l} s / \partial u^k \partial v^l$ as a tensor-product
+/// spline of degree `(p − k, q − l)`.
+///
+/// # Errors
+/// [`ErrorKind::InvalidArgument`] if an order exceeds the degree in its direction.
+pub fn partial<T: Scalar, P: ControlPoint<T>>(
+    s: &TensorSpline<T, P>,
+    k: usize,
+    l: usize,
+) -> Result<TensorSpline<T, P>> {
+    TensorMap::partial_derivative(s.knots_u(), s.knots_v(), k, l)?.apply(s)
+}
+
+/// A partial derivative with its orders `(k, l)`.
+pub type Partial<T, P> = ((usize, usize), TensorSpline<T, P>);
+
+/// All partial derivatives of total order at most `order` whose orders do not exceed the
+/// degrees: `((k, l), ∂^{k+l} s / ∂u^k ∂v^l)`, by increasing total order.
+///
+/// # Errors
+/// Never for valid splines (kept for uniformity).
+pub fn partials<T: Scalar, P: ControlPoint<T>>(
+    s: &TensorSpline<T, P>,
+    order: usize,
+) -> Result<Vec<Partial<T, P>>> {
+    let mut out = Vec::new();
+    for total in 0..=order {
+        for k in 0..=total {
+            let l = total - k;
+            if k <= s.knots_u().degree() && l <= s.knots_v().degree() {
+                out.push(((k, l), partial(s, k, l)?));
+            }
+        }
+    }
+    Ok(out)
+}
+
+/// The product of two tensor-product function spaces on the same domain, prepared once:
+/// the univariate [`ProductMap`]s in `u` and in `v`; the bilinear map of the product is their
+/// Kronecker product.
+#[derive(Clone, Debug)]
+pub struct TensorProductMap<T> {
+    u: ProductMap<T>,
+    v: ProductMap<T>,
+}
+
+impl<T: Scalar> TensorProductMap<T> {
+    /// Prepares the product of the spaces `(ua, va)` and `(ub, vb)`.
+    ///
+    /// # Errors
+    /// As [`crate::product_knots`] in either direction.
+    pub fn new(
+        (ua, va): (&KnotVector<T>, &KnotVector<T>),
+        (ub, vb): (&KnotVector<T>, &KnotVector<T>),
+    ) -> Result<Self> {
+        Ok(Self {
+            u: ProductMap::new(ua, ub)?,
+            v: ProductMap::new(va, vb)?,
+        })
+    }
+
+    /// The product in `u`.
+    #[must_use]
+    pub fn u(&self) -> &ProductMap<T> {
+        &self.u
+    }
+
+    /// The product in `v`.
+    #[must_use]
+    pub fn v(&self) -> &ProductMap<T> {
+        &self.v
+    }
+
+    /// The product `a(u, v) b(u, v)` in the minimal tensor-product space: Bézier extraction
+    /// of both factors in both directions, the Bernstein product patch by patch, and the
+    /// exact conversion to B-spline form in both directions.
+    ///
+    /// # Errors
+    /// [`ErrorKind::InvalidArgument`] if the factors are not on the prepared spaces.
+    pub fn product(
+        &self,
+        a: &TensorSpline<T, T>,
+        b: &TensorSpline<T, T>,
+    ) -> Result<TensorSpline<T, T>> {
+        if a.knots_u() != self.u.left()
+            || a.knots_v() != self.v.left()
+            || b.knots_u() != self.u.right()
+            || b.knots_v() != self.v.right()
+        {
+            return Err(Error::new(
+                ErrorKind::InvalidArgument,
+                "the factors are not on the knot vectors this product was prepared for",
+            ));
+        }
+        let pa = apply_tensor(
+            self.u.left_extraction().matrix(),
+            self.v.left_extraction().matrix(),
+            a.coefficients(),
+        );
+        let pb = apply_tensor(
+            self.u.right_extraction().matrix(),
+            self.v.right_extraction().matrix(),
+            b.coefficients(),
+        );
+        let (pu, qu) = (self.u.left().degree(), self.u.right().degree());
+        let (pv, qv) = (self.v.left().degree(), self.v.right().degree());
+        let (du, dv) = (pu + qu, pv + qv);
+        let su = self.u.bernstein_target().num_basis() / (du + 1);
+        let sv = self.v.bernstein_target().num_basis() / (dv + 1);
+        let weights = |p: usize, q: usize| -> Vec<Vec<T>> {
+            (0..=p + q)
+                .map(|i| {
+                    (0..=p)
+                        .map(|j| {
+                            if j <= i && i - j <= q {
+                                binomial::<T>(p, j) * binomial::<T>(q, i - j)
+                                    / binomial::<T>(p + q, i)
+                            } else {
+                                T::zero()
+                            }
+                        })
+                        .collect()
+                })
+                .collect()
+        };
+        let (wu, wv) = (weights(pu, qu), weights(pv, qv));
+        let (nav, nbv, ncv) = (sv * (pv + 1), sv * (qv + 1), sv * (dv + 1));
+        let mut pieces = vec![T::zero(); su * (du + 1) * ncv];
+        for s in 0..su {
+            for t in 0..sv {
+                for i1 in 0..=pu {
+                    for j1 in 0..=pv {
+                        let x = pa[(s * (pu + 1) + i1) * nav + t * (pv + 1) + j1];
+                        if x == T::zero() {
+                            continue;
+                        }
+                        for i2 in 0..=qu {
+                            let wi = wu[i1 + i2][i1];
+                            for j2 in 0..=qv {
+                                let y = pb[(s * (qu + 1) + i2) * nbv + t * (qv + 1) + j2];
+                                let w = wi * wv[j1 + j2][j1];
+                                pieces[(s * (du + 1) + i1 + i2) * ncv + t * (dv + 1) + j1 + j2] +=
+                                    w * x * y;
+                            }
+                        }
+                    }
+                }
+            }
+        }
+        Ok(TensorSpline::new_unchecked(
+            self.u.target().clone(),
+            self.v.target().clone(),
+            apply_tensor(
+                self.u.removal().matrix(),
+                self.v.removal().matrix(),
+                &pieces,
+            ),
+        ))
+    }
+
+    /// The product as a bilinear map of the row-major coefficients: the Kronecker product of
+    /// the univariate bilinear maps (the constant second derivative).
+    #[must_use]
+    pub fn bilinear(&self) -> SparseBilinear<T> {
+        self.u.bilinear().kron(&self.v.bilinear())
+    }
+}
+
+/// The product of two bivariate B-spline functions on the same domain.
+///
+/// # Errors
+/// As [`TensorProductMap::new`].
+pub fn tensor_product<T: Scalar>(
+    a: &TensorSpline<T, T>,
+    b: &TensorSpline<T, T>,
+) -> Result<TensorSpline<T, T>> {
+    TensorProductMap::new((a.knots_u(), a.knots_v()), (b.knots_u(), b.knots_v()))?.product(a, b)
+}
+
+/// `alpha · a + beta · b` for tensor-product splines on the same domain (degrees raised and
+/// knots merged per direction by [`common_space`]).
+///
+/// # Errors
+/// As [`common_space`] in either direction.
+pub fn tensor_linear_combination<T: Scalar, P: ControlPoint<T>>(
+    alpha: T,
+    a: &TensorSpline<T, P>,
+    beta: T,
+    b: &TensorSpline<T, P>,
+) -> Result<TensorSpline<T, P>> {
+    let (au, bu) = common_space(a.knots_u(), b.knots_u())?;
+    let (av, bv) = common_space(a.knots_v(), b.knots_v())?;
+    let xa = TensorMap::new(au, av).apply(a)?;
+    let xb = TensorMap::new(bu, bv).apply(b)?;
+    let coefficients = xa
+        .coefficients()
+        .iter()
+        .zip(xb.coefficients())
+        .map(|(&x, &y)| x * alpha + y * beta)
+        .collect();
+    Ok(TensorSpline::new_unchecked(
+        xa.knots_u().clone(),
+        xa.knots_v().clone(),
+        coefficients,
+    ))
+}
+
+/// A bivariate function quadratic in the coefficients `x` of another one, `q(x) = B(x, x)`,
+/// with its gradient and constant Hessian.
+#[derive(Clone, Debug)]
+pub struct QuadraticFunction<T> {
+    /// The function.
+    pub value: TensorSpline<T, T>,
+    /// $\partial\, \text{coefficient}_k / \partial x_j$.
+    pub gradient: CsrMatrix<T>,
+    /// The constant Hessian: row `k` is the Hessian of coefficient `k`.
+    pub hessian: SparseBilinear<T>,
+}
+
+/// The bilinear map `(x, y) ↦ P(L x, R y)` of a tensor product `P` fed by linear maps.
+fn fed_product<T: Scalar>(
+    product: &TensorProductMap<T>,
+    left: &TensorMap<T>,
+    right: &TensorMap<T>,
+) -> Result<SparseBilinear<T>> {
+    product.bilinear().compose(&left.matrix(), &right.matrix())
+}
+
+/// The determinant of the Hessian matrix, $s_{uu} s_{vv} - s_{uv}^2$ (thesis §5.6: with
+/// `s_uu ≥ 0` it characterises convexity), as a tensor-product B-spline whose coefficients
+/// are quadratic in the coefficients `x` of `s`; the gradient is
+/// $(\nabla s)_{uu} s_{vv} + s_{uu} (\nabla s)_{vv} - 2 (\nabla s)_{uv} s_{uv}$ and the Hessian
+/// is constant.
+///
+/// # Errors
+/// [`ErrorKind::InvalidArgument`] unless both degrees are at least 2.
+pub fn hessian_determinant<T: Scalar>(s: &TensorSpline<T, T>) -> Result<QuadraticFunction<T>> {
+    let (ku, kv) = (s.knots_u(), s.knots_v());
+    let duu = TensorMap::partial_derivative(ku, kv, 2, 0)?;
+    let dvv = TensorMap::partial_derivative(ku, kv, 0, 2)?;
+    let duv = TensorMap::partial_derivative(ku, kv, 1, 1)?;
+    let p1 = TensorProductMap::new(
+        (duu.u().target(), duu.v().target()),
+        (dvv.u().target(), dvv.v().target()),
+    )?;
+    let p2 = TensorProductMap::new(
+        (duv.u().target(), duv.v().target()),
+        (duv.u().target(), duv.v().target()),
+    )?;
+    let target_u = p1.u().target().merged(p2.u().target())?;
+    let target_v = p1.v().target().merged(p2.v().target())?;
+    let r1 = TensorMap::new(
+        SplineMap::transfer_unchecked(p1.u().target(), &target_u),
+        SplineMap::transfer_unchecked(p1.v().target(), &target_v),
+    );
+    let r2 = TensorMap::new(
+        SplineMap::transfer_unchecked(p2.u().target(), &target_u),
+        SplineMap::transfer_unchecked(p2.v().target(), &target_v),
+    );
+    let b1 = fed_product(&p1, &duu, &dvv)?.then(&r1.matrix())?;
+    let b2 = fed_product(&p2, &duv, &duv)?.then(&r2.matrix())?;
+    let form = b1.combine(T::one(), &b2, -T::one())?;
+    let (value, gradient) = form.quadratic(s.coefficients())?;
+    Ok(QuadraticFunction {
+        value: TensorSpline::new_unchecked(target_u, target_v, value),
+        gradient,
+        hessian: form.symmetrized()?,
+    })
+}
+
+/// The partial derivative, or the zero function (degree 0, one coefficient) when an order
+/// exceeds the degree.
+fn partial_or_zero<T: Scalar>(
+    s: &TensorSpline<T, T>,
+    k: usize,
+    l: usize,
+) -> Result<TensorSpline<T, T>> {
+    if k <= s.knots_u().degree() && l <= s.knots_v().degree() {
+        return partial(s, k, l);
+    }
+    let (ua, ub) = s.knots_u().domain();
+    let (va, vb) = s.knots_v().domain();
+    Ok(TensorSpline::new_unchecked(
+        KnotVector::new(0, vec![ua, ub])?,
+        KnotVector::new(0, vec![va, vb])?,
+        vec![T::zero()],
+    ))
+}
+
+/// The ridge (extremality) polynomials of thesis §5.7, with the corrections of the digest:
+/// `(a² d − b², a′² d − b′²)` = `(e₁ e₂ d, f₁ f₂ d)`, where
+/// $d = (s_{uu} - s_{vv})^2 + 4 s_{uv}^2$,
+/// $c_1 = (s_{uuu} + s_{uvv})/2$, $c_2 = 2(s_{uu} - s_{vv})(s_{uuu} - s_{uvv}) + 8 s_{uv} s_{uuv}$,
+/// $c_3 = (s_{uuv} + s_{vvv})/2$, $c_4 = 2(s_{uu} - s_{vv})(s_{uuv} - s_{vvv}) + 8 s_{uv} s_{uvv}$,
+/// $c_5 = s_{uu} + s_{vv}$,
+/// $a = s_{uv} c_1 - s_{uu} c_3 + c_5 c_3/2 + c_4/8$,
+/// $b = s_{uv} c_2/4 - s_{uu} c_4/4 + c_5 c_4/8 + d\, c_3/2$,
+/// $a' = s_{vv} c_1 - c_5 c_1/2 - c_2/8 - s_{uv} c_3$,
+/// $b' = s_{vv} c_2/4 - c_5 c_2/8 - c_1 d/2 - s_{uv} c_4/4$.
+/// Here $e_{1,2} = \lambda_{1,2,u} s_{uv} + \lambda_{1,2,v} (\lambda_{1,2} - s_{uu})$ and
+/// $f_{1,2} = \lambda_{1,2,u} (s_{vv} - \lambda_{1,2}) - \lambda_{1,2,v} s_{uv}$ for the
+/// eigenvalues $\lambda_{1,2} = (c_5 \pm \sqrt d)/2$ of the Hessian of `s`, whose derivatives
+/// are $\lambda_u = c_1 \pm c_2/(4\sqrt d)$, $\lambda_v = c_3 \pm c_4/(4\sqrt d)$. Both are
+/// computed exactly as tensor-product B-splines by the product algebra (degrees grow fast:
+/// `(18, 18)` for a bicubic `s`). Third derivatives above the degree are zero.
+///
+/// # Errors
+/// [`ErrorKind::InvalidArgument`] unless both degrees are at least 2;
+/// [`ErrorKind::DegreeTooHigh`] if a product exceeds [`spline_core::MAX_DEGREE`].
+pub fn ridge_polynomials<T: Scalar>(
+    s: &TensorSpline<T, T>,
+) -> Result<(TensorSpline<T, T>, TensorSpline<T, T>)> {
+    if s.knots_u().degree() < 2 || s.knots_v().degree() < 2 {
+        return Err(Error::new(
+            ErrorKind::InvalidArgument,
+            "ridge polynomials need degree 2 or more in both directions",
+        ));
+    }
+    let d = |k, l| partial_or_zero(s, k, l);
+    let (suu, svv, suv) = (d(2, 0)?, d(0, 2)?, d(1, 1)?);
+    let (suuu, suuv, suvv, svvv) = (d(3, 0)?, d(2, 1)?, d(1, 2)?, d(0, 3)?);
+    let mul = tensor_product::<T>;
+    let lin = |x: f64, a: &TensorSpline<T, T>, y: f64, b: &TensorSpline<T, T>| {
+        tensor_linear_combination(cast::<T>(x), a, cast::<T>(y), b)
+    };
+    let diff = lin(1.0, &suu, -1.0, &svv)?;
+    let dd = lin(1.0, &mul(&diff, &diff)?, 4.0, &mul(&suv, &suv)?)?;
+    let c1 = lin(0.5, &suuu, 0.5, &suvv)?;
+    let c2 = lin(
+        2.0,
+        &mul(&diff, &lin(1.0, &suuu, -1.0, &suvv)?)?,
+        8.0,
+        &mul(&suv, &suuv)?,
+    )?;
+    let c3 = lin(0.5, &suuv, 0.5, &svvv)?;
+    let c4 = lin(
+        2.0,
+        &mul(&diff, &lin(1.0, &suuv, -1.0, &svvv)?)?,
+        8.0,
+        &mul(&suv, &suvv)?,
+    )?;
+    let c5 = lin(1.0, &suu, 1.0, &svv)?;
+    let sum = |terms: &[(f64, TensorSpline<T, T>)]| -> Result<TensorSpline<T, T>> {
+        let mut acc = terms[0].1.clone();
+        let mut first = terms[0].0;
+        for (w, t) in &terms[1..] {
+            acc = lin(first, &acc, *w, t)?;
+            first = 1.0;
+        }
+        if first != 1.0 {
+            acc = lin(first, &acc, 0.0, &acc.clone())?;
+        }
+        Ok(acc)
+    };
+    let a = sum(&[
+        (1.0, mul(&suv, &c1)?),
+        (-1.0, mul(&suu, &c3)?),
+        (0.5, mul(&c5, &c3)?),
+        (0.125, c4.clone()),
+    ])?;
+    let b = sum(&[
+        (0.25, mul(&suv, &c2)?),
+        (-0.25, mul(&suu, &c4)?),
+        (0.125, mul(&c5, &c4)?),
+        (0.5, mul(&dd, &c3)?),
+    ])?;
+    let a2 = sum(&[
+        (1.0, mul(&svv, &c1)?),
+        (-0.5, mul(&c5, &c1)?),
+        (-0.125, c2.clone()),
+        (-1.0, mul(&suv, &c3)?),
+    ])?;
+    let b2 = sum(&[
+        (0.25, mul(&svv, &c2)?),
+        (-0.125, mul(&c5, &c2)?),
+        (-0.5, mul(&c1, &dd)?),
+        (-0.25, mul(&suv, &c4)?),
+    ])?;
+    let first = lin(1.0, &mul(&mul(&a, &a)?, &dd)?, -1.0, &mul(&b, &b)?)?;
+    let second = lin(1.0, &mul(&mul(&a2, &a2)?, &dd)?, -1.0, &mul(&b2, &b2)?)?;
+    Ok((first, second))
+}
