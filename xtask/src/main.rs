@@ -7,6 +7,7 @@
 //!   write `docs/airfoil.svg`.
 
 mod docs_curves;
+mod docs_surfaces;
 
 use std::path::{Path, PathBuf};
 use std::process::{Command, ExitCode};
@@ -35,6 +36,7 @@ fn run_docs(root: &Path) -> Result<(), String> {
     let out = root.join("docs");
     std::fs::create_dir_all(&out).map_err(|e| e.to_string())?;
     docs_curves::render(&out)?;
+    docs_surfaces::render(&out)?;
     println!("pictures written to {}", out.display());
     Ok(())
 }

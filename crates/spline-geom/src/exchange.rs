@@ -207,3 +207,258 @@ pub fn parse_points(text: &str) -> Result<Vec<Vec<f64>>> {
     }
     Ok(points.into_iter().map(|(_, p)| p).collect())
 }
+
+// ---------------------------------------------------------------------------------------
+// NURBS curves and tensor-product surfaces.
+
+use crate::homogeneous::Homogeneous;
+use crate::nurbs::{NurbsCurve, NurbsSurface};
+use crate::surface::Surface;
+use nalgebra::SVector;
+
+fn row_of<T: Scalar, P: ControlPoint<T>>(p: &P) -> Vec<f64> {
+    (0..P::DIM).map(|i| to_f64(p.coord(i))).collect()
+}
+
+fn cast_all<T: Scalar>(values: &[f64]) -> Vec<T> {
+    values.iter().map(|&x| cast(x)).collect()
+}
+
+impl CurveRecord {
+    /// The record of a NURBS curve: Cartesian control points and their weights.
+    pub fn from_nurbs<T: Scalar, const D: usize>(curve: &NurbsCurve<T, D>) -> Self {
+        Self {
+            degree: curve.degree(),
+            knots: curve.knots().knots().iter().map(|&k| to_f64(k)).collect(),
+            control_points: curve.control_points().iter().map(row_of::<T, _>).collect(),
+            weights: Some(curve.weights().into_iter().map(to_f64).collect()),
+        }
+    }
+
+    /// Validates the record as a NURBS curve in `R^D`; a record without weights is read
+    /// with unit weights.
+    ///
+    /// # Errors
+    /// [`ErrorKind::DimensionMismatch`] if a point does not have `D` coordinates; the errors
+    /// of [`KnotVector::new`] and [`NurbsCurve::new`] (e.g. [`ErrorKind::InvalidWeight`],
+    /// [`ErrorKind::InvalidLength`] for a wrong number of weights).
+    pub fn to_nurbs<T: Scalar, const D: usize>(&self) -> Result<NurbsCurve<T, D>> {
+        let points = points_from_rows::<T, SVector<T, D>>(&self.control_points)?;
+        let weights = self
+            .weights
+            .as_deref()
+            .map_or_else(|| vec![T::one(); points.len()], cast_all);
+        NurbsCurve::new(
+            KnotVector::new(self.degree, cast_all(&self.knots))?,
+            points,
+            weights,
+        )
+    }
+}
+
+/// A tensor-product surface as it appears in the exchange format, before validation:
+/// `{"degree": [p, q], "knots": [[u...], [v...]], "control_points": [[[x, ...], ...], ...]}`
+/// with `control_points[i][j]`, `i` along `u`, and for NURBS `"weights": [[w_ij]]`
+/// (control points stay Cartesian).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SurfaceRecord {
+    /// The degrees `[p, q]`.
+    pub degree: [usize; 2],
+    /// The knot vectors in `u` and `v`.
+    pub knots: [Vec<f64>; 2],
+    /// The control net: `n_u` rows of `n_v` points of equal dimension `d ≥ 1`.
+    pub control_points: Vec<Vec<Vec<f64>>>,
+    /// Positive weights of a NURBS surface, in the shape of the net.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub weights: Option<Vec<Vec<f64>>>,
+}
+
+/// Knot vectors in `u` and `v` and the control net as rows.
+type Net<T, P> = (KnotVector<T>, KnotVector<T>, Vec<Vec<P>>);
+
+impl SurfaceRecord {
+    /// The common dimension of the control points.
+    ///
+    /// # Errors
+    /// [`ErrorKind::InvalidLength`] for an empty net; [`ErrorKind::DimensionMismatch`] if the
+    /// points differ in dimension or have none.
+    pub fn dimension(&self) -> Result<usize> {
+        let first = self.control_points.iter().flatten().next().ok_or_else(|| {
+            Error::new(
+                ErrorKind::InvalidLength,
+                "the surface has no control points",
+            )
+        })?;
+        let d = first.len();
+        if d == 0 {
+            return Err(Error::new(
+                ErrorKind::DimensionMismatch,
+                "control point (0, 0) has no coordinates",
+            ));
+        }
+        for (i, row) in self.control_points.iter().enumerate() {
+            if let Some(j) = row.iter().position(|p| p.len() != d) {
+                return Err(Error::new(
+                    ErrorKind::DimensionMismatch,
+                    format!(
+                        "control point ({i}, {j}) has {} coordinates, the first has {d}",
+                        row[j].len()
+                    ),
+                ));
+            }
+        }
+        Ok(d)
+    }
+
+    /// Whether the record has weights.
+    #[must_use]
+    pub fn is_rational(&self) -> bool {
+        self.weights.is_some()
+    }
+
+    /// The validated knot vectors in `u` and `v`.
+    ///
+    /// # Errors
+    /// The errors of [`KnotVector::new`], with the direction in the message.
+    pub fn knot_vectors<T: Scalar>(&self) -> Result<(KnotVector<T>, KnotVector<T>)> {
+        let ku = KnotVector::new(self.degree[0], cast_all(&self.knots[0]))
+            .map_err(|e| e.context("knots in u"))?;
+        let kv = KnotVector::new(self.degree[1], cast_all(&self.knots[1]))
+            .map_err(|e| e.context("knots in v"))?;
+        Ok((ku, kv))
+    }
+
+    /// The control net as points of type `P`, checked against the knot vectors.
+    fn net<T: Scalar, P: ControlPoint<T>>(&self) -> Result<Net<T, P>> {
+        let (ku, kv) = self.knot_vectors()?;
+        let net = self
+            .control_points
+            .iter()
+            .enumerate()
+            .map(|(i, row)| {
+                points_from_rows::<T, P>(row).map_err(|e| e.context(format_args!("row {i}")))
+            })
+            .collect::<Result<Vec<_>>>()?;
+        Ok((ku, kv, net))
+    }
+
+    /// The record of a non-rational surface.
+    pub fn from_surface<T: Scalar, P: ControlPoint<T>>(surface: &Surface<T, P>) -> Self {
+        Self {
+            degree: [surface.degrees().0, surface.degrees().1],
+            knots: [
+                surface
+                    .knots_u()
+                    .knots()
+                    .iter()
+                    .map(|&k| to_f64(k))
+                    .collect(),
+                surface
+                    .knots_v()
+                    .knots()
+                    .iter()
+                    .map(|&k| to_f64(k))
+                    .collect(),
+            ],
+            control_points: surface
+                .control_net()
+                .iter()
+                .map(|row| row.iter().map(row_of::<T, P>).collect())
+                .collect(),
+            weights: None,
+        }
+    }
+
+    /// Validates the record as a non-rational surface with control points of type `P`.
+    ///
+    /// # Errors
+    /// [`ErrorKind::InvalidArgument`] if the record has weights;
+    /// [`ErrorKind::DimensionMismatch`]; [`ErrorKind::InvalidLength`] if the net does not
+    /// match the knot vectors; the errors of [`KnotVector::new`].
+    pub fn to_surface<T: Scalar, P: ControlPoint<T>>(&self) -> Result<Surface<T, P>> {
+        if self.weights.is_some() {
+            return Err(Error::new(
+                ErrorKind::InvalidArgument,
+                "the surface has weights: read it as a NURBS surface",
+            ));
+        }
+        let (ku, kv, net) = self.net::<T, P>()?;
+        Surface::from_net(ku, kv, net)
+    }
+
+    /// The record of a NURBS surface: Cartesian control points and weights.
+    pub fn from_nurbs_surface<T: Scalar, const D: usize>(surface: &NurbsSurface<T, D>) -> Self {
+        let mut record = Self::from_surface(
+            &surface
+                .homogeneous()
+                .map_control_points(Homogeneous::project),
+        );
+        let nv = surface.net_size().1;
+        record.weights = Some(
+            surface
+                .weights()
+                .chunks_exact(nv)
+                .map(|row| row.iter().map(|&w| to_f64(w)).collect())
+                .collect(),
+        );
+        record
+    }
+
+    /// Validates the record as a NURBS surface in `R^D` (unit weights if it has none).
+    ///
+    /// # Errors
+    /// As [`SurfaceRecord::to_surface`]; [`ErrorKind::InvalidLength`] if the weights do not
+    /// have the shape of the net; [`ErrorKind::InvalidWeight`].
+    pub fn to_nurbs_surface<T: Scalar, const D: usize>(&self) -> Result<NurbsSurface<T, D>> {
+        let (ku, kv, net) = self.net::<T, SVector<T, D>>()?;
+        let weights = match &self.weights {
+            Some(w) => w.iter().map(|row| cast_all(row)).collect(),
+            None => net.iter().map(|row| vec![T::one(); row.len()]).collect(),
+        };
+        NurbsSurface::from_net(ku, kv, net, weights)
+    }
+}
+
+impl<T: Scalar, P: ControlPoint<T>> Serialize for Surface<T, P> {
+    fn serialize<S: Serializer>(&self, serializer: S) -> std::result::Result<S::Ok, S::Error> {
+        SurfaceRecord::from_surface(self).serialize(serializer)
+    }
+}
+
+impl<'de, T: Scalar, P: ControlPoint<T>> Deserialize<'de> for Surface<T, P> {
+    fn deserialize<D: Deserializer<'de>>(deserializer: D) -> std::result::Result<Self, D::Error> {
+        let record = SurfaceRecord::deserialize(deserializer)?;
+        record.to_surface().map_err(serde::de::Error::custom)
+    }
+}
+
+impl<T: Scalar, const D: usize> Serialize for NurbsCurve<T, D> {
+    fn serialize<S: Serializer>(&self, serializer: S) -> std::result::Result<S::Ok, S::Error> {
+        CurveRecord::from_nurbs(self).serialize(serializer)
+    }
+}
+
+impl<'de, T: Scalar, const D: usize> Deserialize<'de> for NurbsCurve<T, D> {
+    fn deserialize<De: Deserializer<'de>>(
+        deserializer: De,
+    ) -> std::result::Result<Self, De::Error> {
+        let record = CurveRecord::deserialize(deserializer)?;
+        record.to_nurbs().map_err(serde::de::Error::custom)
+    }
+}
+
+impl<T: Scalar, const D: usize> Serialize for NurbsSurface<T, D> {
+    fn serialize<S: Serializer>(&self, serializer: S) -> std::result::Result<S::Ok, S::Error> {
+        SurfaceRecord::from_nurbs_surface(self).serialize(serializer)
+    }
+}
+
+impl<'de, T: Scalar, const D: usize> Deserialize<'de> for NurbsSurface<T, D> {
+    fn deserialize<De: Deserializer<'de>>(
+        deserializer: De,
+    ) -> std::result::Result<Self, De::Error> {
+        let record = SurfaceRecord::deserialize(deserializer)?;
+        record.to_nurbs_surface().map_err(serde::de::Error::custom)
+    }
+}

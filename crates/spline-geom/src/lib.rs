@@ -7,6 +7,14 @@
 //!   removal, degree elevation, splitting, clamping, Bézier decomposition, reversal.
 //! - [`Bezier`]: de Casteljau, Bernstein evaluation, subdivision, elevation, hodograph.
 //! - Planar differential geometry, adaptive arc length, the variation-diminishing count.
+//! - [`Surface`]: tensor-product surfaces with evaluation (tensor fast path on grids), all
+//!   partial derivatives, derivative surfaces, iso-curves, Bézier patches, every structural
+//!   algorithm in either [`Direction`], normals, fundamental forms and curvatures
+//!   ([`LocalProperties`]).
+//! - [`NurbsCurve`] and [`NurbsSurface`]: rational views over containers of [`Homogeneous`]
+//!   points, with rational derivatives of any order and the classic constructions (conics,
+//!   circles both ways of the notes, arcs, extrusion, ruled and conical surfaces, surfaces of
+//!   revolution, sphere, torus); tessellation into a [`TriangleMesh`] (OBJ, OFF, SVG).
 //! - Exchange-format (de)serialisation and export as gnuplot `.dat` and SVG.
 //!
 //! ```
@@ -25,18 +33,30 @@
 mod arclength;
 mod bezier;
 mod bspline;
+mod construct;
 pub mod exchange;
 pub mod export;
+mod homogeneous;
+mod mesh;
+mod nurbs;
 mod planar;
 mod structural;
+mod surface;
+mod surface_geometry;
 mod variation;
 
 pub use arclength::DEFAULT_ACCURACY;
 pub use bezier::Bezier;
 pub use bspline::BSpline;
+pub use construct::{Axis, CircleConstruction, ConicKind, Frame};
+pub use homogeneous::Homogeneous;
+pub use mesh::{MeshView, TriangleMesh};
+pub use nurbs::{NurbsCurve, NurbsCurve2, NurbsCurve3, NurbsSurface, NurbsSurface3};
 pub use planar::wedge;
 pub use spline_core::{ControlPoint, Error, ErrorKind, KnotVector, Result, Scalar};
 pub use structural::DEFAULT_REMOVAL_TOLERANCE;
+pub use surface::{Direction, Surface};
+pub use surface_geometry::{FundamentalForm, LocalProperties};
 pub use variation::sign_changes;
 
 /// A B-spline function (scalar control points).
@@ -45,3 +65,5 @@ pub type BSplineFunction<T = f64> = BSpline<T, T>;
 pub type Curve2<T = f64> = BSpline<T, nalgebra::Vector2<T>>;
 /// A spatial B-spline curve.
 pub type Curve3<T = f64> = BSpline<T, nalgebra::Vector3<T>>;
+/// A B-spline surface in space.
+pub type Surface3<T = f64> = Surface<T, nalgebra::Vector3<T>>;

@@ -1,0 +1,450 @@
+//! Tessellation of surfaces into triangle meshes; export as OBJ, OFF (the geomview format
+//! of seed 000) and shaded SVG pictures.
+
+use crate::nurbs::NurbsSurface;
+use crate::surface::Surface;
+use nalgebra::Vector3;
+use spline_core::{ControlPoint, Error, ErrorKind, KnotVector, Result, Scalar, from_count, to_f64};
+use std::collections::HashMap;
+use std::fmt::Write;
+
+/// A triangle mesh with per-vertex normals. Triangles are oriented counter-clockwise seen
+/// from the side the normals point to.
+///
+/// ```
+/// use nalgebra::Vector3;
+/// use spline_geom::NurbsSurface;
+/// let mesh = NurbsSurface::sphere(Vector3::zeros(), 1.0)?.tessellate(16, 32)?;
+/// assert_eq!(mesh.euler_characteristic(), 2); // a closed sphere: the seam and poles are welded
+/// assert!(mesh.to_off().starts_with("OFF\n"));
+/// # Ok::<(), spline_core::Error>(())
+/// ```
+#[derive(Clone, Debug, PartialEq, Default)]
+pub struct TriangleMesh {
+    /// Vertex positions.
+    pub vertices: Vec<Vector3<f64>>,
+    /// Unit vertex normals (area-weighted averages of the adjacent triangles' normals).
+    pub normals: Vec<Vector3<f64>>,
+    /// Triangles as indices into `vertices`.
+    pub triangles: Vec<[usize; 3]>,
+}
+
+/// The viewpoint and style of [`TriangleMesh::to_svg`]: an orthographic view from the
+/// direction given by azimuth (about `z`, from `x`) and elevation (above the `xy` plane),
+/// in degrees.
+#[derive(Clone, Debug, PartialEq)]
+pub struct MeshView {
+    /// Azimuth of the viewer in degrees.
+    pub azimuth: f64,
+    /// Elevation of the viewer in degrees.
+    pub elevation: f64,
+    /// Width of the picture in pixels.
+    pub width: f64,
+    /// Fill colour of lit triangles, as RGB.
+    pub color: [u8; 3],
+    /// Draw the triangle edges.
+    pub wireframe: bool,
+    /// Optional caption.
+    pub title: Option<String>,
+}
+
+impl Default for MeshView {
+    fn default() -> Self {
+        Self {
+            azimuth: 30.0,
+            elevation: 25.0,
+            width: 600.0,
+            color: [70, 130, 200],
+            wireframe: true,
+            title: None,
+        }
+    }
+}
+
+impl TriangleMesh {
+    /// The mesh of a grid of points `points[a * cols + b]` (`rows × cols`, `a` along the
+    /// first parameter): each grid cell gives two triangles. Coincident points (within
+    /// `1e-10` times the size of the grid, such as the seam of a closed surface or the pole
+    /// of a sphere) are welded into one vertex, and triangles that collapse are dropped, so
+    /// a closed surface gives a closed mesh.
+    ///
+    /// # Errors
+    /// [`ErrorKind::InvalidLength`] unless `points.len() = rows · cols` with
+    /// `rows, cols ≥ 2`; [`ErrorKind::NonFinite`] for a non-finite point.
+    pub fn from_grid(rows: usize, cols: usize, points: &[Vector3<f64>]) -> Result<Self> {
+        if rows < 2 || cols < 2 || points.len() != rows * cols {
+            return Err(Error::new(
+                ErrorKind::InvalidLength,
+                format!(
+                    "a grid mesh needs rows, cols ≥ 2 and rows · cols points, got {rows} × {cols} and {} points",
+                    points.len()
+                ),
+            ));
+        }
+        if points
+            .iter()
+            .any(|p| !p.iter().all(nalgebra::ComplexField::is_finite))
+        {
+            return Err(Error::new(
+                ErrorKind::NonFinite,
+                "a mesh point is not finite",
+            ));
+        }
+        let (lo, hi) = points.iter().fold(
+            (
+                Vector3::repeat(f64::INFINITY),
+                Vector3::repeat(f64::NEG_INFINITY),
+            ),
+            |(lo, hi), p| (lo.inf(p), hi.sup(p)),
+        );
+        let tolerance = ((hi - lo).norm() * 1e-10).max(f64::MIN_POSITIVE);
+        let mut cells: HashMap<[i64; 3], Vec<usize>> = HashMap::new();
+        let mut vertices: Vec<Vector3<f64>> = Vec::new();
+        #[allow(clippy::cast_possible_truncation)]
+        let cell_of = |p: &Vector3<f64>| p.map(|x| (x / tolerance).floor() as i64);
+        let index: Vec<usize> = points
+            .iter()
+            .map(|p| {
+                let c = cell_of(p);
+                for dx in -1..=1 {
+                    for dy in -1..=1 {
+                        for dz in -1..=1 {
+                            if let Some(list) = cells.get(&[c.x + dx, c.y + dy, c.z + dz]) {
+                                if let Some(&k) = list
+                                    .iter()
+                                    .find(|&&k| (vertices[k] - p).norm() <= tolerance)
+                                {
+                                    return k;
+                                }
+                            }
+                        }
+                    }
+                }
+                vertices.push(*p);
+                cells
+                    .entry([c.x, c.y, c.z])
+                    .or_default()
+                    .push(vertices.len() - 1);
+                vertices.len() - 1
+            })
+            .collect();
+        let mut triangles = Vec::with_capacity(2 * (rows - 1) * (cols - 1));
+        for a in 0..rows - 1 {
+            for b in 0..cols - 1 {
+                let v00 = index[a * cols + b];
+                let v10 = index[(a + 1) * cols + b];
+                let v11 = index[(a + 1) * cols + b + 1];
+                let v01 = index[a * cols + b + 1];
+                for t in [[v00, v10, v11], [v00, v11, v01]] {
+                    if t[0] != t[1] && t[1] != t[2] && t[0] != t[2] {
+                        triangles.push(t);
+                    }
+                }
+            }
+        }
+        let mut mesh = Self {
+            normals: Vec::new(),
+            vertices,
+            triangles,
+        };
+        mesh.compute_normals();
+        Ok(mesh)
+    }
+
+    /// Recomputes the vertex normals as area-weighted averages of the triangle normals
+    /// (vertices without triangles get `+z`).
+    pub fn compute_normals(&mut self) {
+        let mut normals = vec![Vector3::zeros(); self.vertices.len()];
+        for t in &self.triangles {
+            let n = self.face_normal(t);
+            for &k in t {
+                normals[k] += n;
+            }
+        }
+        for n in &mut normals {
+            let len = n.norm();
+            *n = if len > 0.0 { *n / len } else { Vector3::z() };
+        }
+        self.normals = normals;
+    }
+
+    /// The normal of a triangle scaled by twice its area.
+    fn face_normal(&self, t: &[usize; 3]) -> Vector3<f64> {
+        let [a, b, c] = t.map(|k| self.vertices[k]);
+        (b - a).cross(&(c - a))
+    }
+
+    /// The total area.
+    #[must_use]
+    pub fn area(&self) -> f64 {
+        self.triangles
+            .iter()
+            .map(|t| self.face_normal(t).norm() / 2.0)
+            .sum()
+    }
+
+    /// The edges with the number of triangles using each.
+    fn edge_counts(&self) -> HashMap<(usize, usize), usize> {
+        let mut edges = HashMap::new();
+        for t in &self.triangles {
+            for (a, b) in [(t[0], t[1]), (t[1], t[2]), (t[2], t[0])] {
+                *edges.entry((a.min(b), a.max(b))).or_insert(0) += 1;
+            }
+        }
+        edges
+    }
+
+    /// The number of edges used by exactly one triangle (zero for a closed mesh).
+    #[must_use]
+    pub fn boundary_edges(&self) -> usize {
+        self.edge_counts().values().filter(|&&c| c == 1).count()
+    }
+
+    /// The Euler characteristic `V − E + F` (2 for a closed sphere, 0 for a torus, 1 for a
+    /// disc), counting only vertices used by triangles.
+    #[must_use]
+    pub fn euler_characteristic(&self) -> i64 {
+        let mut used = vec![false; self.vertices.len()];
+        for t in &self.triangles {
+            for &k in t {
+                used[k] = true;
+            }
+        }
+        let v = used.iter().filter(|&&u| u).count();
+        let count = |n: usize| i64::try_from(n).unwrap_or(i64::MAX);
+        count(v) - count(self.edge_counts().len()) + count(self.triangles.len())
+    }
+
+    /// The mesh in Wavefront OBJ: `v` lines, `vn` lines, then `f a//a b//b c//c` (1-based).
+    #[must_use]
+    pub fn to_obj(&self) -> String {
+        let mut out = String::with_capacity(64 * (self.vertices.len() + self.triangles.len()));
+        let _ = writeln!(
+            out,
+            "# spline mesh: {} vertices, {} triangles",
+            self.vertices.len(),
+            self.triangles.len()
+        );
+        for v in &self.vertices {
+            let _ = writeln!(out, "v {} {} {}", v.x, v.y, v.z);
+        }
+        for n in &self.normals {
+            let _ = writeln!(out, "vn {} {} {}", n.x, n.y, n.z);
+        }
+        for t in &self.triangles {
+            let [a, b, c] = t.map(|k| k + 1);
+            let _ = writeln!(out, "f {a}//{a} {b}//{b} {c}//{c}");
+        }
+        out
+    }
+
+    /// The mesh in the OFF format of geomview: `OFF`, the counts `V F 0`, the vertices, then
+    /// `3 a b c` per triangle (0-based).
+    #[must_use]
+    pub fn to_off(&self) -> String {
+        let mut out = String::with_capacity(48 * (self.vertices.len() + self.triangles.len()));
+        let _ = writeln!(
+            out,
+            "OFF\n{} {} 0",
+            self.vertices.len(),
+            self.triangles.len()
+        );
+        for v in &self.vertices {
+            let _ = writeln!(out, "{} {} {}", v.x, v.y, v.z);
+        }
+        for t in &self.triangles {
+            let _ = writeln!(out, "3 {} {} {}", t[0], t[1], t[2]);
+        }
+        out
+    }
+
+    /// An SVG picture: orthographic projection, triangles painted back to front with
+    /// Lambert shading (two-sided); back faces are skipped when the mesh is closed.
+    #[must_use]
+    pub fn to_svg(&self, view: &MeshView) -> String {
+        let (az, el) = (view.azimuth.to_radians(), view.elevation.to_radians());
+        let eye = Vector3::new(el.cos() * az.cos(), el.cos() * az.sin(), el.sin());
+        let right = Vector3::z().cross(&eye);
+        let right = if right.norm() > 1e-12 {
+            right.normalize()
+        } else {
+            Vector3::y()
+        };
+        let up = eye.cross(&right);
+        let light = (eye + up * 0.6 + right * 0.4).normalize();
+        let closed = self.boundary_edges() == 0 && !self.triangles.is_empty();
+        let project = |p: &Vector3<f64>| (p.dot(&right), p.dot(&up), p.dot(&eye));
+        let mut faces: Vec<Face> = self
+            .triangles
+            .iter()
+            .filter_map(|t| {
+                let n = self.face_normal(t);
+                let len = n.norm();
+                if len == 0.0 || (closed && n.dot(&eye) < 0.0) {
+                    return None;
+                }
+                let corners = t.map(|k| project(&self.vertices[k]));
+                let depth = (corners[0].2 + corners[1].2 + corners[2].2) / 3.0;
+                let shade = 0.25 + 0.75 * (n.dot(&light) / len).abs();
+                Some(Face {
+                    depth,
+                    corners: corners.map(|c| (c.0, c.1)),
+                    shade,
+                })
+            })
+            .collect();
+        faces.sort_by(|a, b| a.depth.total_cmp(&b.depth));
+        let (mut xmin, mut xmax, mut ymin, mut ymax) = (f64::MAX, f64::MIN, f64::MAX, f64::MIN);
+        for v in &self.vertices {
+            let (x, y, _) = project(v);
+            xmin = xmin.min(x);
+            xmax = xmax.max(x);
+            ymin = ymin.min(y);
+            ymax = ymax.max(y);
+        }
+        if xmin > xmax {
+            (xmin, xmax, ymin, ymax) = (0.0, 1.0, 0.0, 1.0);
+        }
+        let margin = 10.0;
+        let extent = (xmax - xmin).max(ymax - ymin).max(1e-12);
+        let scale = (view.width - 2.0 * margin) / extent;
+        let height =
+            (ymax - ymin) * scale + 2.0 * margin + if view.title.is_some() { 20.0 } else { 0.0 };
+        let top = if view.title.is_some() { 20.0 } else { 0.0 };
+        let map = |(x, y): (f64, f64)| {
+            (
+                margin + (x - xmin) * scale,
+                top + margin + (ymax - y) * scale,
+            )
+        };
+        let mut out = String::new();
+        let _ = writeln!(
+            out,
+            r#"<svg xmlns="http://www.w3.org/2000/svg" width="{w:.0}" height="{height:.0}" viewBox="0 0 {w:.0} {height:.0}">"#,
+            w = view.width
+        );
+        out.push_str("<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n");
+        let stroke_width = if view.wireframe { 0.4 } else { 0.6 };
+        for Face { corners, shade, .. } in &faces {
+            let [r, g, b] = view.color.map(|c| {
+                #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]
+                let v = (f64::from(c) * shade).round().clamp(0.0, 255.0) as u8;
+                v
+            });
+            let pts: Vec<String> = corners
+                .iter()
+                .map(|&c| {
+                    let (x, y) = map(c);
+                    format!("{x:.2},{y:.2}")
+                })
+                .collect();
+            let stroke = if view.wireframe {
+                "#1b2a3a".to_owned()
+            } else {
+                format!("rgb({r},{g},{b})")
+            };
+            let _ = writeln!(
+                out,
+                r#"<polygon points="{}" fill="rgb({r},{g},{b})" stroke="{stroke}" stroke-width="{stroke_width}" stroke-linejoin="round"/>"#,
+                pts.join(" ")
+            );
+        }
+        if let Some(title) = &view.title {
+            let escaped = title
+                .replace('&', "&amp;")
+                .replace('<', "&lt;")
+                .replace('>', "&gt;");
+            let _ = writeln!(
+                out,
+                r##"<text x="{margin}" y="18" font-family="sans-serif" font-size="14" fill="#333">{escaped}</text>"##
+            );
+        }
+        out.push_str("</svg>\n");
+        out
+    }
+}
+
+/// A projected triangle of an SVG picture.
+struct Face {
+    /// Mean distance towards the viewer.
+    depth: f64,
+    /// Screen coordinates of the corners.
+    corners: [(f64, f64); 3],
+    /// Lambert intensity.
+    shade: f64,
+}
+
+/// Parameters for tessellation: `segments` equal steps over the domain, plus every interior
+/// knot (so that creases at knots of high multiplicity are kept).
+fn mesh_params<T: Scalar>(knots: &KnotVector<T>, segments: usize) -> Result<Vec<T>> {
+    if segments == 0 {
+        return Err(Error::new(
+            ErrorKind::InvalidArgument,
+            "a tessellation needs at least one segment in each direction",
+        ));
+    }
+    let (a, b) = knots.domain();
+    let mut params: Vec<T> = (0..=segments)
+        .map(|k| a + (b - a) * from_count::<T>(k) / from_count::<T>(segments))
+        .collect();
+    params.extend(knots.interior_breakpoints().into_iter().map(|(k, _)| k));
+    params.sort_by(|x, y| x.partial_cmp(y).expect("finite parameters"));
+    params.dedup_by(|x, y| to_f64(*x - *y).abs() <= 1e-12 * to_f64(b - a));
+    *params.last_mut().expect("at least two parameters") = b;
+    Ok(params)
+}
+
+fn to_vector3<T: Scalar, P: ControlPoint<T>>(p: &P) -> Vector3<f64> {
+    Vector3::from_fn(|i, _| if i < P::DIM { to_f64(p.coord(i)) } else { 0.0 })
+}
+
+fn check_mesh_dimension(dim: usize) -> Result<()> {
+    if (1..=3).contains(&dim) {
+        Ok(())
+    } else {
+        Err(Error::new(
+            ErrorKind::DimensionMismatch,
+            format!("meshes are built from surfaces with 1 to 3 coordinates, got {dim}"),
+        ))
+    }
+}
+
+impl<T: Scalar, P: ControlPoint<T>> Surface<T, P> {
+    /// A triangle mesh of the surface: `segments_u × segments_v` equal parameter steps,
+    /// refined at every interior knot, evaluated with the tensor fast path
+    /// ([`Surface::eval_grid`]) and welded (see [`TriangleMesh::from_grid`]). Points with
+    /// fewer than 3 coordinates are padded with zeros.
+    ///
+    /// # Errors
+    /// [`ErrorKind::DimensionMismatch`] for points of more than 3 coordinates;
+    /// [`ErrorKind::InvalidArgument`] for zero segments.
+    pub fn tessellate(&self, segments_u: usize, segments_v: usize) -> Result<TriangleMesh> {
+        check_mesh_dimension(P::DIM)?;
+        let us = mesh_params(self.knots_u(), segments_u)?;
+        let vs = mesh_params(self.knots_v(), segments_v)?;
+        let points: Vec<Vector3<f64>> = self
+            .eval_grid(&us, &vs)?
+            .iter()
+            .map(to_vector3::<T, P>)
+            .collect();
+        TriangleMesh::from_grid(us.len(), vs.len(), &points)
+    }
+}
+
+impl<T: Scalar, const D: usize> NurbsSurface<T, D> {
+    /// A triangle mesh of the surface (see [`Surface::tessellate`]).
+    ///
+    /// # Errors
+    /// As [`Surface::tessellate`].
+    pub fn tessellate(&self, segments_u: usize, segments_v: usize) -> Result<TriangleMesh> {
+        check_mesh_dimension(D)?;
+        let us = mesh_params(self.knots_u(), segments_u)?;
+        let vs = mesh_params(self.knots_v(), segments_v)?;
+        let points: Vec<Vector3<f64>> = self
+            .eval_grid(&us, &vs)?
+            .iter()
+            .map(|p| Vector3::from_fn(|i, _| if i < D { to_f64(p[i]) } else { 0.0 }))
+            .collect();
+        TriangleMesh::from_grid(us.len(), vs.len(), &points)
+    }
+}

@@ -1,0 +1,691 @@
+//! NURBS curves and surfaces checked against independent facts: the rational derivatives
+//! against finite differences and dual numbers, invariance under every structural operation
+//! (done in homogeneous space), closed forms, weight validation.
+
+use nalgebra::{SVector, Vector2, Vector3};
+use num_dual::{Dual2_64, Dual64, HyperDual64};
+use proptest::prelude::*;
+use spline_core::strategies::knot_vector;
+use spline_core::{ErrorKind, KnotVector, Scalar, cast, to_f64};
+use spline_geom::exchange::{CurveRecord, SurfaceRecord};
+use spline_geom::{BSpline, Direction, Homogeneous, NurbsCurve, NurbsSurface, Surface};
+
+type N3 = NurbsCurve<f64, 3>;
+type NS3 = NurbsSurface<f64, 3>;
+
+fn curve_strategy(
+    max_degree: usize,
+    extra: usize,
+    discontinuous: bool,
+) -> impl Strategy<Value = N3> {
+    knot_vector(max_degree, extra, 1.0, discontinuous).prop_flat_map(|knots| {
+        let n = knots.num_basis();
+        (
+            proptest::collection::vec((-1.0f64..1.0, -1.0f64..1.0, -1.0f64..1.0), n),
+            proptest::collection::vec(0.2f64..3.0, n),
+        )
+            .prop_map(move |(pts, w)| {
+                NurbsCurve::new(
+                    knots.clone(),
+                    pts.into_iter()
+                        .map(|(x, y, z)| Vector3::new(x, y, z))
+                        .collect(),
+                    w,
+                )
+                .unwrap()
+            })
+    })
+}
+
+fn surface_strategy(max_degree: usize, extra: usize) -> impl Strategy<Value = NS3> {
+    (
+        knot_vector(max_degree, extra, 1.0, false),
+        knot_vector(max_degree, extra, 1.0, false),
+    )
+        .prop_flat_map(|(ku, kv)| {
+            let n = ku.num_basis() * kv.num_basis();
+            (
+                proptest::collection::vec((-1.0f64..1.0, -1.0f64..1.0, -1.0f64..1.0), n),
+                proptest::collection::vec(0.2f64..3.0, n),
+            )
+                .prop_map(move |(pts, w)| {
+                    NurbsSurface::new(
+                        ku.clone(),
+                        kv.clone(),
+                        pts.into_iter()
+                            .map(|(x, y, z)| Vector3::new(x, y, z))
+                            .collect(),
+                        w,
+                    )
+                    .unwrap()
+                })
+        })
+}
+
+fn samples(knots: &KnotVector<f64>, count: usize) -> Vec<f64> {
+    let (a, b) = knots.domain();
+    let mut us: Vec<f64> = (0..=count)
+        .map(|i| a + (b - a) * i as f64 / count as f64)
+        .collect();
+    us.extend(knots.knots().iter().copied().filter(|&k| k >= a && k <= b));
+    us.sort_by(f64::total_cmp);
+    us
+}
+
+fn same_curve(a: &N3, b: &N3, tol: f64) -> Result<(), TestCaseError> {
+    for u in samples(a.knots(), 40) {
+        let (p, q) = (a.eval(u).unwrap(), b.eval(u).unwrap());
+        prop_assert!((p - q).norm() < tol, "u = {}: {:?} vs {:?}", u, p, q);
+    }
+    Ok(())
+}
+
+fn same_surface(a: &NS3, b: &NS3, tol: f64) -> Result<(), TestCaseError> {
+    for u in samples(a.knots_u(), 8) {
+        for v in samples(a.knots_v(), 8) {
+            let (p, q) = (a.eval(u, v).unwrap(), b.eval(u, v).unwrap());
+            prop_assert!((p - q).norm() < tol, "({}, {}): {:?} vs {:?}", u, v, p, q);
+        }
+    }
+    Ok(())
+}
+
+/// The curve with every number turned into a dual number of another kind.
+fn lift<T: Scalar, const D: usize>(
+    c: &NurbsCurve<f64, D>,
+    f: impl Fn(f64) -> T,
+) -> NurbsCurve<T, D> {
+    NurbsCurve::from_knots(
+        c.degree(),
+        c.knots().knots().iter().map(|&k| f(k)).collect(),
+        c.control_points().iter().map(|p| p.map(&f)).collect(),
+        c.weights().into_iter().map(&f).collect(),
+    )
+    .unwrap()
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(96))]
+
+    #[test]
+    fn rational_derivatives_agree_with_dual_numbers(c in curve_strategy(5, 6, false), t in 0.0f64..=1.0) {
+        let (a, b) = c.domain();
+        let u = a + (b - a) * t;
+        let ders = c.derivatives(u, 2).unwrap();
+        let first = lift(&c, Dual64::from).eval(Dual64::new(u, 1.0)).unwrap();
+        let second = lift(&c, Dual2_64::from).eval(Dual2_64::new(u, 1.0, 0.0)).unwrap();
+        for i in 0..3 {
+            prop_assert!((first[i].re - ders[0][i]).abs() < 1e-14 * (1.0 + ders[0][i].abs()));
+            prop_assert!((first[i].eps - ders[1][i]).abs() < 1e-10 * (1.0 + ders[1][i].abs()));
+            prop_assert!((second[i].v2 - ders[2][i]).abs() < 1e-9 * (1.0 + ders[2][i].abs()), "{} vs {}", second[i].v2, ders[2][i]);
+        }
+    }
+
+    #[test]
+    fn rational_derivatives_agree_with_finite_differences(c in curve_strategy(4, 4, false), t in 0.05f64..0.95) {
+        let (a, b) = c.domain();
+        let u = a + (b - a) * t;
+        prop_assume!(c.knots().knots().iter().all(|&k| (k - u).abs() > 1e-3));
+        // Up to order 4, above the degree too: rational derivatives do not vanish there.
+        let ders = c.derivatives(u, 4).unwrap();
+        let h = 1e-5;
+        let lower = |k: usize, x: f64| c.derivatives(x, k).unwrap()[k];
+        for k in 1..=4 {
+            let fd = (lower(k - 1, u + h) - lower(k - 1, u - h)) / (2.0 * h);
+            let scale = 1.0 + ders[k].norm() + ders[k - 1].norm();
+            prop_assert!((fd - ders[k]).norm() < 1e-5 * scale, "k = {}: {:?} vs {:?}", k, fd, ders[k]);
+        }
+    }
+
+    #[test]
+    fn surface_rational_derivatives_agree_with_hyper_dual_numbers(s in surface_strategy(3, 3), t in 0.0f64..=1.0, r in 0.0f64..=1.0) {
+        let ((a, b), (c, d)) = s.domain();
+        let (u, v) = (a + (b - a) * t, c + (d - c) * r);
+        let ders = s.derivatives(u, v, 2).unwrap();
+        let lift = |x: f64| HyperDual64::from(x);
+        let hyper = NurbsSurface::new(
+            KnotVector::new(s.degrees().0, s.knots_u().knots().iter().map(|&x| lift(x)).collect()).unwrap(),
+            KnotVector::new(s.degrees().1, s.knots_v().knots().iter().map(|&x| lift(x)).collect()).unwrap(),
+            s.control_points().iter().map(|p| p.map(lift)).collect(),
+            s.weights().into_iter().map(lift).collect(),
+        ).unwrap();
+        let mixed = hyper.eval(HyperDual64::new(u, 1.0, 0.0, 0.0), HyperDual64::new(v, 0.0, 1.0, 0.0)).unwrap();
+        let uu = hyper.eval(HyperDual64::new(u, 1.0, 1.0, 0.0), lift(v)).unwrap();
+        let vv = hyper.eval(lift(u), HyperDual64::new(v, 1.0, 1.0, 0.0)).unwrap();
+        for i in 0..3 {
+            let close = |x: f64, y: f64| (x - y).abs() < 1e-9 * (1.0 + y.abs());
+            prop_assert!(close(mixed[i].re, ders[0][0][i]));
+            prop_assert!(close(mixed[i].eps1, ders[1][0][i]));
+            prop_assert!(close(mixed[i].eps2, ders[0][1][i]));
+            prop_assert!(close(mixed[i].eps1eps2, ders[1][1][i]), "{} vs {}", mixed[i].eps1eps2, ders[1][1][i]);
+            prop_assert!(close(uu[i].eps1eps2, ders[2][0][i]));
+            prop_assert!(close(vv[i].eps1eps2, ders[0][2][i]));
+        }
+    }
+
+    #[test]
+    fn surface_rational_derivatives_agree_with_finite_differences(s in surface_strategy(3, 3), t in 0.05f64..0.95, r in 0.05f64..0.95) {
+        let ((a, b), (c, d)) = s.domain();
+        let (u, v) = (a + (b - a) * t, c + (d - c) * r);
+        let far = |k: &KnotVector<f64>, x: f64| k.knots().iter().all(|&y| (x - y).abs() > 1e-3);
+        prop_assume!(far(s.knots_u(), u) && far(s.knots_v(), v));
+        let ders = s.derivatives(u, v, 3).unwrap();
+        let h = 1e-5;
+        // ∂/∂u of every [k][l] with k < 3 against the next order, and the same in v.
+        for k in 0..3 {
+            for l in 0..3 {
+                let du = (s.derivatives(u + h, v, 3).unwrap()[k][l] - s.derivatives(u - h, v, 3).unwrap()[k][l]) / (2.0 * h);
+                let dv = (s.derivatives(u, v + h, 3).unwrap()[k][l] - s.derivatives(u, v - h, 3).unwrap()[k][l]) / (2.0 * h);
+                let su = 1.0 + ders[k + 1][l].norm() + ders[k][l].norm();
+                let sv = 1.0 + ders[k][l + 1].norm() + ders[k][l].norm();
+                prop_assert!((du - ders[k + 1][l]).norm() < 1e-4 * su, "d/du of [{}][{}]", k, l);
+                prop_assert!((dv - ders[k][l + 1]).norm() < 1e-4 * sv, "d/dv of [{}][{}]", k, l);
+            }
+        }
+    }
+
+    #[test]
+    fn curve_structural_operations_keep_the_curve(c in curve_strategy(5, 6, false), t in 0.01f64..0.99, times in 1usize..3) {
+        let (a, b) = c.domain();
+        let u = a + (b - a) * ((t * 512.0).round() / 512.0);
+        if let Ok(r) = c.insert_knot(u, times) {
+            same_curve(&c, &r, 1e-12)?;
+            // ... and removing the inserted knots gives the curve back.
+            if c.knots().multiplicity(u) == 0 {
+                let back = r.remove_knot(u, times, 1e-9).unwrap();
+                prop_assert_eq!(back.knots(), c.knots());
+                for (w, x) in back.weights().iter().zip(c.weights()) {
+                    prop_assert!((w - x).abs() < 1e-9);
+                }
+                same_curve(&c, &back, 1e-9)?;
+            }
+        }
+        same_curve(&c, &c.refine(&[u, u * 0.5 + a * 0.5, u]).unwrap_or_else(|_| c.clone()), 1e-12)?;
+        let e = c.elevate_degree(times).unwrap();
+        prop_assert_eq!(e.degree(), c.degree() + times);
+        same_curve(&c, &e, 1e-11)?;
+        let cl = c.clamped();
+        prop_assert!(cl.knots().is_clamped());
+        same_curve(&c, &cl, 1e-11)?;
+        if u > a && u < b {
+            let (left, right) = c.split(u).unwrap();
+            for i in 0..=20 {
+                let x = a + (u - a) * f64::from(i) / 20.0;
+                let y = u + (b - u) * f64::from(i) / 20.0;
+                prop_assert!((left.eval(x.min(u)).unwrap() - c.eval(x.min(u)).unwrap()).norm() < 1e-11 || i == 20);
+                prop_assert!((right.eval(y.min(b)).unwrap() - c.eval(y.min(b)).unwrap()).norm() < 1e-11);
+            }
+        }
+        let rev = c.reversed();
+        for i in 1..20 {
+            let x = a + (b - a) * f64::from(i) / 20.0;
+            if c.knots().multiplicity(x) == 0 {
+                prop_assert!((rev.eval(a + b - x).unwrap() - c.eval(x).unwrap()).norm() < 1e-11);
+            }
+        }
+        for seg in c.bezier_segments() {
+            let (s0, s1) = seg.domain();
+            prop_assert_eq!(seg.len(), c.degree() + 1);
+            for i in 0..=8 {
+                let x = s0 + (s1 - s0) * (0.01 + 0.98 * f64::from(i) / 8.0);
+                prop_assert!((seg.eval(x).unwrap() - c.eval(x).unwrap()).norm() < 1e-11);
+            }
+        }
+    }
+
+    #[test]
+    fn surface_structural_operations_keep_the_surface(s in surface_strategy(3, 3), t in 0.01f64..0.99, in_u: bool) {
+        let d = if in_u { Direction::U } else { Direction::V };
+        let (a, b) = s.knots(d).domain();
+        let x = a + (b - a) * ((t * 512.0).round() / 512.0);
+        if let Ok(r) = s.insert_knot(d, x, 1) {
+            same_surface(&s, &r, 1e-12)?;
+            if s.knots(d).multiplicity(x) == 0 && s.degree(d) > 0 {
+                let back = r.remove_knot(d, x, 1, 1e-9).unwrap();
+                prop_assert_eq!(back.knots(d), s.knots(d));
+                same_surface(&s, &back, 1e-9)?;
+            }
+        }
+        same_surface(&s, &s.refine(d, &[x, x]).unwrap_or_else(|_| s.clone()), 1e-12)?;
+        same_surface(&s, &s.elevate_degree(d, 2).unwrap(), 1e-11)?;
+        same_surface(&s, &s.clamped(), 1e-11)?;
+        let (left, right) = s.split(d, x).unwrap();
+        for i in 0..=6 {
+            for j in 0..=6 {
+                let along = |lo: f64, hi: f64| lo + (hi - lo) * (0.01 + 0.98 * f64::from(i) / 6.0);
+                let other = s.knots(d.other()).domain();
+                let w = other.0 + (other.1 - other.0) * f64::from(j) / 6.0;
+                for (half, lo, hi) in [(&left, a, x), (&right, x, b)] {
+                    let y = along(lo, hi);
+                    let (p, q) = match d {
+                        Direction::U => (half.eval(y, w).unwrap(), s.eval(y, w).unwrap()),
+                        Direction::V => (half.eval(w, y).unwrap(), s.eval(w, y).unwrap()),
+                    };
+                    prop_assert!((p - q).norm() < 1e-11);
+                }
+            }
+        }
+        for (a_idx, row) in s.bezier_patches().iter().enumerate() {
+            for patch in row {
+                let ((u0, u1), (v0, v1)) = patch.domain();
+                let (u, v) = ((u0 + u1) / 2.0, (v0 + v1) / 2.0);
+                prop_assert!((patch.eval(u, v).unwrap() - s.eval(u, v).unwrap()).norm() < 1e-11, "patch row {}", a_idx);
+            }
+        }
+        let tr = s.transposed();
+        prop_assert!((tr.eval(0.3, 0.6).unwrap() - s.eval(0.6, 0.3).unwrap()).norm() < 1e-14);
+        // Iso-curves are NURBS curves on the surface.
+        let cu = s.curve_at_u(0.37).unwrap();
+        let cv = s.curve_at_v(0.71).unwrap();
+        for i in 0..=10 {
+            let y = f64::from(i) / 10.0;
+            prop_assert!((cu.eval(y).unwrap() - s.eval(0.37, y).unwrap()).norm() < 1e-12);
+            prop_assert!((cv.eval(y).unwrap() - s.eval(y, 0.71).unwrap()).norm() < 1e-12);
+        }
+    }
+}
+
+/// A rational curve whose weights are all equal is its polynomial B-spline.
+#[test]
+fn equal_weights_give_the_polynomial_curve() {
+    let knots = KnotVector::new(3, vec![0.0, 0.0, 0.0, 0.0, 0.4, 1.0, 1.0, 1.0, 1.0]).unwrap();
+    let pts: Vec<Vector2<f64>> = (0..5)
+        .map(|i| Vector2::new(f64::from(i), f64::from((i * i) % 3)))
+        .collect();
+    let b = BSpline::new(knots.clone(), pts.clone()).unwrap();
+    let n = NurbsCurve::new(knots, pts, vec![2.5; 5]).unwrap();
+    assert!(n.is_polynomial());
+    assert_eq!(n.to_bspline().unwrap().control_points(), b.control_points());
+    for i in 0..=50 {
+        let u = f64::from(i) / 50.0;
+        let (dn, db) = (n.derivatives(u, 4).unwrap(), b.derivatives(u, 4).unwrap());
+        for (x, y) in dn.iter().zip(&db) {
+            assert!((x - y).norm() < 1e-12 * (1.0 + y.norm()));
+        }
+    }
+    assert_eq!(NurbsCurve::from_bspline(&b).weights(), vec![1.0; 5]);
+}
+
+/// Seed 004 (6.1): U = [0,0,0,1,1,1], W = [1,1,2] and P = (1,0), (1,1), (0,1) give
+/// C(t) = ((1 − t²)/(1 + t²), 2t/(1 + t²)); its derivatives are closed forms too.
+#[test]
+fn quarter_circle_of_the_notes() {
+    let c = NurbsCurve::from_knots(
+        2,
+        vec![0.0, 0.0, 0.0, 1.0, 1.0, 1.0],
+        vec![
+            Vector2::new(1.0, 0.0),
+            Vector2::new(1.0, 1.0),
+            Vector2::new(0.0, 1.0),
+        ],
+        vec![1.0, 1.0, 2.0],
+    )
+    .unwrap();
+    for i in 0..=100 {
+        let t = f64::from(i) / 100.0;
+        let q = 1.0 + t * t;
+        let d = c.derivatives(t, 2).unwrap();
+        assert!((d[0] - Vector2::new((1.0 - t * t) / q, 2.0 * t / q)).norm() < 1e-15);
+        assert!(
+            (d[1] - Vector2::new(-4.0 * t / (q * q), 2.0 * (1.0 - t * t) / (q * q))).norm() < 1e-14
+        );
+        let ddx = (12.0 * t * t - 4.0) / (q * q * q);
+        let ddy = (4.0 * t * t * t - 12.0 * t) / (q * q * q);
+        assert!((d[2] - Vector2::new(ddx, ddy)).norm() < 1e-13);
+        assert!((c.signed_curvature(t).unwrap() - 1.0).abs() < 1e-14);
+    }
+}
+
+#[test]
+fn bad_weights_are_errors() {
+    let knots = KnotVector::new(1, vec![0.0, 0.0, 1.0, 1.0]).unwrap();
+    let pts = vec![Vector2::new(0.0, 0.0), Vector2::new(1.0, 0.0)];
+    for w in [0.0, -1.0, f64::NAN, f64::INFINITY, -0.0] {
+        let e = NurbsCurve::new(knots.clone(), pts.clone(), vec![1.0, w]).unwrap_err();
+        assert_eq!(e.kind(), ErrorKind::InvalidWeight, "weight {w}");
+        assert!(e.message().contains("weight 1"), "{e}");
+        let e = NurbsSurface::new(
+            knots.clone(),
+            knots.clone(),
+            vec![Vector2::zeros(); 4],
+            vec![1.0, 1.0, w, 1.0],
+        )
+        .unwrap_err();
+        assert_eq!(e.kind(), ErrorKind::InvalidWeight);
+        assert!(e.message().contains("(1, 0)"), "{e}");
+        // The homogeneous form is checked too.
+        let h = BSpline::new(
+            knots.clone(),
+            vec![
+                Homogeneous::new(Vector2::zeros(), 1.0),
+                Homogeneous::new(Vector2::zeros(), w),
+            ],
+        );
+        if let Ok(h) = h {
+            assert_eq!(
+                NurbsCurve::from_homogeneous(h).unwrap_err().kind(),
+                ErrorKind::InvalidWeight
+            );
+        }
+        assert_eq!(
+            Homogeneous::from_cartesian(Vector2::new(1.0, 1.0), w)
+                .unwrap_err()
+                .kind(),
+            ErrorKind::InvalidWeight
+        );
+        // Through the exchange format.
+        let record = CurveRecord {
+            degree: 1,
+            knots: vec![0.0, 0.0, 1.0, 1.0],
+            control_points: vec![vec![0.0, 0.0], vec![1.0, 0.0]],
+            weights: Some(vec![w, 1.0]),
+        };
+        assert_eq!(
+            record.to_nurbs::<f64, 2>().unwrap_err().kind(),
+            ErrorKind::InvalidWeight
+        );
+        let record = SurfaceRecord {
+            degree: [1, 1],
+            knots: [vec![0.0, 0.0, 1.0, 1.0], vec![0.0, 0.0, 1.0, 1.0]],
+            control_points: vec![vec![vec![0.0, 0.0, 0.0]; 2]; 2],
+            weights: Some(vec![vec![1.0, 1.0], vec![1.0, w]]),
+        };
+        assert_eq!(
+            record.to_nurbs_surface::<f64, 3>().unwrap_err().kind(),
+            ErrorKind::InvalidWeight
+        );
+    }
+    // Wrong numbers of weights.
+    assert_eq!(
+        NurbsCurve::new(knots.clone(), pts.clone(), vec![1.0])
+            .unwrap_err()
+            .kind(),
+        ErrorKind::InvalidLength
+    );
+    assert_eq!(
+        NurbsSurface::new(
+            knots.clone(),
+            knots.clone(),
+            vec![Vector2::zeros(); 4],
+            vec![1.0; 3]
+        )
+        .unwrap_err()
+        .kind(),
+        ErrorKind::InvalidLength
+    );
+    let record = SurfaceRecord {
+        degree: [1, 1],
+        knots: [vec![0.0, 0.0, 1.0, 1.0], vec![0.0, 0.0, 1.0, 1.0]],
+        control_points: vec![vec![vec![0.0, 0.0, 0.0]; 2]; 2],
+        weights: Some(vec![vec![1.0, 1.0], vec![1.0]]),
+    };
+    let e = record.to_nurbs_surface::<f64, 3>().unwrap_err();
+    assert_eq!(e.kind(), ErrorKind::InvalidLength);
+    assert!(e.message().contains("weights"), "{e}");
+    // Mismatched net sizes.
+    let record = SurfaceRecord {
+        weights: None,
+        control_points: vec![vec![vec![0.0, 0.0, 0.0]; 3]; 2],
+        ..record
+    };
+    assert_eq!(
+        record.to_surface::<f64, Vector3<f64>>().unwrap_err().kind(),
+        ErrorKind::InvalidLength
+    );
+    let record = SurfaceRecord {
+        control_points: vec![vec![vec![0.0, 0.0, 0.0]; 2], vec![vec![0.0, 0.0]; 2]],
+        ..record
+    };
+    assert_eq!(
+        record.dimension().unwrap_err().kind(),
+        ErrorKind::DimensionMismatch
+    );
+    // A record with weights is not a plain surface, and serde refuses bad weights.
+    let json = r#"{"degree": [1, 1], "knots": [[0,0,1,1],[0,0,1,1]], "control_points": [[[0,0,0],[0,1,0]],[[1,0,0],[1,1,0]]], "weights": [[1,1],[1,0]]}"#;
+    assert!(
+        serde_json::from_str::<NS3>(json)
+            .unwrap_err()
+            .to_string()
+            .contains("weights must be positive")
+    );
+    assert!(serde_json::from_str::<Surface<f64, Vector3<f64>>>(json).is_err());
+}
+
+#[test]
+fn removing_an_essential_knot_is_refused() {
+    let c = NurbsCurve::from_knots(
+        1,
+        vec![0.0, 0.0, 0.5, 1.0, 1.0],
+        vec![
+            Vector2::new(0.0, 0.0),
+            Vector2::new(1.0, 1.0),
+            Vector2::new(2.0, 0.0),
+        ],
+        vec![1.0, 2.0, 1.0],
+    )
+    .unwrap();
+    let e = c.remove_knot(0.5, 1, 1e-9).unwrap_err();
+    assert_eq!(e.kind(), ErrorKind::ToleranceExceeded);
+    // With a tolerance above the true deviation the removal is accepted and the deviation is
+    // within it (the chord replaces the corner: the middle point (1, 1) moves by 1).
+    let loose = c.remove_knot_within(0.5, 1, 10.0).unwrap();
+    assert_eq!(loose.len(), 2);
+    assert!((loose.eval(0.5).unwrap() - c.eval(0.5).unwrap()).norm() <= 10.0);
+    assert_eq!(
+        c.remove_knot_within(0.5, 1, -1.0).unwrap_err().kind(),
+        ErrorKind::InvalidArgument
+    );
+    assert_eq!(
+        c.remove_knot_within(0.5, 1, f64::NAN).unwrap_err().kind(),
+        ErrorKind::InvalidArgument
+    );
+}
+
+#[test]
+fn out_of_domain_and_degenerate_tangents_are_errors() {
+    let c = NurbsCurve::from_knots(
+        1,
+        vec![0.0, 0.0, 1.0, 1.0],
+        vec![Vector2::new(1.0, 1.0); 2],
+        vec![1.0, 3.0],
+    )
+    .unwrap();
+    assert_eq!(c.eval(1.1).unwrap_err().kind(), ErrorKind::OutOfDomain);
+    assert_eq!(c.eval(f64::NAN).unwrap_err().kind(), ErrorKind::NonFinite);
+    assert_eq!(
+        c.eval_many(&[0.0, 2.0]).unwrap_err().kind(),
+        ErrorKind::OutOfDomain
+    );
+    assert_eq!(
+        c.unit_tangent(0.5).unwrap_err().kind(),
+        ErrorKind::DegenerateGeometry
+    );
+    assert_eq!(
+        c.curvature_magnitude(0.5).unwrap_err().kind(),
+        ErrorKind::DegenerateGeometry
+    );
+    assert_eq!(
+        c.signed_curvature(0.5).unwrap_err().kind(),
+        ErrorKind::DegenerateGeometry
+    );
+    let s = NurbsSurface::new(
+        c.knots().clone(),
+        c.knots().clone(),
+        vec![Vector3::zeros(); 4],
+        vec![1.0; 4],
+    )
+    .unwrap();
+    assert_eq!(
+        s.eval(0.5, -0.5).unwrap_err().kind(),
+        ErrorKind::OutOfDomain
+    );
+    let mut out = vec![Vector3::zeros(); 5];
+    assert_eq!(
+        s.derivatives_into(0.5, 0.5, 1, &mut out)
+            .unwrap_err()
+            .kind(),
+        ErrorKind::InvalidLength
+    );
+    assert_eq!(
+        s.local_properties(0.5, 0.5).unwrap_err().kind(),
+        ErrorKind::DegenerateGeometry
+    );
+}
+
+/// Evaluation and derivatives in `f32`, `f64` and dual numbers agree to the precision of
+/// the type, and structural operations work in each.
+fn nurbs_in<T: Scalar>(tol: f64) {
+    let c = |x: f64| cast::<T>(x);
+    let curve = NurbsCurve::from_knots(
+        3,
+        [0.0, 0.0, 0.0, 0.0, 0.35, 0.6, 1.0, 1.0, 1.0, 1.0]
+            .map(c)
+            .to_vec(),
+        (0..6)
+            .map(|i| {
+                SVector::<T, 3>::new(
+                    c(f64::from(i).sin()),
+                    c((f64::from(i) * 0.7).cos()),
+                    c(f64::from(i) * 0.1),
+                )
+            })
+            .collect(),
+        [1.0, 0.5, 2.0, 0.8, 1.5, 1.0].map(c).to_vec(),
+    )
+    .unwrap();
+    let reference = NurbsCurve::from_knots(
+        3,
+        vec![0.0, 0.0, 0.0, 0.0, 0.35, 0.6, 1.0, 1.0, 1.0, 1.0],
+        (0..6)
+            .map(|i| {
+                Vector3::new(
+                    f64::from(i).sin(),
+                    (f64::from(i) * 0.7).cos(),
+                    f64::from(i) * 0.1,
+                )
+            })
+            .collect(),
+        vec![1.0, 0.5, 2.0, 0.8, 1.5, 1.0],
+    )
+    .unwrap();
+    let ops = [
+        curve.insert_knot(c(0.5), 2).unwrap(),
+        curve.elevate_degree(1).unwrap(),
+        curve.refine(&[c(0.1), c(0.9)]).unwrap(),
+    ];
+    for i in 0..=20 {
+        let u = f64::from(i) / 20.0;
+        let d = curve.derivatives(c(u), 2).unwrap();
+        let r = reference.derivatives(u, 2).unwrap();
+        for k in 0..3 {
+            for j in 0..3 {
+                assert!(
+                    (to_f64(d[k][j]) - r[k][j]).abs()
+                        <= tol * (1.0 + r[k][j].abs()) * 10f64.powi(k as i32)
+                );
+            }
+        }
+        for o in &ops {
+            let p = o.eval(c(u)).unwrap();
+            for j in 0..3 {
+                assert!((to_f64(p[j]) - r[0][j]).abs() <= tol);
+            }
+        }
+    }
+}
+
+#[test]
+fn nurbs_in_f32() {
+    nurbs_in::<f32>(1e-5);
+}
+
+#[test]
+fn nurbs_in_f64() {
+    nurbs_in::<f64>(1e-14);
+}
+
+#[test]
+fn nurbs_in_dual_numbers() {
+    nurbs_in::<Dual64>(1e-14);
+}
+
+/// Dual weights: the derivative of R(u) with respect to `w_i` is `R_i(u)(P_i` − R(u)) / `w_i`
+/// (differentiating (6.3) with (6.2)).
+#[test]
+fn derivative_with_respect_to_a_weight() {
+    let knots = vec![0.0, 0.0, 0.0, 0.5, 1.0, 1.0, 1.0];
+    let pts = vec![
+        Vector2::new(0.0, 0.0),
+        Vector2::new(1.0, 2.0),
+        Vector2::new(2.0, -1.0),
+        Vector2::new(3.0, 0.5),
+    ];
+    let w = [1.0, 0.6, 1.8, 1.2];
+    let plain = NurbsCurve::from_knots(2, knots.clone(), pts.clone(), w.to_vec()).unwrap();
+    let kv = KnotVector::new(2, knots.clone()).unwrap();
+    for i in 0..4 {
+        let dual = NurbsCurve::from_knots(
+            2,
+            knots.iter().map(|&k| Dual64::from(k)).collect(),
+            pts.iter().map(|p| p.map(Dual64::from)).collect(),
+            w.iter()
+                .enumerate()
+                .map(|(j, &x)| Dual64::new(x, if i == j { 1.0 } else { 0.0 }))
+                .collect(),
+        )
+        .unwrap();
+        for s in 0..=10 {
+            let u = f64::from(s) / 10.0;
+            let r = plain.eval(u).unwrap();
+            let denom: f64 = (0..4)
+                .map(|j| w[j] * kv.basis_function(j, u).unwrap())
+                .sum();
+            let ri = w[i] * kv.basis_function(i, u).unwrap() / denom;
+            let expected = (pts[i] - r) * (ri / w[i]);
+            let got = dual.eval(Dual64::from(u)).unwrap();
+            assert!((Vector2::new(got.x.eps, got.y.eps) - expected).norm() < 1e-14);
+        }
+    }
+}
+
+#[test]
+fn records_round_trip() {
+    let c = NurbsCurve::from_knots(
+        2,
+        vec![0.0, 0.0, 0.0, 1.0, 1.0, 1.0],
+        vec![
+            Vector3::new(1.0, 0.0, 0.5),
+            Vector3::new(1.0, 1.0, 0.0),
+            Vector3::new(0.0, 1.0, -0.5),
+        ],
+        vec![1.0, 0.25, 3.0],
+    )
+    .unwrap();
+    let json = serde_json::to_value(&c).unwrap();
+    assert_eq!(json["weights"], serde_json::json!([1.0, 0.25, 3.0]));
+    assert_eq!(
+        json["control_points"][1],
+        serde_json::json!([1.0, 1.0, 0.0])
+    );
+    assert_eq!(serde_json::from_value::<N3>(json).unwrap(), c);
+    // A record without weights reads as unit weights.
+    let plain = r#"{"degree": 1, "knots": [0, 0, 1, 1], "control_points": [[0, 0], [1, 2]]}"#;
+    assert_eq!(
+        serde_json::from_str::<NurbsCurve<f64, 2>>(plain)
+            .unwrap()
+            .weights(),
+        vec![1.0, 1.0]
+    );
+    let s = NurbsSurface::extrusion(&c, Vector3::new(0.0, 0.0, 2.0)).unwrap();
+    let json = serde_json::to_value(&s).unwrap();
+    assert_eq!(json["degree"], serde_json::json!([2, 1]));
+    assert_eq!(
+        json["weights"],
+        serde_json::json!([[1.0, 1.0], [0.25, 0.25], [3.0, 3.0]])
+    );
+    let back: NS3 = serde_json::from_value(json).unwrap();
+    for (p, q) in back.control_points().iter().zip(s.control_points()) {
+        assert!((p - q).norm() < 1e-15);
+    }
+    let _: Surface<f64, Homogeneous<f64, 3>> = s.homogeneous().clone();
+}
