@@ -85,7 +85,7 @@ pub struct InsertArgs {
     /// How many times.
     #[arg(long, default_value_t = 1)]
     times: usize,
-    /// Parametric direction (surfaces only).
+    /// Parametric direction (surfaces only; default u).
     #[arg(long, value_enum)]
     direction: Option<Direction>,
 }
@@ -97,7 +97,7 @@ pub struct RefineArgs {
     /// Knots to insert, as a JSON array.
     #[arg(long)]
     knots: String,
-    /// Parametric direction (surfaces only).
+    /// Parametric direction (surfaces only; default u).
     #[arg(long, value_enum)]
     direction: Option<Direction>,
 }
@@ -115,7 +115,7 @@ pub struct RemoveArgs {
     /// Largest allowed change of the shape, relative to the size of the control polygon.
     #[arg(long, default_value_t = spline_geom::DEFAULT_REMOVAL_TOLERANCE)]
     tolerance: f64,
-    /// Parametric direction (surfaces only).
+    /// Parametric direction (surfaces only; default u).
     #[arg(long, value_enum)]
     direction: Option<Direction>,
 }
@@ -127,7 +127,7 @@ pub struct ElevateArgs {
     /// By how many degrees.
     #[arg(long, default_value_t = 1)]
     times: usize,
-    /// Parametric direction (surfaces only).
+    /// Parametric direction (surfaces only; default u).
     #[arg(long, value_enum)]
     direction: Option<Direction>,
 }
@@ -139,7 +139,7 @@ pub struct SplitArgs {
     /// The parameter U strictly inside the domain.
     #[arg(long, allow_hyphen_values = true)]
     at: f64,
-    /// Parametric direction (surfaces only).
+    /// Parametric direction (surfaces only; default u).
     #[arg(long, value_enum)]
     direction: Option<Direction>,
 }

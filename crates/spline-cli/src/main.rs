@@ -108,11 +108,15 @@ fn main() -> ExitCode {
                     ExitCode::SUCCESS
                 };
             }
+            // One line: the message and its details (e.g. the missing arguments), without usage.
             let text = e.render().to_string();
             let first = text
                 .lines()
-                .find(|l| !l.trim().is_empty())
-                .unwrap_or("invalid arguments");
+                .take_while(|l| !l.starts_with("Usage:") && !l.starts_with("For more information"))
+                .map(str::trim)
+                .filter(|l| !l.is_empty())
+                .collect::<Vec<_>>()
+                .join(" ");
             let first = first.trim_start_matches("error: ");
             eprintln!("spline: {first} (see spline --help)");
             return ExitCode::from(2);

@@ -217,10 +217,9 @@ pub fn apply_to_surface(
     direction: Option<Direction>,
 ) -> Result<Value> {
     let (surface, dim) = surface_from_value(surface)?;
-    let needs_direction = || {
-        direction.map(library_direction).ok_or_else(|| {
-            invalid("this operation on a surface needs --direction u or --direction v")
-        })
+    // The direction defaults to u, as the optional `[--direction u|v]` of the contract.
+    let needs_direction = || -> Result<spline_geom::Direction> {
+        Ok(library_direction(direction.unwrap_or(Direction::U)))
     };
     let one = |s: ToolSurface| surface_json(&s, dim);
     match operation {

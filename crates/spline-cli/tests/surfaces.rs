@@ -680,11 +680,15 @@ fn errors_are_one_line_with_status_2() {
     plain["control_points"] = json!([[[0, 0, 0], [0, 1, 0]], [[1, 0, 0], [1, 1]]]);
     let file = write(&dir, "mixed.json", &plain);
     fails(&["eval", &file, "--at", "[[0.5, 0.5]]"]);
-    // Out of the domain; operations without a direction; NURBS derivative.
+    // Out of the domain; NURBS derivative. Without --direction, operations act along u.
     plain["control_points"] = net.clone();
     let file = write(&dir, "good.json", &plain);
     fails(&["eval", &file, "--at", "[[0.5, 1.5]]"]);
-    assert!(fails(&["insert", &file, "--knot", "0.5"]).contains("--direction"));
+    let along_u = ok(&["insert", &file, "--knot", "0.5"]);
+    assert_eq!(
+        along_u,
+        ok(&["insert", &file, "--knot", "0.5", "--direction", "u"])
+    );
     fails(&["split", &file, "--at", "1.0", "--direction", "u"]);
     let file = write(
         &dir,
