@@ -6,6 +6,7 @@
 //! - `demo`: the main job — fit an airfoil shipped in `data/airfoils/`, print the result and
 //!   write `docs/airfoil.svg`.
 
+mod bench_fit;
 mod docs_curves;
 mod docs_surfaces;
 
@@ -51,6 +52,10 @@ fn main() -> ExitCode {
     let result = match args.first().map(String::as_str) {
         Some("ci") => run_ci(&root),
         Some("docs") => run_docs(&root),
+        Some("bench") => match args.get(1).map(String::as_str) {
+            Some("fit") => bench_fit::run(&root),
+            _ => Err("usage: cargo xtask bench fit".into()),
+        },
         _ => Err(usage()),
     };
     match result {

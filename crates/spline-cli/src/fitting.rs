@@ -1,14 +1,15 @@
-//! Fitting subcommands: interpolate, natural, approximate.
+//! Fitting subcommands: interpolate, natural, approximate (`docs/exchange-format.md`,
+//! "Fitting conventions").
 
-use clap::Args;
-use spline_core::{Error, ErrorKind, Result};
-
-fn not_yet(what: &str) -> Error {
-    Error::new(
-        ErrorKind::InvalidArgument,
-        format!("{what} is not supported yet"),
-    )
-}
+use crate::io::{Curve, Pt, pad, parse_arg, print_json, read_points};
+use clap::{Args, ValueEnum};
+use serde_json::{Value, json};
+use spline_core::{Error, ErrorKind, KnotVector, Result};
+use spline_fit::{
+    CorrectionOptions, CurveFit, InterpolationOptions, KnotChoice, LeastSquares, LsqMethod,
+    Parametrization, correct_parameters, interpolate_closed, natural_spline, nurbs_book_knots,
+    parametrize,
+};
 
 #[derive(Args)]
 pub struct InterpolateArgs {
@@ -17,12 +18,29 @@ pub struct InterpolateArgs {
     /// Degree p.
     #[arg(long)]
     degree: usize,
-    /// uniform, chordal, centripetal, or a JSON array of parameters.
+    /// uniform, chordal, centripetal (normalised to [0, 1]), or a JSON array of parameters
+    /// (one per point, strictly increasing; with --closed one more, for the return to the
+    /// first point).
     #[arg(long, default_value = "chordal")]
     parametrization: String,
-    /// averaging, uniform, or a JSON array of knots.
-    #[arg(long, default_value = "averaging")]
-    knots: String,
+    /// averaging (seed 004 (7.6)), uniform, nurbs-book (The NURBS Book (9.68)), or a JSON
+    /// array of knots (default: averaging). Not with --closed.
+    #[arg(long)]
+    knots: Option<String>,
+    /// Interpolate by a closed (periodic) curve through the points and back to the first
+    /// (do not repeat the first point at the end): an unclamped curve whose last p control
+    /// points repeat the first p.
+    #[arg(long)]
+    closed: bool,
+    /// First derivative at the first point, as a JSON array (adds a control point).
+    #[arg(long, value_name = "JSON")]
+    start_derivative: Option<String>,
+    /// First derivative at the last point, as a JSON array (adds a control point).
+    #[arg(long, value_name = "JSON")]
+    end_derivative: Option<String>,
+    /// Print {"curve", "params", "max_deviation", "max_index", "rms"} instead of the curve.
+    #[arg(long)]
+    report: bool,
 }
 
 #[derive(Args)]
@@ -30,9 +48,22 @@ pub struct NaturalArgs {
     /// Abscissae as a JSON array (strictly increasing).
     #[arg(long)]
     x: String,
-    /// Ordinates as a JSON array.
+    /// Ordinates as a JSON array of numbers (a function) or of arrays (a curve x ↦ y(x)).
     #[arg(long)]
     y: String,
+    /// Even order m = 2q of the natural spline (degree 2q − 1): 4 is the natural cubic
+    /// spline, 2 the broken line, 6 the natural quintic.
+    #[arg(long, default_value_t = 4)]
+    order: usize,
+}
+
+/// How the least-squares system is solved.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub enum Method {
+    /// Banded normal equations and Cholesky (fastest).
+    Normal,
+    /// Givens QR of the banded design matrix.
+    Qr,
 }
 
 #[derive(Args)]
@@ -43,30 +74,278 @@ pub struct ApproximateArgs {
     #[arg(long)]
     degree: usize,
     /// Number of control points (interior knots by The NURBS Book (9.68)).
-    #[arg(long, conflicts_with = "knots")]
+    #[arg(long, conflicts_with = "knots", required_unless_present = "knots")]
     control_points: Option<usize>,
     /// Knot vector as a JSON array.
     #[arg(long)]
     knots: Option<String>,
-    /// uniform, chordal, centripetal, or a JSON array of parameters.
+    /// uniform, chordal, centripetal (normalised to [0, 1]), or a JSON array of parameters
+    /// (one per point, non-decreasing).
     #[arg(long, default_value = "chordal")]
     parametrization: String,
-    /// Weights of the points as a JSON array.
+    /// Weights of the points as a JSON array: residual k is multiplied by w_k, as in scipy's
+    /// make_lsq_spline.
     #[arg(long)]
     weights: Option<String>,
-    /// Run parameter correction for at most ITER iterations.
+    /// Run parameter correction (seed 003) for at most ITER sweeps.
     #[arg(long, value_name = "ITER")]
     correct_parameters: Option<usize>,
+    /// Angle tolerance ε in radians of the parameter correction's stopping test
+    /// |π/2 − α| < ε.
+    #[arg(long, default_value_t = 1e-3, value_name = "EPS")]
+    angle_tolerance: f64,
+    /// Make the first and last control points the first and last points (clamped knots).
+    #[arg(long)]
+    pin_ends: bool,
+    /// Fixed control-point coordinates as a JSON array of [index, coordinate, value]
+    /// triples, e.g. '[[0,0,0],[1,0,0],[0,1,0]]' for x_0 = x_1 = y_0 = 0.
+    #[arg(long, value_name = "JSON")]
+    fix: Option<String>,
+    /// Weight λ of the smoothing term λ ∫ ‖C''‖².
+    #[arg(long, default_value_t = 0.0, value_name = "LAMBDA")]
+    smoothing: f64,
+    /// Solver for the least-squares system.
+    #[arg(long, value_enum, default_value_t = Method::Normal)]
+    method: Method,
+    /// Print {"curve", "params", "max_deviation", "max_index", "rms"} (and "correction")
+    /// instead of the curve.
+    #[arg(long)]
+    report: bool,
+}
+
+fn read_padded(path: &str) -> Result<(Vec<Pt>, usize)> {
+    let rows = read_points(path)?;
+    let dim = rows.first().map_or(0, Vec::len);
+    let points = rows.iter().map(|r| pad(r)).collect::<Result<Vec<Pt>>>()?;
+    Ok((points, dim))
+}
+
+fn parametrization(text: &str) -> Result<Parametrization<f64>> {
+    match text.trim() {
+        "uniform" => Ok(Parametrization::Uniform),
+        "chordal" => Ok(Parametrization::Chordal),
+        "centripetal" => Ok(Parametrization::Centripetal),
+        t if t.starts_with('[') => Ok(Parametrization::Given(parse_arg("--parametrization", t)?)),
+        other => Err(Error::new(
+            ErrorKind::InvalidArgument,
+            format!(
+                "--parametrization: unknown choice {other:?} (uniform, chordal, centripetal or a JSON array)"
+            ),
+        )),
+    }
+}
+
+fn knot_choice(text: &str, degree: usize) -> Result<KnotChoice<f64>> {
+    match text.trim() {
+        "averaging" => Ok(KnotChoice::Averaging),
+        "uniform" => Ok(KnotChoice::Uniform),
+        "nurbs-book" => Ok(KnotChoice::NurbsBook),
+        t if t.starts_with('[') => Ok(KnotChoice::Given(
+            KnotVector::new(degree, parse_arg("--knots", t)?).map_err(|e| e.context("--knots"))?,
+        )),
+        other => Err(Error::new(
+            ErrorKind::InvalidArgument,
+            format!(
+                "--knots: unknown choice {other:?} (averaging, uniform, nurbs-book or a JSON array)"
+            ),
+        )),
+    }
+}
+
+fn vector(option: &str, text: &str, dim: usize) -> Result<Pt> {
+    let v: Vec<f64> = parse_arg(option, text)?;
+    if v.len() != dim {
+        return Err(Error::new(
+            ErrorKind::DimensionMismatch,
+            format!(
+                "{option} has {} coordinates, the points have {dim}",
+                v.len()
+            ),
+        ));
+    }
+    pad(&v)
+}
+
+fn output(fit: &CurveFit<f64, Pt>, dim: usize, report: bool, extra: Option<Value>) -> Result<()> {
+    let record = Curve {
+        curve: fit.curve.clone(),
+        dim,
+    }
+    .to_record();
+    if !report {
+        return print_json(&record);
+    }
+    let mut value = json!({
+        "curve": record,
+        "params": fit.params,
+        "max_deviation": fit.deviation.max,
+        "max_index": fit.deviation.max_index,
+        "rms": fit.deviation.rms,
+    });
+    if let Some(extra) = extra {
+        value["correction"] = extra;
+    }
+    print_json(&value)
 }
 
 pub fn interpolate(args: &InterpolateArgs) -> Result<()> {
-    Err(not_yet(&format!("interpolate {}", args.points)))
+    let (points, dim) = read_padded(&args.points)?;
+    let parametrization = parametrization(&args.parametrization)?;
+    if args.closed {
+        if args.knots.is_some() || args.start_derivative.is_some() || args.end_derivative.is_some()
+        {
+            return Err(Error::new(
+                ErrorKind::InvalidArgument,
+                "--closed chooses its own knots and takes no end derivatives",
+            ));
+        }
+        let fit = interpolate_closed(&points, args.degree, &parametrization)?;
+        return output(&fit, dim, args.report, None);
+    }
+    let options = InterpolationOptions {
+        parametrization,
+        knots: knot_choice(args.knots.as_deref().unwrap_or("averaging"), args.degree)?,
+        start_derivative: args
+            .start_derivative
+            .as_deref()
+            .map(|t| vector("--start-derivative", t, dim))
+            .transpose()?,
+        end_derivative: args
+            .end_derivative
+            .as_deref()
+            .map(|t| vector("--end-derivative", t, dim))
+            .transpose()?,
+    };
+    let fit = spline_fit::interpolate(&points, args.degree, &options)?;
+    output(&fit, dim, args.report, None)
 }
 
-pub fn natural(_args: &NaturalArgs) -> Result<()> {
-    Err(not_yet("natural"))
+pub fn natural(args: &NaturalArgs) -> Result<()> {
+    let x: Vec<f64> = parse_arg("--x", &args.x)?;
+    let y: Value = parse_arg("--y", &args.y)?;
+    let rows: Vec<Vec<f64>> = match &y {
+        Value::Array(items) if items.iter().all(Value::is_number) => {
+            parse_arg::<Vec<f64>>("--y", &args.y)?
+                .into_iter()
+                .map(|v| vec![v])
+                .collect()
+        }
+        _ => parse_arg("--y", &args.y)?,
+    };
+    let dim = rows.first().map_or(1, Vec::len);
+    if let Some(k) = rows.iter().position(|r| r.len() != dim) {
+        return Err(Error::new(
+            ErrorKind::DimensionMismatch,
+            format!(
+                "--y: value {k} has {} coordinates, value 0 has {dim}",
+                rows[k].len()
+            ),
+        ));
+    }
+    let values = rows.iter().map(|r| pad(r)).collect::<Result<Vec<Pt>>>()?;
+    let curve = natural_spline(&x, &values, args.order)?;
+    print_json(&Curve { curve, dim }.to_record())
+}
+
+fn fixes(text: &str, dim: usize) -> Result<Vec<(usize, usize, f64)>> {
+    let triples: Vec<(f64, f64, f64)> = parse_arg("--fix", text)?;
+    triples
+        .into_iter()
+        .enumerate()
+        .map(|(k, (i, c, v))| {
+            let index = |x: f64| {
+                #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]
+                (x >= 0.0 && x.fract() == 0.0 && x < 1e15).then_some(x as usize)
+            };
+            match (index(i), index(c)) {
+                (Some(i), Some(c)) if c < dim => Ok((i, c, v)),
+                _ => Err(Error::new(
+                    ErrorKind::InvalidArgument,
+                    format!(
+                        "--fix: entry {k} must be [index, coordinate < {dim}, value] with non-negative integer index and coordinate"
+                    ),
+                )),
+            }
+        })
+        .collect()
 }
 
 pub fn approximate(args: &ApproximateArgs) -> Result<()> {
-    Err(not_yet(&format!("approximate {}", args.points)))
+    let (points, dim) = read_padded(&args.points)?;
+    let mut params = parametrize(&points, &parametrization(&args.parametrization)?)?;
+    let knots = match (&args.knots, args.control_points) {
+        (Some(text), _) => KnotVector::new(args.degree, parse_arg("--knots", text)?)
+            .map_err(|e| e.context("--knots"))?,
+        (None, Some(n)) => nurbs_book_knots(args.degree, n, &params)?,
+        (None, None) => {
+            return Err(Error::new(
+                ErrorKind::InvalidArgument,
+                "give --control-points N or --knots JSON",
+            ));
+        }
+    };
+    if !args.parametrization.trim().starts_with('[') {
+        remap(&mut params, knots.domain());
+    }
+    solve(args, &points, &params, knots, dim)
+}
+
+/// Maps parameters normalised to [0, 1] onto the domain of given knots.
+fn remap(params: &mut [f64], (a, b): (f64, f64)) {
+    if (a, b) == (0.0, 1.0) {
+        return;
+    }
+    let last = params.len().saturating_sub(1);
+    for (j, u) in params.iter_mut().enumerate() {
+        *u = if j == last { b } else { a + *u * (b - a) };
+    }
+}
+
+fn solve(
+    args: &ApproximateArgs,
+    points: &[Pt],
+    params: &[f64],
+    knots: KnotVector<f64>,
+    dim: usize,
+) -> Result<()> {
+    let weights: Option<Vec<f64>> = args
+        .weights
+        .as_deref()
+        .map(|t| parse_arg("--weights", t))
+        .transpose()?;
+    let mut problem = LeastSquares::new(points, params, knots)
+        .smoothing(args.smoothing)
+        .method(match args.method {
+            Method::Normal => LsqMethod::NormalEquations,
+            Method::Qr => LsqMethod::Qr,
+        });
+    if let Some(w) = &weights {
+        problem = problem.weights(w);
+    }
+    if args.pin_ends {
+        problem = problem.pin_ends();
+    }
+    if let Some(text) = &args.fix {
+        for (i, c, v) in fixes(text, dim)? {
+            problem = problem.fix_coordinate(i, c, v);
+        }
+    }
+    match args.correct_parameters {
+        None => output(&problem.solve()?, dim, args.report, None),
+        Some(iterations) => {
+            let options = CorrectionOptions {
+                max_iterations: iterations,
+                angle_tolerance: args.angle_tolerance,
+                ..CorrectionOptions::default()
+            };
+            let (fit, report) = correct_parameters(&problem, &options)?;
+            let extra = json!({
+                "iterations": report.iterations,
+                "converged": report.converged,
+                "angles": report.angles,
+                "errors": report.errors,
+            });
+            output(&fit, dim, args.report, Some(extra))
+        }
+    }
 }

@@ -1,0 +1,338 @@
+//! Parametrisation of data points and knot placement.
+
+use spline_core::{
+    ControlPoint, Error, ErrorKind, KnotVector, MAX_DEGREE, Result, Scalar, cast, check_params,
+    from_count, to_f64,
+};
+
+/// How parameters are assigned to the data points `Q_0 … Q_m`.
+///
+/// Named choices are normalised to `[0, 1]` (seed 004 (7.5), seed 003 TD2, The NURBS Book
+/// §9.2.1): with $d_j = \lVert Q_j - Q_{j-1} \rVert^e$,
+/// $\bar u_0 = 0$ and $\bar u_j = \sum_{i \le j} d_i / \sum_i d_i$, where `e = 0` for
+/// [`Parametrization::Uniform`] (équidistante), `e = 1` for [`Parametrization::Chordal`] and
+/// `e = ½` for [`Parametrization::Centripetal`].
+#[derive(Clone, Debug, PartialEq)]
+pub enum Parametrization<T> {
+    /// Equally spaced parameters $\bar u_j = j/m$.
+    Uniform,
+    /// Chord-length parameters (seed 004 (7.5)): spacing proportional to the distances.
+    Chordal,
+    /// Centripetal parameters (Lee 1989): spacing proportional to the square roots of the
+    /// distances.
+    Centripetal,
+    /// Parameters given by the caller: finite and non-decreasing (strictly increasing for
+    /// interpolation), one per point.
+    Given(Vec<T>),
+}
+
+impl<T> Default for Parametrization<T> {
+    /// Chord length, the default of the exchange-format contract.
+    fn default() -> Self {
+        Self::Chordal
+    }
+}
+
+/// How the knot vector of a fit is chosen.
+#[derive(Clone, Debug, PartialEq)]
+pub enum KnotChoice<T> {
+    /// Averaging of the parameters (seed 004 (7.6), (7.8); The NURBS Book (9.8)): clamped on
+    /// $[\bar u_0, \bar u_m]$ with $u_{j+p} = \frac1p \sum_{i=j}^{j+p-1} \bar u_i$. For
+    /// least squares with fewer control points than data, the same as
+    /// [`KnotChoice::NurbsBook`].
+    Averaging,
+    /// Clamped, uniformly spaced knots on $[\bar u_0, \bar u_m]$.
+    Uniform,
+    /// The data-driven placement of The NURBS Book (9.68)–(9.69), made for least squares so
+    /// that every knot span holds data: see [`nurbs_book_knots`].
+    NurbsBook,
+    /// A knot vector given by the caller.
+    Given(KnotVector<T>),
+}
+
+impl<T> Default for KnotChoice<T> {
+    /// Averaging, the default of the exchange-format contract.
+    fn default() -> Self {
+        Self::Averaging
+    }
+}
+
+/// Checks that the data points are finite and that there are at least `needed`.
+pub(crate) fn check_points<T: Scalar, P: ControlPoint<T>>(
+    points: &[P],
+    needed: usize,
+    what: &str,
+) -> Result<()> {
+    if let Some(i) = points.iter().position(|p| !p.all_finite()) {
+        return Err(Error::new(
+            ErrorKind::NonFinite,
+            format!("data point {i} is not finite"),
+        ));
+    }
+    if points.len() < needed {
+        return Err(Error::new(
+            ErrorKind::TooFewPoints,
+            format!(
+                "{what} needs at least {needed} points, got {}",
+                points.len()
+            ),
+        ));
+    }
+    Ok(())
+}
+
+/// The distances between consecutive points raised to `exponent` (1 or ½), with an error
+/// naming the first pair of coincident points.
+fn spacings<T: Scalar, P: ControlPoint<T>>(
+    points: &[P],
+    closed: bool,
+    centripetal: bool,
+    kind: &str,
+) -> Result<Vec<T>> {
+    let count = points.len();
+    let pairs = if closed { count } else { count - 1 };
+    let mut out = Vec::with_capacity(pairs);
+    for j in 0..pairs {
+        let (a, b) = (points[j], points[(j + 1) % count]);
+        let d = (b - a).length();
+        if !(d > T::zero()) {
+            let next = (j + 1) % count;
+            return Err(Error::new(
+                ErrorKind::DegenerateGeometry,
+                format!(
+                    "points {j} and {next} coincide: {kind} parameters need distinct consecutive points"
+                ),
+            ));
+        }
+        out.push(if centripetal { d.sqrt() } else { d });
+    }
+    Ok(out)
+}
+
+fn cumulative<T: Scalar>(steps: &[T]) -> Vec<T> {
+    let mut out = Vec::with_capacity(steps.len() + 1);
+    let mut sum = T::zero();
+    out.push(sum);
+    for &s in steps {
+        sum += s;
+        out.push(sum);
+    }
+    let total = sum;
+    for v in &mut out {
+        *v /= total;
+    }
+    // Exact ends despite rounding.
+    if let Some(last) = out.last_mut() {
+        *last = T::one();
+    }
+    out
+}
+
+/// Parameters for the points of an open curve (seed 004 (7.5)): `m + 1` values, normalised to
+/// `[0, 1]` for named choices, checked (finite, non-decreasing, one per point) when given.
+///
+/// ```
+/// use nalgebra::Vector2;
+/// use spline_fit::{Parametrization, parametrize};
+/// let points = [Vector2::new(0.0, 0.0), Vector2::new(1.0, 0.0), Vector2::new(1.0, 3.0)];
+/// let u: Vec<f64> = parametrize(&points, &Parametrization::Chordal)?;
+/// assert_eq!(u, vec![0.0, 0.25, 1.0]);
+/// # Ok::<(), spline_core::Error>(())
+/// ```
+///
+/// # Errors
+/// [`ErrorKind::TooFewPoints`] with fewer than two points (one point is accepted for
+/// [`Parametrization::Given`]); [`ErrorKind::NonFinite`] for NaN coordinates or parameters;
+/// [`ErrorKind::DegenerateGeometry`] when two consecutive points coincide under chordal or
+/// centripetal parameters; [`ErrorKind::InvalidLength`] when the number of given parameters
+/// differs from the number of points; [`ErrorKind::UnsortedKnots`] when given parameters
+/// decrease.
+pub fn parametrize<T: Scalar, P: ControlPoint<T>>(
+    points: &[P],
+    parametrization: &Parametrization<T>,
+) -> Result<Vec<T>> {
+    match parametrization {
+        Parametrization::Given(params) => {
+            check_points(points, 1, "a parametrisation")?;
+            check_given(params, points.len())?;
+            Ok(params.clone())
+        }
+        Parametrization::Uniform => {
+            check_points(points, 2, "a parametrisation")?;
+            let m = points.len() - 1;
+            Ok(uniform_params(m))
+        }
+        Parametrization::Chordal => {
+            check_points(points, 2, "a parametrisation")?;
+            Ok(cumulative(&spacings(points, false, false, "chordal")?))
+        }
+        Parametrization::Centripetal => {
+            check_points(points, 2, "a parametrisation")?;
+            Ok(cumulative(&spacings(points, false, true, "centripetal")?))
+        }
+    }
+}
+
+fn uniform_params<T: Scalar>(m: usize) -> Vec<T> {
+    (0..=m)
+        .map(|j| {
+            if j == m {
+                T::one()
+            } else {
+                from_count::<T>(j) / from_count::<T>(m)
+            }
+        })
+        .collect()
+}
+
+/// Parameters for the points `Q_0 … Q_{N−1}` of a closed curve: `N + 1` values, the last one
+/// for the return to `Q_0` (the closing chord counts in chordal and centripetal parameters).
+/// Named choices are normalised to `[0, 1]`; given parameters must be `N + 1` strictly
+/// increasing values.
+///
+/// # Errors
+/// As [`parametrize`]; a closed curve needs at least two distinct points.
+pub fn parametrize_closed<T: Scalar, P: ControlPoint<T>>(
+    points: &[P],
+    parametrization: &Parametrization<T>,
+) -> Result<Vec<T>> {
+    check_points(points, 2, "a closed curve")?;
+    match parametrization {
+        Parametrization::Given(params) => {
+            check_given(params, points.len() + 1)?;
+            check_strict(params)?;
+            Ok(params.clone())
+        }
+        Parametrization::Uniform => Ok(uniform_params(points.len())),
+        Parametrization::Chordal => Ok(cumulative(&spacings(points, true, false, "chordal")?)),
+        Parametrization::Centripetal => {
+            Ok(cumulative(&spacings(points, true, true, "centripetal")?))
+        }
+    }
+}
+
+/// Checks given parameters: the right number, finite, non-decreasing.
+pub(crate) fn check_given<T: Scalar>(params: &[T], expected: usize) -> Result<()> {
+    if params.len() != expected {
+        return Err(Error::new(
+            ErrorKind::InvalidLength,
+            format!("{} parameters given for {expected} points", params.len()),
+        ));
+    }
+    check_params(params)
+}
+
+/// Checks that parameters increase strictly (interpolation: two conditions at one parameter
+/// would contradict each other or repeat).
+pub(crate) fn check_strict<T: Scalar>(params: &[T]) -> Result<()> {
+    check_params(params)?;
+    if let Some(j) = (1..params.len()).find(|&j| !(params[j] > params[j - 1])) {
+        return Err(Error::new(
+            ErrorKind::UnsortedKnots,
+            format!(
+                "interpolation parameters must increase strictly: parameters {} and {j} are both {}",
+                j - 1,
+                to_f64(params[j])
+            ),
+        ));
+    }
+    Ok(())
+}
+
+/// The knots of The NURBS Book (9.68)–(9.69) for a least-squares fit with `num_control`
+/// control points of degree `p` to `m + 1` data with parameters $\bar u_0 \le … \le \bar u_m$:
+/// clamped on $[\bar u_0, \bar u_m]$ with, for `d = (m + 1)/(n − p + 1)` (`n + 1` control
+/// points), `j = ⌊i d⌋`, `α = i d − j`,
+///
+/// $$ u_{p+i} = (1 - \alpha)\, \bar u_{j-1} + \alpha\, \bar u_j, \qquad i = 1, …, n - p. $$
+///
+/// Every knot span then contains at least one parameter, so the Schoenberg–Whitney
+/// conditions hold when the parameters are distinct.
+///
+/// ```
+/// let u: Vec<f64> = (0..=10).map(|j| j as f64 / 10.0).collect();
+/// let k = spline_fit::nurbs_book_knots(2, 4, &u)?;
+/// assert_eq!(k.num_basis(), 4);
+/// assert_eq!(k.knots().len(), 7);
+/// # Ok::<(), spline_core::Error>(())
+/// ```
+///
+/// # Errors
+/// [`ErrorKind::TooFewPoints`] unless `p + 1 ≤ num_control ≤ m + 1`;
+/// [`ErrorKind::DegreeTooHigh`]; [`ErrorKind::NonFinite`] or [`ErrorKind::UnsortedKnots`]
+/// for bad parameters; [`ErrorKind::EmptyDomain`] when all parameters are equal.
+pub fn nurbs_book_knots<T: Scalar>(
+    degree: usize,
+    num_control: usize,
+    params: &[T],
+) -> Result<KnotVector<T>> {
+    check_params(params)?;
+    if degree > MAX_DEGREE {
+        return Err(Error::new(
+            ErrorKind::DegreeTooHigh,
+            format!("degree {degree} is above the supported maximum {MAX_DEGREE}"),
+        ));
+    }
+    if num_control <= degree {
+        return Err(Error::new(
+            ErrorKind::TooFewPoints,
+            format!(
+                "a degree-{degree} curve needs at least {} control points, got {num_control}",
+                degree + 1
+            ),
+        ));
+    }
+    if params.len() < num_control {
+        return Err(Error::new(
+            ErrorKind::TooFewPoints,
+            format!(
+                "{num_control} control points need at least {num_control} data points, got {}",
+                params.len()
+            ),
+        ));
+    }
+    let count = params.len(); // m + 1
+    let n = num_control - 1;
+    let (a, b) = (params[0], params[count - 1]);
+    let d = from_count::<T>(count) / from_count::<T>(n - degree + 1);
+    let interior: Vec<T> = (1..=n - degree)
+        .map(|i| {
+            let id = from_count::<T>(i) * d;
+            let j = to_f64(id).floor();
+            #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]
+            let ji = j as usize;
+            let alpha = id - cast::<T>(j);
+            let ji = ji.clamp(1, count - 1);
+            params[ji - 1] * (T::one() - alpha) + params[ji] * alpha
+        })
+        .collect();
+    let mut knots = Vec::with_capacity(num_control + degree + 1);
+    knots.extend(std::iter::repeat_n(a, degree + 1));
+    knots.extend(interior);
+    knots.extend(std::iter::repeat_n(b, degree + 1));
+    KnotVector::new(degree, knots)
+}
+
+/// The knot vector that `choice` describes for `num_control` control points and the data
+/// parameters `params` (least squares when `num_control` is below the number of data).
+pub(crate) fn knots_for<T: Scalar>(
+    choice: &KnotChoice<T>,
+    degree: usize,
+    num_control: usize,
+    params: &[T],
+) -> Result<KnotVector<T>> {
+    let (a, b) = match (params.first(), params.last()) {
+        (Some(&a), Some(&b)) => (a, b),
+        _ => return Err(Error::new(ErrorKind::TooFewPoints, "no data points")),
+    };
+    match choice {
+        KnotChoice::Given(k) => Ok(k.clone()),
+        KnotChoice::Uniform => KnotVector::clamped_uniform(degree, num_control, a, b),
+        KnotChoice::Averaging if num_control == params.len() => {
+            KnotVector::averaging(degree, params)
+        }
+        KnotChoice::Averaging | KnotChoice::NurbsBook => {
+            nurbs_book_knots(degree, num_control, params)
+        }
+    }
+}

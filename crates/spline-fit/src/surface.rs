@@ -1,0 +1,449 @@
+//! Tensor-product surfaces: interpolation of grids by two passes (seed 004 §7), least
+//! squares from grids and from scattered points.
+//!
+//! Results are plain data — two knot vectors and a row-major control net — so that any
+//! surface container can take them.
+
+// Index loops mirror the formulas (basis index ↔ control-point index).
+#![allow(clippy::needless_range_loop)]
+
+use crate::banded::BandCholesky;
+use crate::interpolate::{check_degree, interpolate_with_knots};
+use crate::lsq::LeastSquares;
+use crate::params::{KnotChoice, Parametrization, check_given, knots_for, parametrize};
+use crate::quadrature::gauss_legendre;
+use crate::report::Deviation;
+use spline_core::{
+    ControlPoint, Error, ErrorKind, KnotVector, MAX_ORDER, Result, Scalar, cast, from_count, to_f64,
+};
+
+/// A fitted tensor-product surface $S(u, v) = \sum_i \sum_j N_i(u) N_j(v) P_{ij}$.
+#[derive(Clone, Debug, PartialEq)]
+pub struct SurfaceFit<T, P> {
+    /// Knots in `u` (index `i`).
+    pub knots_u: KnotVector<T>,
+    /// Knots in `v` (index `j`).
+    pub knots_v: KnotVector<T>,
+    /// The control net, row-major: $P_{ij}$ is `control_points[i * n_v + j]`, `i` along `u`
+    /// (the exchange format's `control_points[i][j]`).
+    pub control_points: Vec<P>,
+    /// Grid fits: the `u` parameter of each grid row. Scattered fits: the `u` parameter of
+    /// each point.
+    pub params_u: Vec<T>,
+    /// Grid fits: the `v` parameter of each grid column. Scattered fits: the `v` parameter of
+    /// each point.
+    pub params_v: Vec<T>,
+    /// Distances of the data from the surface (grid points in row-major order).
+    pub deviation: Deviation<T>,
+}
+
+impl<T: Scalar, P: ControlPoint<T>> SurfaceFit<T, P> {
+    /// The point $S(u, v)$.
+    ///
+    /// # Errors
+    /// [`ErrorKind::NonFinite`] or [`ErrorKind::OutOfDomain`].
+    pub fn eval(&self, u: T, v: T) -> Result<P> {
+        eval_net(&self.knots_u, &self.knots_v, &self.control_points, u, v)
+    }
+}
+
+fn eval_net<T: Scalar, P: ControlPoint<T>>(
+    ku: &KnotVector<T>,
+    kv: &KnotVector<T>,
+    net: &[P],
+    u: T,
+    v: T,
+) -> Result<P> {
+    let (su, sv) = (ku.find_span(u)?, kv.find_span(v)?);
+    let (p, q) = (ku.degree(), kv.degree());
+    let nv = kv.num_basis();
+    let mut bu = [T::zero(); MAX_ORDER];
+    let mut bv = [T::zero(); MAX_ORDER];
+    ku.basis_values(su, u, &mut bu);
+    kv.basis_values(sv, v, &mut bv);
+    let mut acc = P::origin();
+    for a in 0..=p {
+        let row = (su - p + a) * nv;
+        let mut inner = P::origin();
+        for b in 0..=q {
+            inner += net[row + sv - q + b] * bv[b];
+        }
+        acc += inner * bu[a];
+    }
+    Ok(acc)
+}
+
+fn check_grid<T: Scalar, P: ControlPoint<T>>(grid: &[P], rows: usize, cols: usize) -> Result<()> {
+    if rows * cols != grid.len() || rows < 2 || cols < 2 {
+        return Err(Error::new(
+            ErrorKind::InvalidLength,
+            format!(
+                "a grid of {rows} × {cols} points (at least 2 × 2) needs {} points, got {}",
+                rows * cols,
+                grid.len()
+            ),
+        ));
+    }
+    if let Some(k) = grid.iter().position(|p| !p.all_finite()) {
+        return Err(Error::new(
+            ErrorKind::NonFinite,
+            format!("grid point ({}, {}) is not finite", k / cols, k % cols),
+        ));
+    }
+    Ok(())
+}
+
+/// Parameters of a grid $Q_{kl}$ (`rows × cols`, row-major, `k` along `u`) by The NURBS
+/// Book A9.3: the `u` parameters average those of the columns $Q_{\cdot l}$, the `v`
+/// parameters those of the rows, skipping degenerate lines (all points equal, as at a
+/// pole). Given parameters are checked and returned.
+///
+/// # Errors
+/// [`ErrorKind::InvalidLength`] for a malformed grid or wrong number of given parameters;
+/// [`ErrorKind::NonFinite`]; [`ErrorKind::DegenerateGeometry`] when every line of a
+/// direction is degenerate or when a line has coincident consecutive points under chordal
+/// or centripetal parameters.
+pub fn surface_grid_params<T: Scalar, P: ControlPoint<T>>(
+    grid: &[P],
+    rows: usize,
+    cols: usize,
+    param_u: &Parametrization<T>,
+    param_v: &Parametrization<T>,
+) -> Result<(Vec<T>, Vec<T>)> {
+    check_grid(grid, rows, cols)?;
+    let averaged = |count: usize,
+                    lines: usize,
+                    line: &dyn Fn(usize) -> Vec<P>,
+                    kind: &Parametrization<T>|
+     -> Result<Vec<T>> {
+        if let Parametrization::Given(u) = kind {
+            check_given(u, count)?;
+            return Ok(u.clone());
+        }
+        let mut sum = vec![T::zero(); count];
+        let mut used = 0usize;
+        for l in 0..lines {
+            let pts = line(l);
+            if pts.windows(2).all(|w| w[0] == w[1]) {
+                continue;
+            }
+            let params = parametrize(&pts, kind)?;
+            for (s, u) in sum.iter_mut().zip(params) {
+                *s += u;
+            }
+            used += 1;
+        }
+        if used == 0 {
+            return Err(Error::new(
+                ErrorKind::DegenerateGeometry,
+                "every grid line of one direction is a single point",
+            ));
+        }
+        let inv = T::one() / from_count::<T>(used);
+        let mut out: Vec<T> = sum.into_iter().map(|s| s * inv).collect();
+        out[0] = T::zero();
+        out[count - 1] = T::one();
+        Ok(out)
+    };
+    let column = |l: usize| (0..rows).map(|k| grid[k * cols + l]).collect::<Vec<P>>();
+    let row = |k: usize| grid[k * cols..(k + 1) * cols].to_vec();
+    let u = averaged(rows, cols, &column, param_u)?;
+    let v = averaged(cols, rows, &row, param_v)?;
+    Ok((u, v))
+}
+
+fn grid_deviation<T: Scalar, P: ControlPoint<T>>(
+    fit_u: &KnotVector<T>,
+    fit_v: &KnotVector<T>,
+    net: &[P],
+    grid: &[P],
+    u: &[T],
+    v: &[T],
+) -> Result<Deviation<T>> {
+    let mut d = Vec::with_capacity(grid.len());
+    for (k, &uk) in u.iter().enumerate() {
+        for (l, &vl) in v.iter().enumerate() {
+            d.push((eval_net(fit_u, fit_v, net, uk, vl)? - grid[k * v.len() + l]).length());
+        }
+    }
+    Ok(Deviation::from_distances(d))
+}
+
+/// The surface of degrees `(p, q)` through the grid $Q_{kl}$ (`rows × cols` points,
+/// row-major, `k` along `u`), by the two passes of seed 004 §7: curves $R_l$ through each
+/// column along `u`, then curves through the rows of their control points along `v`.
+/// Knots average the parameters (seed 004 (7.6)) in each direction; parameters by
+/// [`surface_grid_params`]. Each pass solves banded systems in `O(n p²)` per line.
+///
+/// ```
+/// use nalgebra::Vector3;
+/// use spline_fit::{Parametrization, interpolate_surface};
+/// let grid: Vec<Vector3<f64>> = (0..4)
+///     .flat_map(|k| (0..5).map(move |l| {
+///         let (x, y) = (k as f64, l as f64);
+///         Vector3::new(x, y, (x * 0.5).sin() * (y * 0.4).cos())
+///     }))
+///     .collect();
+/// let fit = interpolate_surface(&grid, 4, 5, 3, 3, &Parametrization::Chordal, &Parametrization::Chordal)?;
+/// assert!(fit.deviation.max < 1e-12);
+/// # Ok::<(), spline_core::Error>(())
+/// ```
+///
+/// # Errors
+/// [`ErrorKind::TooFewPoints`] unless `rows > p` and `cols > q`; the errors of
+/// [`surface_grid_params`] and [`crate::interpolate_with_knots`].
+pub fn interpolate_surface<T: Scalar, P: ControlPoint<T>>(
+    grid: &[P],
+    rows: usize,
+    cols: usize,
+    degree_u: usize,
+    degree_v: usize,
+    param_u: &Parametrization<T>,
+    param_v: &Parametrization<T>,
+) -> Result<SurfaceFit<T, P>> {
+    check_degree(degree_u)?;
+    check_degree(degree_v)?;
+    check_grid(grid, rows, cols)?;
+    if rows <= degree_u || cols <= degree_v {
+        return Err(Error::new(
+            ErrorKind::TooFewPoints,
+            format!(
+                "a surface of degrees ({degree_u}, {degree_v}) needs at least {} × {} points, got {rows} × {cols}",
+                degree_u + 1,
+                degree_v + 1
+            ),
+        ));
+    }
+    let (u, v) = surface_grid_params(grid, rows, cols, param_u, param_v)?;
+    let ku = KnotVector::averaging(degree_u, &u)?;
+    let kv = KnotVector::averaging(degree_v, &v)?;
+    two_passes(grid, rows, cols, &u, &v, &ku, &kv, &|k, params, pts| {
+        Ok(interpolate_with_knots(k, params, pts)?.into_parts().1)
+    })
+}
+
+/// Fits the control points of one grid line on the given knots.
+type LineSolver<'a, T, P> = &'a dyn Fn(&KnotVector<T>, &[T], &[P]) -> Result<Vec<P>>;
+
+#[allow(clippy::too_many_arguments)]
+fn two_passes<T: Scalar, P: ControlPoint<T>>(
+    grid: &[P],
+    rows: usize,
+    cols: usize,
+    u: &[T],
+    v: &[T],
+    ku: &KnotVector<T>,
+    kv: &KnotVector<T>,
+    solve: LineSolver<'_, T, P>,
+) -> Result<SurfaceFit<T, P>> {
+    let (nu, nv) = (ku.num_basis(), kv.num_basis());
+    // Pass 1: along u for every column l: R[i][l].
+    let mut r = vec![P::origin(); nu * cols];
+    for l in 0..cols {
+        let column: Vec<P> = (0..rows).map(|k| grid[k * cols + l]).collect();
+        let ctrl = solve(ku, u, &column).map_err(|e| e.context(format_args!("grid column {l}")))?;
+        for (i, c) in ctrl.into_iter().enumerate() {
+            r[i * cols + l] = c;
+        }
+    }
+    // Pass 2: along v for every row i of R.
+    let mut net = vec![P::origin(); nu * nv];
+    for i in 0..nu {
+        let ctrl = solve(kv, v, &r[i * cols..(i + 1) * cols])
+            .map_err(|e| e.context(format_args!("control row {i}")))?;
+        net[i * nv..(i + 1) * nv].copy_from_slice(&ctrl);
+    }
+    let deviation = grid_deviation(ku, kv, &net, grid, u, v)?;
+    Ok(SurfaceFit {
+        knots_u: ku.clone(),
+        knots_v: kv.clone(),
+        control_points: net,
+        params_u: u.to_vec(),
+        params_v: v.to_vec(),
+        deviation,
+    })
+}
+
+/// Least-squares surface of degrees `(p, q)` with `num_u × num_v` control points for a grid
+/// of `rows × cols` points: with the product structure of the data the least-squares
+/// problem separates, and two passes of curve least squares (along `u`, then along `v`)
+/// give its exact solution. Knots by The NURBS Book (9.68) on the averaged parameters.
+///
+/// # Errors
+/// [`ErrorKind::TooFewPoints`] unless `p < num_u ≤ rows` and `q < num_v ≤ cols`; the errors
+/// of [`surface_grid_params`] and [`LeastSquares::solve`].
+#[allow(clippy::too_many_arguments)]
+pub fn approximate_surface_grid<T: Scalar, P: ControlPoint<T>>(
+    grid: &[P],
+    rows: usize,
+    cols: usize,
+    degree_u: usize,
+    degree_v: usize,
+    num_u: usize,
+    num_v: usize,
+    param_u: &Parametrization<T>,
+    param_v: &Parametrization<T>,
+) -> Result<SurfaceFit<T, P>> {
+    check_degree(degree_u)?;
+    check_degree(degree_v)?;
+    check_grid(grid, rows, cols)?;
+    if num_u <= degree_u || num_v <= degree_v || num_u > rows || num_v > cols {
+        return Err(Error::new(
+            ErrorKind::TooFewPoints,
+            format!(
+                "{num_u} × {num_v} control points of degrees ({degree_u}, {degree_v}) need {} ≤ num_u ≤ {rows} and {} ≤ num_v ≤ {cols}",
+                degree_u + 1,
+                degree_v + 1
+            ),
+        ));
+    }
+    let (u, v) = surface_grid_params(grid, rows, cols, param_u, param_v)?;
+    let ku = knots_for(&KnotChoice::NurbsBook, degree_u, num_u, &u)?;
+    let kv = knots_for(&KnotChoice::NurbsBook, degree_v, num_v, &v)?;
+    two_passes(grid, rows, cols, &u, &v, &ku, &kv, &|k, params, pts| {
+        LeastSquares::new(pts, params, k.clone()).control_points()
+    })
+}
+
+/// Least-squares surface on the knots `knots_u × knots_v` for scattered points $Q_k$ with
+/// parameters $(u_k, v_k)$: minimises
+///
+/// $$ \sum_k \lVert S(u_k, v_k) - Q_k \rVert^2
+///    + \lambda \iint \lVert S_{uu} \rVert^2 + 2 \lVert S_{uv} \rVert^2 + \lVert S_{vv} \rVert^2 $$
+///
+/// by banded normal equations in the row-major unknowns (half-bandwidth `p n_v + q`) and
+/// banded Cholesky; the thin-plate term (exact Gauss–Legendre quadrature on each cell) lets
+/// the data leave cells empty when `λ > 0`.
+///
+/// # Errors
+/// [`ErrorKind::InvalidLength`] if parameters and points differ in number;
+/// [`ErrorKind::NonFinite`]; [`ErrorKind::OutOfDomain`]; [`ErrorKind::InvalidArgument`] for a
+/// negative `λ`; [`ErrorKind::SingularSystem`] naming a control point the data do not
+/// determine (add data there or smoothing).
+pub fn approximate_surface_scattered<T: Scalar, P: ControlPoint<T>>(
+    params: &[(T, T)],
+    points: &[P],
+    knots_u: &KnotVector<T>,
+    knots_v: &KnotVector<T>,
+    smoothing: T,
+) -> Result<SurfaceFit<T, P>> {
+    if params.len() != points.len() || points.is_empty() {
+        return Err(Error::new(
+            ErrorKind::InvalidLength,
+            format!(
+                "{} parameter pairs for {} points (need one per point, at least one)",
+                params.len(),
+                points.len()
+            ),
+        ));
+    }
+    if let Some(k) = points.iter().position(|p| !p.all_finite()) {
+        return Err(Error::new(
+            ErrorKind::NonFinite,
+            format!("data point {k} is not finite"),
+        ));
+    }
+    if !(smoothing >= T::zero() && smoothing.is_finite()) {
+        return Err(Error::new(
+            ErrorKind::InvalidArgument,
+            format!(
+                "the smoothing weight must be finite and non-negative, got {}",
+                to_f64(smoothing)
+            ),
+        ));
+    }
+    for (k, &(u, v)) in params.iter().enumerate() {
+        knots_u
+            .check_param(u)
+            .and_then(|()| knots_v.check_param(v))
+            .map_err(|e| e.context(format_args!("point {k}")))?;
+    }
+    let (p, q) = (knots_u.degree(), knots_v.degree());
+    let (nu, nv) = (knots_u.num_basis(), knots_v.num_basis());
+    let bw = p * nv + q;
+    let mut matrix = BandCholesky::zeros(nu * nv, bw);
+    let mut rhs = vec![P::origin(); nu * nv];
+    let mut idx = Vec::with_capacity((p + 1) * (q + 1));
+    let mut val = Vec::with_capacity((p + 1) * (q + 1));
+    let mut add_row = |idx: &[usize], val: &[T], target: P, w2: T| {
+        for (a, (&ia, &va)) in idx.iter().zip(val).enumerate() {
+            let s = va * w2;
+            rhs[ia] += target * s;
+            for (&ib, &vb) in idx[..=a].iter().zip(&val[..=a]) {
+                let (hi, lo) = if ia >= ib { (ia, ib) } else { (ib, ia) };
+                matrix.add_lower(hi, lo, s * vb);
+            }
+        }
+    };
+    let mut bu = [T::zero(); 3 * MAX_ORDER];
+    let mut bv = [T::zero(); 3 * MAX_ORDER];
+    for (&(u, v), &point) in params.iter().zip(points) {
+        let (su, sv) = (knots_u.span_in_domain(u), knots_v.span_in_domain(v));
+        knots_u.basis_values(su, u, &mut bu);
+        knots_v.basis_values(sv, v, &mut bv);
+        idx.clear();
+        val.clear();
+        for a in 0..=p {
+            for b in 0..=q {
+                idx.push((su - p + a) * nv + sv - q + b);
+                val.push(bu[a] * bv[b]);
+            }
+        }
+        add_row(&idx, &val, point, T::one());
+    }
+    if smoothing > T::zero() {
+        let count = p.max(q) + 1;
+        let rule = gauss_legendre::<T>(count);
+        let half: T = cast(0.5);
+        let two: T = cast(2.0);
+        let (ku, kv) = (knots_u.knots(), knots_v.knots());
+        for su in p..nu {
+            if !(ku[su] < ku[su + 1]) {
+                continue;
+            }
+            let (mu, ru) = ((ku[su] + ku[su + 1]) * half, (ku[su + 1] - ku[su]) * half);
+            for sv in q..nv {
+                if !(kv[sv] < kv[sv + 1]) {
+                    continue;
+                }
+                let (mv, rv) = ((kv[sv] + kv[sv + 1]) * half, (kv[sv + 1] - kv[sv]) * half);
+                for &(x, wx) in &rule {
+                    let u = mu + ru * x;
+                    knots_u.basis_derivatives(su, u, 2, &mut bu[..3 * (p + 1)]);
+                    for &(y, wy) in &rule {
+                        let v = mv + rv * y;
+                        knots_v.basis_derivatives(sv, v, 2, &mut bv[..3 * (q + 1)]);
+                        let w = smoothing * wx * wy * ru * rv;
+                        for (du, dv, factor) in [(2, 0, T::one()), (1, 1, two), (0, 2, T::one())] {
+                            idx.clear();
+                            val.clear();
+                            for a in 0..=p {
+                                for b in 0..=q {
+                                    idx.push((su - p + a) * nv + sv - q + b);
+                                    val.push(bu[du * (p + 1) + a] * bv[dv * (q + 1) + b]);
+                                }
+                            }
+                            add_row(&idx, &val, P::origin(), w * factor);
+                        }
+                    }
+                }
+            }
+        }
+    }
+    debug_assert_eq!(matrix.bandwidth(), bw);
+    matrix.factor(&|k| format!("control point ({}, {})", k / nv, k % nv))?;
+    matrix.solve(&mut rhs);
+    let distances = params
+        .iter()
+        .zip(points)
+        .map(|(&(u, v), q)| Ok((eval_net(knots_u, knots_v, &rhs, u, v)? - *q).length()))
+        .collect::<Result<Vec<T>>>()?;
+    Ok(SurfaceFit {
+        knots_u: knots_u.clone(),
+        knots_v: knots_v.clone(),
+        control_points: rhs,
+        params_u: params.iter().map(|&(u, _)| u).collect(),
+        params_v: params.iter().map(|&(_, v)| v).collect(),
+        deviation: Deviation::from_distances(distances),
+    })
+}
