@@ -14,14 +14,6 @@ pub struct BasisValues<T> {
     values: [T; MAX_ORDER],
 }
 
-/// Reciprocal knot differences per span (see [`KnotVector::reciprocal_table`]).
-#[derive(Clone, Debug)]
-pub struct ReciprocalTable<T> {
-    degree: usize,
-    per_span: usize,
-    data: Vec<T>,
-}
-
 impl<T: Scalar> BasisValues<T> {
     /// The knot span `k` (`u_k ≤ u < u_{k+1}`).
     #[inline]
@@ -64,13 +56,7 @@ impl<T: Scalar> KnotVector<T> {
         for j in 1..=p {
             left[j] = u - knots[span + 1 - j];
             right[j] = knots[span + j] - u;
-            let mut saved = T::zero();
-            for r in 0..j {
-                let temp = out[r] / (right[r + 1] + left[j - r]);
-                out[r] = saved + right[r + 1] * temp;
-                saved = left[j - r] * temp;
-            }
-            out[j] = saved;
+            triangle_step(j, &left, &right, out);
         }
     }
 
@@ -97,13 +83,7 @@ impl<T: Scalar> KnotVector<T> {
         for j in 1..N {
             left[j] = u - knots[N - j];
             right[j] = knots[N - 1 + j] - u;
-            let mut saved = T::zero();
-            for r in 0..j {
-                let temp = out[r] / (right[r + 1] + left[j - r]);
-                out[r] = saved + right[r + 1] * temp;
-                saved = left[j - r] * temp;
-            }
-            out[j] = saved;
+            triangle_step(j, &left, &right, &mut out);
         }
         out
     }
@@ -131,85 +111,11 @@ impl<T: Scalar> KnotVector<T> {
         for j in 1..N {
             left[j] = u - knots[N - j];
             right[j] = knots[N - 1 + j] - u;
-            let mut saved = T::zero();
-            for r in 0..j {
-                let temp = rows[j - 1][r] / (right[r + 1] + left[j - r]);
-                rows[j][r] = saved + right[r + 1] * temp;
-                saved = left[j - r] * temp;
-            }
-            rows[j][j] = saved;
+            let mut row = rows[j - 1];
+            triangle_step(j, &left, &right, &mut row);
+            rows[j] = row;
         }
         rows
-    }
-
-    /// The reciprocal knot differences that the triangular scheme divides by, for every span:
-    /// with them [`KnotVector::basis_values_fixed_with`] needs no division. Worth building
-    /// when many parameters are evaluated on the same knots.
-    #[must_use]
-    pub fn reciprocal_table(&self) -> ReciprocalTable<T> {
-        let p = self.degree();
-        let per_span = p * (p + 1) / 2;
-        let n = self.num_basis();
-        let knots = self.knots();
-        let mut data = vec![T::zero(); (n - p) * per_span];
-        for span in p..n {
-            if knots[span] == knots[span + 1] {
-                continue;
-            }
-            let row = &mut data[(span - p) * per_span..(span - p + 1) * per_span];
-            let mut idx = 0;
-            for j in 1..=p {
-                for r in 0..j {
-                    row[idx] = T::one() / (knots[span + r + 1] - knots[span + 1 + r - j]);
-                    idx += 1;
-                }
-            }
-        }
-        ReciprocalTable {
-            degree: p,
-            per_span,
-            data,
-        }
-    }
-
-    /// [`KnotVector::basis_values_fixed`] with the divisions replaced by the precomputed
-    /// reciprocals of `table` (built from this knot vector).
-    ///
-    /// # Panics
-    /// If `N != p + 1`, `span` is invalid, or `table` belongs to another degree.
-    #[inline]
-    #[must_use]
-    pub fn basis_values_fixed_with<const N: usize>(
-        &self,
-        span: usize,
-        u: T,
-        table: &ReciprocalTable<T>,
-    ) -> [T; N] {
-        assert!(
-            N == self.degree() + 1 && table.degree == self.degree(),
-            "degree mismatch"
-        );
-        let p = N - 1;
-        let knots = &self.knots()[span + 1 - N..=span + N - 1];
-        let recips = &table.data[(span - p) * table.per_span..(span - p + 1) * table.per_span];
-        let mut out = [T::zero(); N];
-        let mut left = [T::zero(); N];
-        let mut right = [T::zero(); N];
-        out[0] = T::one();
-        let mut idx = 0;
-        for j in 1..N {
-            left[j] = u - knots[N - j];
-            right[j] = knots[N - 1 + j] - u;
-            let mut saved = T::zero();
-            for r in 0..j {
-                let temp = out[r] * recips[idx];
-                idx += 1;
-                out[r] = saved + right[r + 1] * temp;
-                saved = left[j - r] * temp;
-            }
-            out[j] = saved;
-        }
-        out
     }
 
     /// The non-zero basis functions at `u`, with their span.
@@ -269,13 +175,7 @@ impl<T: Scalar> KnotVector<T> {
         for j in 1..=p {
             left[j] = u - knots[span + 1 - j];
             right[j] = knots[span + j] - u;
-            let mut saved = T::zero();
-            for r in 0..j {
-                let temp = n[r] / (right[r + 1] + left[j - r]);
-                n[r] = saved + right[r + 1] * temp;
-                saved = left[j - r] * temp;
-            }
-            n[j] = saved;
+            triangle_step(j, &left, &right, &mut n);
             if p - j <= top {
                 let row = p - j;
                 out[row * width..row * width + j + 1].copy_from_slice(&n[..=j]);
@@ -384,6 +284,123 @@ impl<T: Scalar> KnotVector<T> {
         } else {
             T::zero()
         })
+    }
+}
+
+/// One degree of the triangular scheme (seed 000 (1), The NURBS Book A2.2): turns the `j`
+/// basis functions of degree `j − 1` in `out[..j]` into the `j + 1` of degree `j`, written
+/// with the weight $\alpha = \frac{u_{k+r+1} - u}{u_{k+r+1} - u_{k+r+1-j}}$ so that at a
+/// knot one weight is exactly 1 and the other exactly 0: a clamped curve returns exactly its
+/// end control points, and values stay a partition of unity to rounding.
+#[inline(always)]
+fn triangle_step<T: Scalar>(j: usize, left: &[T], right: &[T], out: &mut [T]) {
+    let mut saved = T::zero();
+    for r in 0..j {
+        let alpha = right[r + 1] / (right[r + 1] + left[j - r]);
+        let temp = out[r];
+        out[r] = saved + alpha * temp;
+        saved = temp - alpha * temp;
+    }
+    out[j] = saved;
+}
+
+/// The largest degree whose reciprocal knot differences [`SpanBasis`] keeps.
+const SPAN_CACHE_DEGREE: usize = 7;
+
+/// An evaluator of basis functions for many parameters that visit spans in order (batches of
+/// sorted parameters, collocation and least-squares matrices). It keeps the reciprocals of the
+/// knot differences of its current span, updated incrementally when the span moves one step
+/// right, so that a parameter costs a few multiplications instead of `p(p + 1)/2` divisions.
+/// Parameters exactly on a knot take the exact division-based route, so clamped ends are
+/// exact. Degrees above 7 always take that route.
+///
+/// ```
+/// use spline_core::{KnotVector, SpanBasis};
+/// let knots = KnotVector::new(2, vec![0.0, 0.0, 0.0, 0.5, 1.0, 1.0, 1.0])?;
+/// let mut basis = SpanBasis::new();
+/// let mut values = [0.0; 3];
+/// for u in [0.1, 0.2, 0.6, 1.0] {
+///     let span = knots.find_span(u)?;
+///     basis.eval(&knots, span, u, &mut values);
+///     assert!((values.iter().sum::<f64>() - 1.0).abs() < 1e-15);
+/// }
+/// assert_eq!(values, [0.0, 0.0, 1.0]); // exactly the last function at the end
+/// # Ok::<(), spline_core::Error>(())
+/// ```
+#[derive(Clone, Debug)]
+pub struct SpanBasis<T> {
+    span: usize,
+    /// `inverse[j (j − 1)/2 + r]` $= 1/(u_{s+r+1} - u_{s+1-j+r})$, `j = 1 … p`, `r < j`.
+    inverse: [T; SPAN_CACHE_DEGREE * (SPAN_CACHE_DEGREE + 1) / 2],
+}
+
+impl<T: Scalar> Default for SpanBasis<T> {
+    fn default() -> Self {
+        Self::new()
+    }
+}
+
+impl<T: Scalar> SpanBasis<T> {
+    /// An evaluator with no span cached yet.
+    #[must_use]
+    pub fn new() -> Self {
+        Self {
+            span: usize::MAX,
+            inverse: [T::zero(); SPAN_CACHE_DEGREE * (SPAN_CACHE_DEGREE + 1) / 2],
+        }
+    }
+
+    /// The `p + 1` basis functions non-zero in `span` at `u` into `out[..p + 1]`, as
+    /// [`KnotVector::basis_values`] computes them.
+    ///
+    /// # Panics
+    /// If `out` is shorter than `p + 1` or `span` is not a valid span of `knots`.
+    #[inline]
+    pub fn eval(&mut self, knots: &KnotVector<T>, span: usize, u: T, out: &mut [T]) {
+        let p = knots.degree();
+        let k = knots.knots();
+        if p > SPAN_CACHE_DEGREE || u == k[span] || u == k[span + 1] {
+            knots.basis_values(span, u, out);
+            return;
+        }
+        if span != self.span {
+            if span == self.span.wrapping_add(1) {
+                // One span to the right: every row shifts by one and gains one reciprocal.
+                let mut idx = 0;
+                for j in 1..=p {
+                    self.inverse.copy_within(idx + 1..idx + j, idx);
+                    self.inverse[idx + j - 1] = T::one() / (k[span + j] - k[span]);
+                    idx += j;
+                }
+            } else {
+                let mut idx = 0;
+                for j in 1..=p {
+                    for r in 0..j {
+                        self.inverse[idx] = T::one() / (k[span + r + 1] - k[span + 1 + r - j]);
+                        idx += 1;
+                    }
+                }
+            }
+            self.span = span;
+        }
+        let mut left = [T::zero(); SPAN_CACHE_DEGREE + 1];
+        let mut right = [T::zero(); SPAN_CACHE_DEGREE + 1];
+        let out = &mut out[..=p];
+        out[0] = T::one();
+        let mut idx = 0;
+        for j in 1..=p {
+            left[j] = u - k[span + 1 - j];
+            right[j] = k[span + j] - u;
+            let mut saved = T::zero();
+            for r in 0..j {
+                let alpha = right[r + 1] * self.inverse[idx + r];
+                let temp = out[r];
+                out[r] = saved + alpha * temp;
+                saved = temp - alpha * temp;
+            }
+            out[j] = saved;
+            idx += j;
+        }
     }
 }
 

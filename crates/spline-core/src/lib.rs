@@ -16,18 +16,21 @@
 //! ```
 //!
 //! # Feature flags
-//! - `proptest-support`: exports proptest strategies for knot vectors in [`strategies`].
+//! - `proptest-support`: exports proptest strategies for knot vectors in the `strategies`
+//!   module.
 
 mod basis;
 mod error;
 mod knots;
 mod point;
+mod quadrature;
 mod scalar;
 #[cfg(feature = "proptest-support")]
 pub mod strategies;
 
-pub use basis::{BasisValues, ReciprocalTable, bernstein, bernstein_all, binomial};
+pub use basis::{BasisValues, SpanBasis, bernstein, bernstein_all, binomial};
 pub use error::{Error, ErrorKind, Result};
 pub use knots::{KnotVector, MAX_DEGREE, MAX_ORDER, check_params};
 pub use point::{ControlPoint, lerp};
+pub use quadrature::gauss_legendre;
 pub use scalar::{Scalar, cast, from_count, to_f64};

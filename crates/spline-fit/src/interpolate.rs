@@ -1,15 +1,15 @@
 //! Interpolation of points by B-spline curves and functions (seed 004 §7).
 
 use crate::banded::{BandLu, Staircase};
-use crate::basis::BasisEval;
+
 use crate::params::{
     KnotChoice, Parametrization, check_points, check_strict, knots_for, parametrize,
     parametrize_closed,
 };
 use crate::report::CurveFit;
 use spline_core::{
-    ControlPoint, Error, ErrorKind, KnotVector, MAX_DEGREE, MAX_ORDER, Result, Scalar, cast,
-    from_count, to_f64,
+    ControlPoint, Error, ErrorKind, KnotVector, MAX_DEGREE, MAX_ORDER, Result, Scalar, SpanBasis,
+    cast, from_count, to_f64,
 };
 use spline_geom::BSpline;
 
@@ -275,7 +275,7 @@ pub fn interpolate_with_knots<T: Scalar, P: ControlPoint<T>>(
     let mut system = Staircase::with_capacity(n, width);
     let mut row = [T::zero(); MAX_ORDER];
     let mut span = p;
-    let mut basis = BasisEval::new();
+    let mut basis = SpanBasis::new();
     let mut previous = a;
     for (i, (&u, &q)) in params.iter().zip(points).enumerate() {
         if !(u >= a && u <= b && (u > previous || i == 0) && q.all_finite()) {
@@ -324,7 +324,6 @@ fn collocation_kernel_inner<T: Scalar, P: ControlPoint<T>, const W: usize>(
 ) -> std::result::Result<Vec<P>, KernelError> {
     let p = W - 1;
     let n = params.len();
-    let k = knots.knots();
     let (a, b) = knots.domain();
     let tiny = T::default_epsilon() * from_count::<T>(4 * W);
     let mut first: Vec<u32> = Vec::with_capacity(n);
@@ -338,22 +337,7 @@ fn collocation_kernel_inner<T: Scalar, P: ControlPoint<T>, const W: usize>(
         }
         previous = u;
         span = knots.span_in_domain_from(u, span);
-        // Cox–de Boor (The NURBS Book A2.2).
-        let mut left = [T::zero(); W];
-        let mut right = [T::zero(); W];
-        let mut row = [T::zero(); W];
-        row[0] = T::one();
-        for j in 1..W {
-            left[j] = u - k[span + 1 - j];
-            right[j] = k[span + j] - u;
-            let mut saved = T::zero();
-            for r in 0..j {
-                let temp = row[r] / (right[r + 1] + left[j - r]);
-                row[r] = saved + right[r + 1] * temp;
-                saved = left[j - r] * temp;
-            }
-            row[j] = saved;
-        }
+        let mut row = knots.basis_values_fixed::<W>(span, u);
         let f = span - p;
         if i < f || i > span || row[i - f] == T::zero() {
             return Err(KernelError::Schoenberg(i));

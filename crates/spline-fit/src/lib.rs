@@ -36,7 +36,6 @@
 //! None.
 
 mod banded;
-mod basis;
 mod bezier;
 mod correction;
 mod interpolate;
@@ -44,7 +43,6 @@ mod lsq;
 mod natural;
 mod params;
 mod project;
-mod quadrature;
 mod report;
 mod surface;
 

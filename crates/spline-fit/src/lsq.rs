@@ -4,14 +4,13 @@
 #![allow(clippy::needless_range_loop)]
 
 use crate::banded::{BandCholesky, BandQr};
-use crate::basis::BasisEval;
 use crate::interpolate::check_degree;
 use crate::params::{KnotChoice, Parametrization, check_points, knots_for, parametrize};
-use crate::quadrature::gauss_legendre;
 use crate::report::CurveFit;
+use spline_core::gauss_legendre;
 use spline_core::{
-    ControlPoint, Error, ErrorKind, KnotVector, MAX_ORDER, Result, Scalar, cast, check_params,
-    to_f64,
+    ControlPoint, Error, ErrorKind, KnotVector, MAX_ORDER, Result, Scalar, SpanBasis, cast,
+    check_params, to_f64,
 };
 use spline_geom::BSpline;
 
@@ -378,7 +377,7 @@ impl<'a, T: Scalar, P: ControlPoint<T>> LeastSquares<'a, T, P> {
         };
         let mut last_assigned: Option<T> = None;
         let mut span = p;
-        let mut evaluator = BasisEval::new();
+        let mut evaluator = SpanBasis::new();
         let data_rows = if fast { 0 } else { self.params.len() };
         for (j, (&u, &q)) in self
             .params

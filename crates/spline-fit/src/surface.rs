@@ -11,8 +11,8 @@ use crate::banded::BandCholesky;
 use crate::interpolate::{check_degree, interpolate_with_knots};
 use crate::lsq::LeastSquares;
 use crate::params::{KnotChoice, Parametrization, check_given, knots_for, parametrize};
-use crate::quadrature::gauss_legendre;
 use crate::report::Deviation;
+use spline_core::gauss_legendre;
 use spline_core::{
     ControlPoint, Error, ErrorKind, KnotVector, MAX_ORDER, Result, Scalar, cast, from_count, to_f64,
 };

@@ -1,46 +1,10 @@
 //! Adaptive arc length.
 
 use crate::bspline::BSpline;
-use spline_core::{ControlPoint, Error, ErrorKind, Result, Scalar, cast, to_f64};
+use spline_core::{ControlPoint, Error, ErrorKind, Result, Scalar, cast, gauss_legendre, to_f64};
 
 /// The default absolute accuracy of [`BSpline::arc_length`].
 pub const DEFAULT_ACCURACY: f64 = 1e-9;
-
-/// Gauss–Legendre nodes and weights on `[-1, 1]` (Newton's method on the Legendre
-/// polynomial from the usual asymptotic first guesses).
-fn gauss_legendre(n: usize) -> (Vec<f64>, Vec<f64>) {
-    let mut nodes = vec![0.0; n];
-    let mut weights = vec![0.0; n];
-    #[allow(clippy::cast_precision_loss)]
-    let nf = n as f64;
-    for i in 0..n.div_ceil(2) {
-        #[allow(clippy::cast_precision_loss)]
-        let mut x = (std::f64::consts::PI * (i as f64 + 0.75) / (nf + 0.5)).cos();
-        let mut dp = 0.0;
-        for _ in 0..100 {
-            let (mut p0, mut p1) = (1.0, x);
-            for k in 2..=n {
-                #[allow(clippy::cast_precision_loss)]
-                let kf = k as f64;
-                let p2 = ((2.0 * kf - 1.0) * x * p1 - (kf - 1.0) * p0) / kf;
-                p0 = p1;
-                p1 = p2;
-            }
-            dp = nf * (x * p1 - p0) / (x * x - 1.0);
-            let dx = p1 / dp;
-            x -= dx;
-            if dx.abs() < 1e-16 {
-                break;
-            }
-        }
-        nodes[i] = -x;
-        nodes[n - 1 - i] = x;
-        let w = 2.0 / ((1.0 - x * x) * dp * dp);
-        weights[i] = w;
-        weights[n - 1 - i] = w;
-    }
-    (nodes, weights)
-}
 
 struct Quadrature<T> {
     nodes: Vec<T>,
@@ -49,11 +13,8 @@ struct Quadrature<T> {
 
 impl<T: Scalar> Quadrature<T> {
     fn new(n: usize) -> Self {
-        let (x, w) = gauss_legendre(n);
-        Self {
-            nodes: x.into_iter().map(cast).collect(),
-            weights: w.into_iter().map(cast).collect(),
-        }
+        let (nodes, weights) = gauss_legendre::<T>(n).into_iter().unzip();
+        Self { nodes, weights }
     }
 
     fn integrate(&self, a: T, b: T, f: &impl Fn(T) -> T) -> T {

@@ -1,7 +1,7 @@
 //! The B-spline container and its evaluation.
 
 use spline_core::{
-    ControlPoint, Error, ErrorKind, KnotVector, MAX_ORDER, Result, Scalar, from_count,
+    ControlPoint, Error, ErrorKind, KnotVector, MAX_ORDER, Result, Scalar, SpanBasis, from_count,
 };
 
 /// A B-spline: a degree, a [`KnotVector`] and `n` control points of any type `P` that forms a
@@ -353,13 +353,15 @@ impl<T: Scalar, P: ControlPoint<T>> BSpline<T, P> {
         Ok(())
     }
 
-    /// Batch evaluation for a fixed degree with division-free basis functions.
+    /// Batch evaluation of sorted parameters for a fixed degree: the reciprocal knot
+    /// differences of the current span are kept ([`SpanBasis`]).
     fn eval_many_fixed<const N: usize>(&self, params: &[T], out: &mut [P]) {
-        let table = self.knots.reciprocal_table();
+        let mut cursor = SpanBasis::new();
+        let mut basis = [T::zero(); N];
         let mut span = self.degree();
         for (slot, &u) in out.iter_mut().zip(params) {
             span = self.knots.span_in_domain_from(u, span);
-            let basis = self.knots.basis_values_fixed_with::<N>(span, u, &table);
+            cursor.eval(&self.knots, span, u, &mut basis);
             let points = &self.control_points[span + 1 - N..=span];
             let mut acc = points[0] * basis[0];
             for r in 1..N {

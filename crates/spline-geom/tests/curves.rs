@@ -750,3 +750,19 @@ fn exports_and_bezier_serialisation() {
     let not_bezier = r#"{"degree":1,"knots":[0,0,0.5,1,1],"control_points":[[0,0],[1,1],[2,0]]}"#;
     assert!(serde_json::from_str::<Bezier<f64, Vector2<f64>>>(not_bezier).is_err());
 }
+
+proptest! {
+    #[test]
+    fn clamped_curves_return_exactly_their_end_points(curve in curve_strategy(7, 8, true)) {
+        prop_assume!(curve.knots().is_clamped());
+        let (a, b) = curve.domain();
+        let points = curve.control_points();
+        let (first, last) = (points[0], points[points.len() - 1]);
+        prop_assert_eq!(curve.eval(a).unwrap(), first);
+        prop_assert_eq!(curve.eval(b).unwrap(), last);
+        prop_assert_eq!(curve.de_boor(b).unwrap(), last);
+        prop_assert_eq!(curve.eval_many(&[a, 0.5 * (a + b), b]).unwrap()[2], last);
+        prop_assert_eq!(curve.eval_many(&[a, b]).unwrap()[0], first);
+        prop_assert_eq!(curve.derivatives(b, 2).unwrap()[0], last);
+    }
+}
