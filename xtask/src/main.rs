@@ -7,6 +7,7 @@
 //!   write `docs/airfoil.svg`.
 
 mod bench_fit;
+mod demo;
 mod docs_curves;
 mod docs_surfaces;
 
@@ -52,6 +53,7 @@ fn main() -> ExitCode {
     let result = match args.first().map(String::as_str) {
         Some("ci") => run_ci(&root),
         Some("docs") => run_docs(&root),
+        Some("demo") => demo::run(&root),
         Some("bench") => match args.get(1).map(String::as_str) {
             Some("fit") => bench_fit::run(&root),
             _ => Err("usage: cargo xtask bench fit".into()),

@@ -89,6 +89,10 @@ pub struct BarrierReport {
     pub outer_iterations: usize,
     /// Newton steps taken in total.
     pub newton_iterations: usize,
+    /// Centring steps that ended at the Newton iteration limit (then the method went on with
+    /// a larger `t` from the improved, strictly feasible iterate). Zero for well-behaved
+    /// convex problems.
+    pub unfinished_centring_steps: usize,
     /// The largest constraint value at the solution (negative).
     pub max_constraint: f64,
 }
@@ -132,8 +136,18 @@ pub fn minimize(
         None => initial_t(problem, &x),
     };
     let mut newton_total = 0;
+    let mut unfinished = 0;
     for outer in 1..=options.max_outer_iterations {
-        newton_total += centre(problem, &mut x, t, options)?;
+        // A centring step that runs out of Newton iterations (non-convex problems can crawl)
+        // still leaves a strictly feasible, improved iterate: go on with a larger t.
+        match centre(problem, &mut x, t, options, None) {
+            Ok(steps) => newton_total += steps,
+            Err(e) if e.kind() == ErrorKind::NoConvergence => {
+                newton_total += options.max_newton_iterations;
+                unfinished += 1;
+            }
+            Err(e) => return Err(e),
+        }
         let gap = if m == 0 { 0.0 } else { m as f64 / t };
         if gap < options.gap_tolerance {
             let c = problem.constraints(&x);
@@ -144,6 +158,7 @@ pub fn minimize(
                 duality_gap: gap,
                 outer_iterations: outer,
                 newton_iterations: newton_total,
+                unfinished_centring_steps: unfinished,
                 max_constraint: c.iter().copied().fold(f64::NEG_INFINITY, f64::max),
             });
         }
@@ -183,12 +198,17 @@ fn barrier_value(problem: &impl BarrierProblem, x: &DVector<f64>, t: f64) -> Opt
     f.is_finite().then_some(f)
 }
 
+/// A condition that ends a centring step early.
+type StopRule<'a> = &'a dyn Fn(&DVector<f64>) -> bool;
+
 /// Newton's method on the barrier objective for fixed `t`; returns the number of steps.
+/// `stop` ends the centring early once an iterate satisfies it.
 fn centre(
     problem: &impl BarrierProblem,
     x: &mut DVector<f64>,
     t: f64,
     options: &BarrierOptions,
+    stop: Option<StopRule<'_>>,
 ) -> Result<usize> {
     let n = problem.dimension();
     for step in 0..options.max_newton_iterations {
@@ -216,12 +236,24 @@ fn centre(
                 }
             }
         }
+        // With the curvature of the constraints when that keeps the Newton matrix positive
+        // definite; otherwise the Gauss–Newton matrix t∇²f0 + Σ ∇f_i∇f_iᵀ/f_i² (positive
+        // semi-definite) with a small shift — the standard remedy for non-convex constraints.
+        let mut full = coo.clone();
+        let mut has_curvature = false;
         if let Some(h) = problem.weighted_constraint_hessian(x, &inv) {
             for (i, j, v) in h.triplet_iter() {
-                coo.push(i, j, *v);
+                full.push(i, j, *v);
             }
+            has_curvature = true;
         }
-        let direction = solve_shifted(&coo, &gradient)?;
+        let direction = match has_curvature
+            .then(|| solve_definite(&full, &gradient))
+            .flatten()
+        {
+            Some(d) => d,
+            None => solve_shifted(&coo, &gradient)?,
+        };
         let decrement = -gradient.dot(&direction);
         let f = barrier_value(problem, x, t)
             .ok_or_else(|| Error::new(ErrorKind::NonFinite, "iterate left the barrier domain"))?;
@@ -237,6 +269,9 @@ fn centre(
             if let Some(fc) = barrier_value(problem, &candidate, t) {
                 if fc <= f + options.armijo * s * slope {
                     *x = candidate;
+                    if stop.is_some_and(|stop| stop(x)) {
+                        return Ok(step + 1);
+                    }
                     break;
                 }
             }
@@ -254,6 +289,14 @@ fn centre(
             options.max_newton_iterations
         ),
     ))
+}
+
+/// Solves `H d = −g` if `H` is positive definite.
+fn solve_definite(hessian: &CooMatrix<f64>, gradient: &DVector<f64>) -> Option<DVector<f64>> {
+    let factor = CscCholesky::factor(&CscMatrix::from(hessian)).ok()?;
+    let d = factor.solve(&(-gradient));
+    let d = DVector::from_column_slice(d.as_slice());
+    d.iter().all(|v| v.is_finite()).then_some(d)
 }
 
 /// Solves `H d = −g`, adding `δ I` with growing `δ` while `H` is not positive definite.
@@ -308,24 +351,58 @@ pub fn find_feasible(
     margin: f64,
     options: &BarrierOptions,
 ) -> Result<DVector<f64>> {
+    find_feasible_near(problem, x0, margin, 0.0, options)
+}
+
+/// [`find_feasible`] with `s + w f_0(x)` as phase-I objective: the pull towards small
+/// `f_0` keeps the search near good points. Non-convex constraints that are homogeneous in
+/// `x` (curvature conditions vanish on a curve shrunk to a point) otherwise let phase I
+/// drift to a degenerate point where every `f_i` tends to zero.
+///
+/// # Errors
+/// As [`find_feasible`].
+pub fn find_feasible_near(
+    problem: &impl BarrierProblem,
+    x0: DVector<f64>,
+    margin: f64,
+    objective_weight: f64,
+    options: &BarrierOptions,
+) -> Result<DVector<f64>> {
     let c = problem.constraints(&x0);
     let worst = c.iter().copied().fold(f64::NEG_INFINITY, f64::max);
     if worst < -margin || problem.num_constraints() == 0 {
         return Ok(x0);
     }
+    let radius = 1e3 * (1.0 + x0.amax());
     let phase = PhaseOne {
         inner: problem,
         margin,
+        centre: x0.clone(),
+        radius,
+        objective_weight,
     };
     let n = problem.dimension();
     let mut start = DVector::zeros(n + 1);
     start.rows_mut(0, n).copy_from(&x0);
     start[n] = worst + 1.0;
     let mut x = start;
-    let mut t = 1.0;
+    // On the central path `s ≈ max f_i + m/t`: start where that offset is a tenth of the
+    // initial infeasibility, not where the barrier would push `s` up.
+    let m = (problem.num_constraints() + 1) as f64;
+    let mut t = (10.0 * m / (worst.abs() + 1.0)).max(1.0);
     for _ in 0..options.max_outer_iterations {
-        // Centre, then check whether the inner point is already feasible.
-        let _ = centre(&phase, &mut x, t, options)?;
+        // Centre, stopping as soon as the inner point is strictly feasible.
+        let stop = |y: &DVector<f64>| y[n] < -margin;
+        // Phase I needs no accurate centring: a few Newton steps per value of t.
+        let loose = BarrierOptions {
+            max_newton_iterations: 30,
+            ..options.clone()
+        };
+        match centre(&phase, &mut x, t, &loose, Some(&stop)) {
+            Ok(_) => {}
+            Err(e) if e.kind() == ErrorKind::NoConvergence => {}
+            Err(e) => return Err(e),
+        }
         if x[n] < -margin {
             return Ok(x.rows(0, n).into_owned());
         }
@@ -340,10 +417,17 @@ pub fn find_feasible(
     ))
 }
 
-/// `min s` over `(x, s)` with `f_i(x) − s < 0` and `s > −2 margin − 1` (keeps it bounded).
+/// `min s` over `(x, s)` with `f_i(x) − s < 0`, `s > −2 margin − 1` and `x` in a box around
+/// the start (both keep the problem bounded).
 struct PhaseOne<'a, P> {
     inner: &'a P,
     margin: f64,
+    /// Centre and half-width of the box `|x_j − centre_j| < radius` that keeps phase I
+    /// bounded when the feasible set is not.
+    centre: DVector<f64>,
+    radius: f64,
+    /// Weight of `f0` added to the objective `s` ([`find_feasible_near`]).
+    objective_weight: f64,
 }
 
 impl<P: BarrierProblem> BarrierProblem for PhaseOne<'_, P> {
@@ -351,35 +435,61 @@ impl<P: BarrierProblem> BarrierProblem for PhaseOne<'_, P> {
         self.inner.dimension() + 1
     }
     fn num_constraints(&self) -> usize {
-        self.inner.num_constraints() + 1
+        self.inner.num_constraints() + 1 + 2 * self.inner.dimension()
     }
     fn objective(&self, x: &DVector<f64>) -> f64 {
-        x[self.inner.dimension()]
+        let n = self.inner.dimension();
+        let pull = if self.objective_weight > 0.0 {
+            self.objective_weight * self.inner.objective(&x.rows(0, n).into_owned())
+        } else {
+            0.0
+        };
+        x[n] + pull
     }
     fn objective_gradient(&self, x: &DVector<f64>) -> DVector<f64> {
+        let n = self.inner.dimension();
         let mut g = DVector::zeros(x.len());
-        g[self.inner.dimension()] = 1.0;
+        if self.objective_weight > 0.0 {
+            let inner = self.inner.objective_gradient(&x.rows(0, n).into_owned());
+            g.rows_mut(0, n).copy_from(&(inner * self.objective_weight));
+        }
+        g[n] = 1.0;
         g
     }
     fn objective_hessian(&self, x: &DVector<f64>) -> CsrMatrix<f64> {
-        CsrMatrix::zeros(x.len(), x.len())
+        let n = self.inner.dimension();
+        if self.objective_weight == 0.0 {
+            return CsrMatrix::zeros(x.len(), x.len());
+        }
+        let inner = self.inner.objective_hessian(&x.rows(0, n).into_owned());
+        let mut coo = CooMatrix::new(n + 1, n + 1);
+        for (i, j, v) in inner.triplet_iter() {
+            coo.push(i, j, self.objective_weight * v);
+        }
+        CsrMatrix::from(&coo)
     }
     fn constraints(&self, x: &DVector<f64>) -> DVector<f64> {
         let n = self.inner.dimension();
         let s = x[n];
         let inner = self.inner.constraints(&x.rows(0, n).into_owned());
-        let mut c = DVector::zeros(inner.len() + 1);
+        let m = inner.len();
+        let mut c = DVector::zeros(m + 1 + 2 * n);
         for (i, v) in inner.iter().enumerate() {
             c[i] = v - s;
         }
-        c[inner.len()] = -s - 2.0 * self.margin - 1.0;
+        c[m] = -s - 2.0 * self.margin - 1.0;
+        for j in 0..n {
+            let offset = x[j] - self.centre[j];
+            c[m + 1 + 2 * j] = offset - self.radius;
+            c[m + 2 + 2 * j] = -offset - self.radius;
+        }
         c
     }
     fn constraint_jacobian(&self, x: &DVector<f64>) -> CsrMatrix<f64> {
         let n = self.inner.dimension();
         let inner = self.inner.constraint_jacobian(&x.rows(0, n).into_owned());
         let m = inner.nrows();
-        let mut coo = CooMatrix::new(m + 1, n + 1);
+        let mut coo = CooMatrix::new(m + 1 + 2 * n, n + 1);
         for (i, j, v) in inner.triplet_iter() {
             coo.push(i, j, *v);
         }
@@ -387,6 +497,10 @@ impl<P: BarrierProblem> BarrierProblem for PhaseOne<'_, P> {
             coo.push(i, n, -1.0);
         }
         coo.push(m, n, -1.0);
+        for j in 0..n {
+            coo.push(m + 1 + 2 * j, j, 1.0);
+            coo.push(m + 2 + 2 * j, j, -1.0);
+        }
         CsrMatrix::from(&coo)
     }
     fn weighted_constraint_hessian(

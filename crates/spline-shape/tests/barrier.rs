@@ -256,3 +256,64 @@ fn errors() {
         "{e}"
     );
 }
+
+/// `min ½‖x − a‖²` subject to `x_i > 0`: an unbounded feasible set.
+struct Positive {
+    a: Vec<f64>,
+}
+
+impl BarrierProblem for Positive {
+    fn dimension(&self) -> usize {
+        self.a.len()
+    }
+    fn num_constraints(&self) -> usize {
+        self.a.len()
+    }
+    fn objective(&self, x: &DVector<f64>) -> f64 {
+        0.5 * x
+            .iter()
+            .zip(&self.a)
+            .map(|(x, a)| (x - a).powi(2))
+            .sum::<f64>()
+    }
+    fn objective_gradient(&self, x: &DVector<f64>) -> DVector<f64> {
+        DVector::from_iterator(x.len(), x.iter().zip(&self.a).map(|(x, a)| x - a))
+    }
+    fn objective_hessian(&self, x: &DVector<f64>) -> CsrMatrix<f64> {
+        CsrMatrix::identity(x.len())
+    }
+    fn constraints(&self, x: &DVector<f64>) -> DVector<f64> {
+        -x
+    }
+    fn constraint_jacobian(&self, x: &DVector<f64>) -> CsrMatrix<f64> {
+        CsrMatrix::identity(x.len()) * -1.0
+    }
+    fn weighted_constraint_hessian(
+        &self,
+        _: &DVector<f64>,
+        _: &DVector<f64>,
+    ) -> Option<CsrMatrix<f64>> {
+        None
+    }
+}
+
+#[test]
+fn phase_one_is_bounded_when_the_feasible_set_is_not() {
+    let problem = Positive {
+        a: vec![2.0, -1.0, 0.5],
+    };
+    let options = BarrierOptions::default();
+    let start = find_feasible(
+        &problem,
+        DVector::from_row_slice(&[-1.0, -3.0, 2.0]),
+        1e-6,
+        &options,
+    )
+    .unwrap();
+    assert!(start.iter().all(|&x| x > 1e-6), "{start}");
+    let report = minimize(&problem, start, &options).unwrap();
+    let expected = [2.0, 0.0, 0.5];
+    for (x, e) in report.x.iter().zip(expected) {
+        assert!((x - e).abs() < 1e-7, "{x} vs {e}");
+    }
+}
