@@ -81,11 +81,11 @@ fn an_airfoil_keeps_one_curvature_maximum_at_the_nose() {
 fn a_noisy_half_ellipse_gets_its_single_extremum_back() {
     // Upper half of x²/4 + y² = 1, from (2, 0) to (−2, 0): curvature maximal at the ends and
     // minimal at the top; with noise, the least-squares fit has many extrema.
-    let count = 80;
+    let count: i32 = 80;
     let points: Vec<Vector2<f64>> = (0..count)
         .map(|i| {
-            let t = std::f64::consts::PI * (0.05 + 0.9 * i as f64 / (count - 1) as f64);
-            let noise = 2e-3 * ((i * 7919) % 13) as f64 / 13.0 - 1e-3;
+            let t = std::f64::consts::PI * (0.05 + 0.9 * f64::from(i) / f64::from(count - 1));
+            let noise = 2e-3 * f64::from((i * 7919) % 13) / 13.0 - 1e-3;
             Vector2::new(2.0 * t.cos(), t.sin() + noise)
         })
         .collect();
