@@ -254,10 +254,9 @@ impl<T: Scalar> SparseBilinear<T> {
     /// The map with its arguments swapped, $(x, y) \mapsto B(y, x)$.
     #[must_use]
     pub fn swapped(&self) -> Self {
-        let rows = (0..self.nrows())
-            .map(|k| self.row(k).iter().map(|&(j, l, v)| (l, j, v)).collect())
-            .collect();
-        Self::from_rows_unchecked(self.right_dim, self.left_dim, rows)
+        Self::build(self.right_dim, self.left_dim, self.nrows(), |k, row| {
+            row.extend(self.row(k).iter().map(|&(j, l, v)| (l, j, v)));
+        })
     }
 
     /// $B + B^{\mathsf T}$ (arguments swapped): the constant Hessian of the quadratic function
@@ -267,18 +266,17 @@ impl<T: Scalar> SparseBilinear<T> {
     /// [`ErrorKind::DimensionMismatch`] unless both arguments have the same dimension.
     pub fn symmetrized(&self) -> Result<Self> {
         self.check_square()?;
-        let rows = (0..self.nrows())
-            .map(|k| {
-                self.row(k)
-                    .iter()
-                    .flat_map(|&(j, l, v)| [(j, l, v), (l, j, v)])
-                    .collect()
-            })
-            .collect();
-        Ok(Self::from_rows_unchecked(
+        Ok(Self::build(
             self.left_dim,
             self.right_dim,
-            rows,
+            self.nrows(),
+            |k, row| {
+                row.extend(
+                    self.row(k)
+                        .iter()
+                        .flat_map(|&(j, l, v)| [(j, l, v), (l, j, v)]),
+                );
+            },
         ))
     }
 
@@ -393,19 +391,14 @@ impl<T: Scalar> SparseBilinear<T> {
                 "cannot combine bilinear maps of different shapes",
             ));
         }
-        let rows = (0..self.nrows())
-            .map(|k| {
-                self.row(k)
-                    .iter()
-                    .map(|&(j, l, v)| (j, l, alpha * v))
-                    .chain(other.row(k).iter().map(|&(j, l, v)| (j, l, beta * v)))
-                    .collect()
-            })
-            .collect();
-        Ok(Self::from_rows_unchecked(
+        Ok(Self::build(
             self.left_dim,
             self.right_dim,
-            rows,
+            self.nrows(),
+            |k, row| {
+                row.extend(self.row(k).iter().map(|&(j, l, v)| (j, l, alpha * v)));
+                row.extend(other.row(k).iter().map(|&(j, l, v)| (j, l, beta * v)));
+            },
         ))
     }
 

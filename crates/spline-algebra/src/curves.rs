@@ -3,7 +3,7 @@
 //! inflections and curvature extrema built on them.
 
 use crate::bilinear::SparseBilinear;
-use crate::maps::{SplineMap, bernstein_space, domain_breakpoints};
+use crate::maps::{SplineMap, bernstein_space};
 use crate::product::{bernstein_product, product_knots};
 use crate::roots::{sign_changes, zeros};
 use crate::sparse::{add_scaled, interleave_columns, matmul};
@@ -138,7 +138,7 @@ impl<T: Scalar> PlanarInvariants<T> {
             ));
         }
         let n = knots.num_basis();
-        let breakpoints = domain_breakpoints(knots);
+        let breakpoints = knots.domain_breaks();
         let segments = breakpoints.len() - 1;
         // X → per-segment Bernstein coefficients of x^(k), y^(k), and the derivative spaces.
         let mut cx = Vec::new();

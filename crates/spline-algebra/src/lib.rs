@@ -20,8 +20,10 @@
 //!   [`dot`], [`wedge`], [`square`], [`sum`], [`difference`], [`linear_combination`].
 //! - Planar curves: [`PlanarInvariants`] for `h1 … h4` and `g = h1 h2 − 3 h3 h4` in B-spline
 //!   or per-segment Bernstein [`Form`]; [`planar_features`] (inflections, curvature extrema).
-//! - Bivariate functions: [`partials`], [`tensor_product`], [`hessian_determinant`]
-//!   (`s_uu s_vv − s_uv²` with gradient and constant Hessian), [`ridge_polynomials`].
+//! - Bivariate functions ([`spline_geom::Surface`]s with scalar control points; maps act on
+//!   their row-major nets as `A_u ⊗ A_v`): [`partials`], [`tensor_product`],
+//!   [`hessian_determinant`] (`s_uu s_vv − s_uv²` with gradient and constant Hessian),
+//!   [`ridge_polynomials`].
 //! - Roots: [`zeros`] and [`sign_changes`] of any B-spline function.
 //!
 //! Everything is generic over [`spline_core::Scalar`], so the same code runs on dual numbers
@@ -72,6 +74,6 @@ pub use product::{
 };
 pub use roots::{Zero, sign_changes, zeros};
 pub use tensor::{
-    Partial, QuadraticFunction, TensorMap, TensorProductMap, TensorSpline, hessian_determinant,
-    partial, partials, ridge_polynomials, tensor_linear_combination, tensor_product,
+    Partial, QuadraticFunction, TensorMap, TensorProductMap, hessian_determinant, partial,
+    partials, ridge_polynomials, tensor_linear_combination, tensor_product,
 };

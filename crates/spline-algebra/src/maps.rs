@@ -41,15 +41,6 @@ pub struct SplineMap<T> {
     target: KnotVector<T>,
 }
 
-/// The distinct knots of the domain `[a, b]`: `a`, the interior breakpoints, `b`.
-pub(crate) fn domain_breakpoints<T: Scalar>(knots: &KnotVector<T>) -> Vec<T> {
-    let (a, b) = knots.domain();
-    let mut out = vec![a];
-    out.extend(knots.interior_breakpoints().into_iter().map(|(k, _)| k));
-    out.push(b);
-    out
-}
-
 /// The per-segment Bernstein space of degree `p` on the given breakpoints: every breakpoint
 /// repeated `p + 1` times, so that segment `k` owns coefficients `(p+1)k … (p+1)k + p`.
 ///
@@ -456,7 +447,7 @@ impl<T: Scalar> SplineMap<T> {
     /// Never: the `expect`s only state internal invariants (matching dimensions).
     #[must_use]
     pub fn bezier_extraction(knots: &KnotVector<T>) -> Self {
-        let target = bernstein_space(knots.degree(), &domain_breakpoints(knots))
+        let target = bernstein_space(knots.degree(), &knots.domain_breaks())
             .expect("the domain breakpoints of a valid knot vector");
         Self::transfer_unchecked(knots, &target)
     }
@@ -495,7 +486,7 @@ impl<T: Scalar> SplineMap<T> {
         let target = clamped_knots(knots).elevated(times)?;
         let extraction = Self::bezier_extraction(knots);
         let segments = extraction.target.num_basis() / (p + 1);
-        let breakpoints = domain_breakpoints(knots);
+        let breakpoints = knots.domain_breaks();
         let elevated_pieces = bernstein_space(p + times, &breakpoints)?;
         let removal = Self::removal_unchecked(&elevated_pieces, &target);
         let matrix = matmul(

@@ -3,7 +3,7 @@
 //! bilinear second derivative; dot and wedge products; sums and squares.
 
 use crate::bilinear::SparseBilinear;
-use crate::maps::{SplineMap, bernstein_space, check_same_domain, domain_breakpoints};
+use crate::maps::{SplineMap, bernstein_space, check_same_domain};
 use crate::sparse::{add_scaled, check_len, interleave_columns, matmul};
 use nalgebra::{SVector, Vector2};
 use nalgebra_sparse::CsrMatrix;
@@ -155,7 +155,7 @@ impl<T: Scalar> ProductMap<T> {
     /// As [`product_knots`].
     pub fn new(a: &KnotVector<T>, b: &KnotVector<T>) -> Result<Self> {
         let target = product_knots(a, b)?;
-        let breakpoints = domain_breakpoints(&target);
+        let breakpoints = target.domain_breaks();
         let left = SplineMap::transfer_unchecked(a, &bernstein_space(a.degree(), &breakpoints)?);
         let right = SplineMap::transfer_unchecked(b, &bernstein_space(b.degree(), &breakpoints)?);
         let segments = breakpoints.len() - 1;

@@ -1,7 +1,7 @@
 //! Root isolation for B-spline functions: Bézier extraction, Bernstein sign changes
 //! (Descartes' rule), subdivision, then Newton's method safeguarded by bisection.
 
-use crate::maps::{SplineMap, domain_breakpoints};
+use crate::maps::SplineMap;
 use spline_core::{Error, ErrorKind, Result, Scalar, from_count, to_f64};
 use spline_geom::BSpline;
 
@@ -234,7 +234,7 @@ fn analyse<T: Scalar>(f: &BSpline<T, T>, accuracy: T) -> Result<Analysis<T>> {
     let (a, b) = f.domain();
     let d = f.degree();
     let pieces = SplineMap::bezier_extraction(f.knots()).apply(f.control_points())?;
-    let breakpoints = domain_breakpoints(f.knots());
+    let breakpoints = f.knots().domain_breaks();
     let scale = pieces.iter().fold(T::zero(), |m, &x| m.max(x.abs()));
     if scale == T::zero() {
         return Ok(Analysis {

@@ -1,6 +1,9 @@
 //! Tensor-product (bivariate) splines: structural maps with Kronecker structure, products,
 //! all partial derivatives, the convexity function `s_uu s_vv − s_uv²` with its gradient and
 //! constant Hessian (thesis §5.6), and the ridge polynomials of §5.7.
+//!
+//! The splines are [`Surface`]s of spline-geom (scalar control points for functions): the
+//! row-major net, `i` along `u`, is the coefficient vector the maps act on.
 
 use crate::bilinear::SparseBilinear;
 use crate::maps::SplineMap;
@@ -8,130 +11,7 @@ use crate::product::{ProductMap, common_space};
 use crate::sparse::{check_len, kron};
 use nalgebra_sparse::CsrMatrix;
 use spline_core::{ControlPoint, Error, ErrorKind, KnotVector, Result, Scalar, binomial, cast};
-
-/// A tensor-product spline: knot vectors in `u` and `v` and a row-major grid of
-/// coefficients, `coefficients[i · n_v + j]` multiplying $N_i(u) M_j(v)$ (`i` along `u`).
-///
-/// This is the layout of the exchange format (`control_points[i][j]`) and of a surface
-/// container's control net; `into_parts` and [`TensorSpline::new`] convert both ways.
-///
-/// ```
-/// use spline_algebra::TensorSpline;
-/// use spline_core::KnotVector;
-/// let k = KnotVector::new(1, vec![0.0, 0.0, 1.0, 1.0])?;
-/// // s(u, v) = u v.
-/// let s = TensorSpline::new(k.clone(), k, vec![0.0, 0.0, 0.0, 1.0])?;
-/// assert_eq!(s.eval(0.5, 0.25)?, 0.125);
-/// # Ok::<(), spline_core::Error>(())
-/// ```
-#[derive(Clone, Debug, PartialEq)]
-pub struct TensorSpline<T, P> {
-    knots_u: KnotVector<T>,
-    knots_v: KnotVector<T>,
-    coefficients: Vec<P>,
-}
-
-impl<T: Scalar, P: ControlPoint<T>> TensorSpline<T, P> {
-    /// A tensor-product spline from its knot vectors and row-major coefficients.
-    ///
-    /// # Errors
-    /// [`ErrorKind::InvalidLength`] unless there are `n_u · n_v` coefficients;
-    /// [`ErrorKind::NonFinite`] for a non-finite coefficient.
-    pub fn new(
-        knots_u: KnotVector<T>,
-        knots_v: KnotVector<T>,
-        coefficients: Vec<P>,
-    ) -> Result<Self> {
-        check_len(
-            "tensor-product coefficients",
-            knots_u.num_basis() * knots_v.num_basis(),
-            coefficients.len(),
-        )?;
-        if let Some(i) = coefficients.iter().position(|p| !p.all_finite()) {
-            return Err(Error::new(
-                ErrorKind::NonFinite,
-                format!("coefficient {i} is not finite"),
-            ));
-        }
-        Ok(Self {
-            knots_u,
-            knots_v,
-            coefficients,
-        })
-    }
-
-    pub(crate) fn new_unchecked(
-        knots_u: KnotVector<T>,
-        knots_v: KnotVector<T>,
-        coefficients: Vec<P>,
-    ) -> Self {
-        debug_assert_eq!(
-            coefficients.len(),
-            knots_u.num_basis() * knots_v.num_basis()
-        );
-        Self {
-            knots_u,
-            knots_v,
-            coefficients,
-        }
-    }
-
-    /// The knot vector in `u`.
-    #[must_use]
-    pub fn knots_u(&self) -> &KnotVector<T> {
-        &self.knots_u
-    }
-
-    /// The knot vector in `v`.
-    #[must_use]
-    pub fn knots_v(&self) -> &KnotVector<T> {
-        &self.knots_v
-    }
-
-    /// The row-major coefficients.
-    #[must_use]
-    pub fn coefficients(&self) -> &[P] {
-        &self.coefficients
-    }
-
-    /// The knot vectors and coefficients.
-    #[must_use]
-    pub fn into_parts(self) -> (KnotVector<T>, KnotVector<T>, Vec<P>) {
-        (self.knots_u, self.knots_v, self.coefficients)
-    }
-
-    /// The value at `(u, v)`.
-    ///
-    /// # Errors
-    /// [`ErrorKind::OutOfDomain`] or [`ErrorKind::NonFinite`] for bad parameters.
-    pub fn eval(&self, u: T, v: T) -> Result<P> {
-        self.derivative_at(u, v, 0, 0)
-    }
-
-    /// The partial derivative $\partial^{k+l} s / \partial u^k \partial v^l$ at `(u, v)`,
-    /// from the basis derivatives (zero above the degree).
-    ///
-    /// # Errors
-    /// [`ErrorKind::OutOfDomain`] or [`ErrorKind::NonFinite`] for bad parameters.
-    pub fn derivative_at(&self, u: T, v: T, k: usize, l: usize) -> Result<P> {
-        let bu = self.knots_u.dense_basis_derivatives(u, k)?;
-        let bv = self.knots_v.dense_basis_derivatives(v, l)?;
-        let (ru, rv) = (&bu[k], &bv[l]);
-        let nv = self.knots_v.num_basis();
-        let mut acc = P::origin();
-        for (i, &a) in ru.iter().enumerate() {
-            if a == T::zero() {
-                continue;
-            }
-            for (j, &b) in rv.iter().enumerate() {
-                if b != T::zero() {
-                    acc += self.coefficients[i * nv + j] * (a * b);
-                }
-            }
-        }
-        Ok(acc)
-    }
-}
+use spline_geom::Surface;
 
 /// Applies `A_u ⊗ A_v` to a row-major grid without forming the Kronecker product.
 pub(crate) fn apply_tensor<T: Scalar, P: ControlPoint<T>>(
@@ -162,17 +42,18 @@ pub(crate) fn apply_tensor<T: Scalar, P: ControlPoint<T>>(
 /// [`SplineMap`] in `u` and one in `v`, acting on row-major grids as $A_u \otimes A_v$.
 ///
 /// ```
-/// use spline_algebra::{TensorMap, TensorSpline};
+/// use spline_algebra::TensorMap;
 /// use spline_core::KnotVector;
+/// use spline_geom::Surface;
 /// let k = KnotVector::new(2, vec![0.0f64, 0.0, 0.0, 1.0, 1.0, 1.0])?;
 /// // s(u, v) = u² v².
 /// let mut c = vec![0.0; 9];
 /// c[8] = 1.0;
-/// let s = TensorSpline::new(k.clone(), k.clone(), c)?;
+/// let s = Surface::new(k.clone(), k.clone(), c)?;
 /// let d = TensorMap::partial_derivative(&k, &k, 1, 2)?; // ∂³/∂u∂v²
 /// let suvv = d.apply(&s)?;
 /// assert!((suvv.eval(0.5, 0.3)? - 2.0 * 0.5 * 2.0).abs() < 1e-14);
-/// assert_eq!(d.matrix().nrows(), suvv.coefficients().len());
+/// assert_eq!(d.matrix().nrows(), suvv.control_points().len());
 /// # Ok::<(), spline_core::Error>(())
 /// ```
 #[derive(Clone, Debug)]
@@ -260,17 +141,17 @@ impl<T: Scalar> TensorMap<T> {
     ///
     /// # Errors
     /// [`ErrorKind::InvalidArgument`] if the spline is not on the source knot vectors.
-    pub fn apply<P: ControlPoint<T>>(&self, s: &TensorSpline<T, P>) -> Result<TensorSpline<T, P>> {
+    pub fn apply<P: ControlPoint<T>>(&self, s: &Surface<T, P>) -> Result<Surface<T, P>> {
         if s.knots_u() != self.u.source() || s.knots_v() != self.v.source() {
             return Err(Error::new(
                 ErrorKind::InvalidArgument,
                 "the spline's knot vectors are not the source spaces of the map",
             ));
         }
-        Ok(TensorSpline::new_unchecked(
+        Ok(Surface::new_unchecked(
             self.u.target().clone(),
             self.v.target().clone(),
-            apply_tensor(self.u.matrix(), self.v.matrix(), s.coefficients()),
+            apply_tensor(self.u.matrix(), self.v.matrix(), s.control_points()),
         ))
     }
 }
@@ -281,15 +162,15 @@ impl<T: Scalar> TensorMap<T> {
 /// # Errors
 /// [`ErrorKind::InvalidArgument`] if an order exceeds the degree in its direction.
 pub fn partial<T: Scalar, P: ControlPoint<T>>(
-    s: &TensorSpline<T, P>,
+    s: &Surface<T, P>,
     k: usize,
     l: usize,
-) -> Result<TensorSpline<T, P>> {
+) -> Result<Surface<T, P>> {
     TensorMap::partial_derivative(s.knots_u(), s.knots_v(), k, l)?.apply(s)
 }
 
 /// A partial derivative with its orders `(k, l)`.
-pub type Partial<T, P> = ((usize, usize), TensorSpline<T, P>);
+pub type Partial<T, P> = ((usize, usize), Surface<T, P>);
 
 /// All partial derivatives of total order at most `order` whose orders do not exceed the
 /// degrees: `((k, l), ∂^{k+l} s / ∂u^k ∂v^l)`, by increasing total order.
@@ -297,7 +178,7 @@ pub type Partial<T, P> = ((usize, usize), TensorSpline<T, P>);
 /// # Errors
 /// Never for valid splines (kept for uniformity).
 pub fn partials<T: Scalar, P: ControlPoint<T>>(
-    s: &TensorSpline<T, P>,
+    s: &Surface<T, P>,
     order: usize,
 ) -> Result<Vec<Partial<T, P>>> {
     let mut out = Vec::new();
@@ -354,11 +235,7 @@ impl<T: Scalar> TensorProductMap<T> {
     ///
     /// # Errors
     /// [`ErrorKind::InvalidArgument`] if the factors are not on the prepared spaces.
-    pub fn product(
-        &self,
-        a: &TensorSpline<T, T>,
-        b: &TensorSpline<T, T>,
-    ) -> Result<TensorSpline<T, T>> {
+    pub fn product(&self, a: &Surface<T, T>, b: &Surface<T, T>) -> Result<Surface<T, T>> {
         if a.knots_u() != self.u.left()
             || a.knots_v() != self.v.left()
             || b.knots_u() != self.u.right()
@@ -372,12 +249,12 @@ impl<T: Scalar> TensorProductMap<T> {
         let pa = apply_tensor(
             self.u.left_extraction().matrix(),
             self.v.left_extraction().matrix(),
-            a.coefficients(),
+            a.control_points(),
         );
         let pb = apply_tensor(
             self.u.right_extraction().matrix(),
             self.v.right_extraction().matrix(),
-            b.coefficients(),
+            b.control_points(),
         );
         let (pu, qu) = (self.u.left().degree(), self.u.right().degree());
         let (pv, qv) = (self.v.left().degree(), self.v.right().degree());
@@ -424,7 +301,7 @@ impl<T: Scalar> TensorProductMap<T> {
                 }
             }
         }
-        Ok(TensorSpline::new_unchecked(
+        Ok(Surface::new_unchecked(
             self.u.target().clone(),
             self.v.target().clone(),
             apply_tensor(
@@ -445,12 +322,23 @@ impl<T: Scalar> TensorProductMap<T> {
 
 /// The product of two bivariate B-spline functions on the same domain.
 ///
+/// ```
+/// use spline_algebra::tensor_product;
+/// use spline_core::KnotVector;
+/// use spline_geom::Surface;
+/// let k = KnotVector::new(1, vec![0.0f64, 0.0, 1.0, 1.0])?;
+/// // s(u, v) = u v, so s² = u² v².
+/// let s = Surface::new(k.clone(), k, vec![0.0, 0.0, 0.0, 1.0])?;
+/// assert_eq!(s.eval(0.5, 0.25)?, 0.125);
+/// let square = tensor_product(&s, &s)?;
+/// assert_eq!(square.degrees(), (2, 2));
+/// assert!((square.eval(0.5, 0.25)? - 0.015625).abs() < 1e-15);
+/// # Ok::<(), spline_core::Error>(())
+/// ```
+///
 /// # Errors
 /// As [`TensorProductMap::new`].
-pub fn tensor_product<T: Scalar>(
-    a: &TensorSpline<T, T>,
-    b: &TensorSpline<T, T>,
-) -> Result<TensorSpline<T, T>> {
+pub fn tensor_product<T: Scalar>(a: &Surface<T, T>, b: &Surface<T, T>) -> Result<Surface<T, T>> {
     TensorProductMap::new((a.knots_u(), a.knots_v()), (b.knots_u(), b.knots_v()))?.product(a, b)
 }
 
@@ -461,21 +349,21 @@ pub fn tensor_product<T: Scalar>(
 /// As [`common_space`] in either direction.
 pub fn tensor_linear_combination<T: Scalar, P: ControlPoint<T>>(
     alpha: T,
-    a: &TensorSpline<T, P>,
+    a: &Surface<T, P>,
     beta: T,
-    b: &TensorSpline<T, P>,
-) -> Result<TensorSpline<T, P>> {
+    b: &Surface<T, P>,
+) -> Result<Surface<T, P>> {
     let (au, bu) = common_space(a.knots_u(), b.knots_u())?;
     let (av, bv) = common_space(a.knots_v(), b.knots_v())?;
     let xa = TensorMap::new(au, av).apply(a)?;
     let xb = TensorMap::new(bu, bv).apply(b)?;
     let coefficients = xa
-        .coefficients()
+        .control_points()
         .iter()
-        .zip(xb.coefficients())
+        .zip(xb.control_points())
         .map(|(&x, &y)| x * alpha + y * beta)
         .collect();
-    Ok(TensorSpline::new_unchecked(
+    Ok(Surface::new_unchecked(
         xa.knots_u().clone(),
         xa.knots_v().clone(),
         coefficients,
@@ -487,7 +375,7 @@ pub fn tensor_linear_combination<T: Scalar, P: ControlPoint<T>>(
 #[derive(Clone, Debug)]
 pub struct QuadraticFunction<T> {
     /// The function.
-    pub value: TensorSpline<T, T>,
+    pub value: Surface<T, T>,
     /// $\partial\, \text{coefficient}_k / \partial x_j$.
     pub gradient: CsrMatrix<T>,
     /// The constant Hessian: row `k` is the Hessian of coefficient `k`.
@@ -511,7 +399,7 @@ fn fed_product<T: Scalar>(
 ///
 /// # Errors
 /// [`ErrorKind::InvalidArgument`] unless both degrees are at least 2.
-pub fn hessian_determinant<T: Scalar>(s: &TensorSpline<T, T>) -> Result<QuadraticFunction<T>> {
+pub fn hessian_determinant<T: Scalar>(s: &Surface<T, T>) -> Result<QuadraticFunction<T>> {
     let (ku, kv) = (s.knots_u(), s.knots_v());
     let duu = TensorMap::partial_derivative(ku, kv, 2, 0)?;
     let dvv = TensorMap::partial_derivative(ku, kv, 0, 2)?;
@@ -537,9 +425,9 @@ pub fn hessian_determinant<T: Scalar>(s: &TensorSpline<T, T>) -> Result<Quadrati
     let b1 = fed_product(&p1, &duu, &dvv)?.then(&r1.matrix())?;
     let b2 = fed_product(&p2, &duv, &duv)?.then(&r2.matrix())?;
     let form = b1.combine(T::one(), &b2, -T::one())?;
-    let (value, gradient) = form.quadratic(s.coefficients())?;
+    let (value, gradient) = form.quadratic(s.control_points())?;
     Ok(QuadraticFunction {
-        value: TensorSpline::new_unchecked(target_u, target_v, value),
+        value: Surface::new_unchecked(target_u, target_v, value),
         gradient,
         hessian: form.symmetrized()?,
     })
@@ -547,17 +435,13 @@ pub fn hessian_determinant<T: Scalar>(s: &TensorSpline<T, T>) -> Result<Quadrati
 
 /// The partial derivative, or the zero function (degree 0, one coefficient) when an order
 /// exceeds the degree.
-fn partial_or_zero<T: Scalar>(
-    s: &TensorSpline<T, T>,
-    k: usize,
-    l: usize,
-) -> Result<TensorSpline<T, T>> {
+fn partial_or_zero<T: Scalar>(s: &Surface<T, T>, k: usize, l: usize) -> Result<Surface<T, T>> {
     if k <= s.knots_u().degree() && l <= s.knots_v().degree() {
         return partial(s, k, l);
     }
     let (ua, ub) = s.knots_u().domain();
     let (va, vb) = s.knots_v().domain();
-    Ok(TensorSpline::new_unchecked(
+    Ok(Surface::new_unchecked(
         KnotVector::new(0, vec![ua, ub])?,
         KnotVector::new(0, vec![va, vb])?,
         vec![T::zero()],
@@ -584,9 +468,7 @@ fn partial_or_zero<T: Scalar>(
 /// # Errors
 /// [`ErrorKind::InvalidArgument`] unless both degrees are at least 2;
 /// [`ErrorKind::DegreeTooHigh`] if a product exceeds [`spline_core::MAX_DEGREE`].
-pub fn ridge_polynomials<T: Scalar>(
-    s: &TensorSpline<T, T>,
-) -> Result<(TensorSpline<T, T>, TensorSpline<T, T>)> {
+pub fn ridge_polynomials<T: Scalar>(s: &Surface<T, T>) -> Result<(Surface<T, T>, Surface<T, T>)> {
     if s.knots_u().degree() < 2 || s.knots_v().degree() < 2 {
         return Err(Error::new(
             ErrorKind::InvalidArgument,
@@ -597,7 +479,7 @@ pub fn ridge_polynomials<T: Scalar>(
     let (suu, svv, suv) = (d(2, 0)?, d(0, 2)?, d(1, 1)?);
     let (suuu, suuv, suvv, svvv) = (d(3, 0)?, d(2, 1)?, d(1, 2)?, d(0, 3)?);
     let mul = tensor_product::<T>;
-    let lin = |x: f64, a: &TensorSpline<T, T>, y: f64, b: &TensorSpline<T, T>| {
+    let lin = |x: f64, a: &Surface<T, T>, y: f64, b: &Surface<T, T>| {
         tensor_linear_combination(cast::<T>(x), a, cast::<T>(y), b)
     };
     let diff = lin(1.0, &suu, -1.0, &svv)?;
@@ -617,7 +499,7 @@ pub fn ridge_polynomials<T: Scalar>(
         &mul(&suv, &suvv)?,
     )?;
     let c5 = lin(1.0, &suu, 1.0, &svv)?;
-    let sum = |terms: &[(f64, TensorSpline<T, T>)]| -> Result<TensorSpline<T, T>> {
+    let sum = |terms: &[(f64, Surface<T, T>)]| -> Result<Surface<T, T>> {
         let mut acc = terms[0].1.clone();
         let mut first = terms[0].0;
         for (w, t) in &terms[1..] {

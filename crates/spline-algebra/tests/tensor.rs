@@ -12,23 +12,24 @@ mod common;
 use common::{Rng, assert_close_rel, dense};
 use num_dual::{Dual64, HyperDual64};
 use spline_algebra::{
-    SplineMap, TensorMap, TensorSpline, hessian_determinant, partials, ridge_polynomials,
+    SplineMap, TensorMap, hessian_determinant, partials, ridge_polynomials,
     tensor_linear_combination, tensor_product,
 };
 use spline_core::{KnotVector, Scalar};
+use spline_geom::Surface;
 
 fn knots(p: usize, interior: &[f64]) -> KnotVector<f64> {
     KnotVector::clamped(p, 0.0, 1.0, interior).unwrap()
 }
 
-fn random_surface(rng: &mut Rng, p: usize, q: usize) -> TensorSpline<f64, f64> {
+fn random_surface(rng: &mut Rng, p: usize, q: usize) -> Surface<f64, f64> {
     let ku = knots(p, &[0.3, 0.3, 0.6]);
     let kv = knots(q, &[0.25, 0.5, 0.8]);
     let n = ku.num_basis() * kv.num_basis();
-    TensorSpline::new(ku, kv, rng.values(n)).unwrap()
+    Surface::new(ku, kv, rng.values(n)).unwrap()
 }
 
-fn cast_surface<D: Scalar>(s: &TensorSpline<f64, f64>, coefficients: Vec<D>) -> TensorSpline<D, D> {
+fn cast_surface<D: Scalar>(s: &Surface<f64, f64>, coefficients: Vec<D>) -> Surface<D, D> {
     let k = |k: &KnotVector<f64>| {
         KnotVector::new(
             k.degree(),
@@ -36,7 +37,7 @@ fn cast_surface<D: Scalar>(s: &TensorSpline<f64, f64>, coefficients: Vec<D>) -> 
         )
         .unwrap()
     };
-    TensorSpline::new(k(s.knots_u()), k(s.knots_v()), coefficients).unwrap()
+    Surface::new(k(s.knots_u()), k(s.knots_v()), coefficients).unwrap()
 }
 
 #[test]
@@ -51,8 +52,8 @@ fn kronecker_maps_and_partials() {
     let fast = map.apply(&s).unwrap();
     let m = dense(&map.matrix());
     for (r, row) in m.iter().enumerate() {
-        let slow: f64 = row.iter().zip(s.coefficients()).map(|(a, b)| a * b).sum();
-        assert!((slow - fast.coefficients()[r]).abs() < 1e-13);
+        let slow: f64 = row.iter().zip(s.control_points()).map(|(a, b)| a * b).sum();
+        assert!((slow - fast.control_points()[r]).abs() < 1e-13);
     }
     for _ in 0..50 {
         let (u, v) = (rng.uniform(), rng.uniform());
@@ -85,7 +86,7 @@ fn bivariate_products_and_sums() {
     let a = random_surface(&mut rng, 3, 2);
     let kb = (knots(2, &[0.5, 0.75]), knots(1, &[0.25, 0.4]));
     let n = kb.0.num_basis() * kb.1.num_basis();
-    let b = TensorSpline::new(kb.0, kb.1, rng.values(n)).unwrap();
+    let b = Surface::new(kb.0, kb.1, rng.values(n)).unwrap();
     let c = tensor_product(&a, &b).unwrap();
     let s = tensor_linear_combination(2.0, &a, -3.0, &b).unwrap();
     for _ in 0..300 {
@@ -116,7 +117,7 @@ fn hessian_determinant_value_gradient_and_hessian() {
             "s_uu s_vv − s_uv²",
         );
     }
-    let x = s.coefficients().to_vec();
+    let x = s.control_points().to_vec();
     let nx = x.len();
     let grad = dense(&det.gradient);
     // Dual numbers (every variable) and five-point differences (exact for quadratics).
@@ -131,25 +132,23 @@ fn hessian_determinant_value_gradient_and_hessian() {
         let at = |t: f64| {
             let mut y = x.clone();
             y[j] += t * h;
-            hessian_determinant(
-                &TensorSpline::new(s.knots_u().clone(), s.knots_v().clone(), y).unwrap(),
-            )
-            .unwrap()
-            .value
+            hessian_determinant(&Surface::new(s.knots_u().clone(), s.knots_v().clone(), y).unwrap())
+                .unwrap()
+                .value
         };
         let (m2, m1, p1, p2) = (at(-2.0), at(-1.0), at(1.0), at(2.0));
         for k in 0..grad.len() {
             let row = grad[k].iter().fold(1.0f64, |m, v| m.max(v.abs()));
             assert_close_rel(
                 grad[k][j],
-                dual.value.coefficients()[k].eps,
+                dual.value.control_points()[k].eps,
                 1e-12,
                 row,
                 "gradient vs dual",
             );
-            let fd = (m2.coefficients()[k] - 8.0 * m1.coefficients()[k]
-                + 8.0 * p1.coefficients()[k]
-                - p2.coefficients()[k])
+            let fd = (m2.control_points()[k] - 8.0 * m1.control_points()[k]
+                + 8.0 * p1.control_points()[k]
+                - p2.control_points()[k])
                 / (12.0 * h);
             assert_close_rel(grad[k][j], fd, 1e-6, row, "gradient vs finite differences");
         }
@@ -191,14 +190,14 @@ fn hessian_determinant_value_gradient_and_hessian() {
                 .fold(1.0f64, |m, e| m.max(e.2.abs()));
             assert_close_rel(
                 stored,
-                hyper.value.coefficients()[k].eps1eps2,
+                hyper.value.control_points()[k].eps1eps2,
                 1e-12,
                 scale,
                 "hessian vs hyper-dual",
             );
         }
     }
-    let low = TensorSpline::new(knots(1, &[]), knots(3, &[]), vec![0.0; 8]).unwrap();
+    let low = Surface::new(knots(1, &[]), knots(3, &[]), vec![0.0; 8]).unwrap();
     assert!(hessian_determinant(&low).is_err());
 }
 
@@ -210,7 +209,7 @@ fn ridge_polynomials_match_the_eigenvalue_formulas() {
     let ku = knots(3, &[0.5]);
     let kv = knots(3, &[0.5]);
     let n = ku.num_basis() * kv.num_basis();
-    let s = TensorSpline::new(ku, kv, rng.values(n)).unwrap();
+    let s = Surface::new(ku, kv, rng.values(n)).unwrap();
     let (r1, r2) = ridge_polynomials(&s).unwrap();
     assert_eq!(r1.knots_u().degree(), 18);
     let eigen = |u: f64, v: f64| {

@@ -185,24 +185,31 @@ pub fn basis(args: &BasisArgs) -> Result<()> {
     io::print_json(&rows)
 }
 
-/// `[param][k][coord]` for a curve.
-pub fn eval_curve(curve: &Curve, params: &[f64], order: usize) -> Result<Value> {
+/// `[param][k][coord]`: `derivatives_into(u, out)` writes the derivatives of orders
+/// `0..=order` of a curve (polynomial or rational) at `u`; points are unpadded to `dim`.
+pub fn derivative_rows(
+    params: &[f64],
+    order: usize,
+    dim: usize,
+    mut derivatives_into: impl FnMut(f64, &mut [Pt]) -> Result<()>,
+) -> Result<Value> {
     let mut ders = vec![Pt::zeros(); order + 1];
     let out = params
         .iter()
         .enumerate()
         .map(|(i, &u)| {
-            curve
-                .curve
-                .derivatives_into(u, &mut ders)
-                .map_err(|e| e.context(format_args!("parameter {i}")))?;
-            Ok(ders
-                .iter()
-                .map(|p| io::unpad(p, curve.dim))
-                .collect::<Vec<_>>())
+            derivatives_into(u, &mut ders).map_err(|e| e.context(format_args!("parameter {i}")))?;
+            Ok(ders.iter().map(|p| io::unpad(p, dim)).collect::<Vec<_>>())
         })
         .collect::<Result<Vec<_>>>()?;
     Ok(json!(out))
+}
+
+/// `[param][k][coord]` for a curve.
+pub fn eval_curve(curve: &Curve, params: &[f64], order: usize) -> Result<Value> {
+    derivative_rows(params, order, curve.dim, |u, out| {
+        curve.curve.derivatives_into(u, out)
+    })
 }
 
 pub fn eval(args: &EvalArgs) -> Result<()> {
@@ -223,10 +230,64 @@ pub fn eval(args: &EvalArgs) -> Result<()> {
     io::print_json(&value)
 }
 
-/// Applies a structural operation to a curve.
-pub fn apply_to_curve(curve: &Curve, operation: &Operation) -> Result<Value> {
-    let c = &curve.curve;
-    let one = |b: BSpline<f64, Pt>| json!(curve.with(b).to_record());
+/// The structural operations of the tool on one kind of curve (polynomial here, rational
+/// in [`crate::surfaces`]), so that [`apply_operation`] dispatches them once for both.
+pub trait CurveOperations: Sized {
+    /// Inserts the knot `u` `times` times.
+    fn insert_knot(&self, u: f64, times: usize) -> Result<Self>;
+    /// Inserts all the knots.
+    fn refine(&self, knots: &[f64]) -> Result<Self>;
+    /// Removes the knot `u` `times` times within a relative tolerance.
+    fn remove_knot(&self, u: f64, times: usize, relative_tolerance: f64) -> Result<Self>;
+    /// Raises the degree by `times`.
+    fn elevate_degree(&self, times: usize) -> Result<Self>;
+    /// Splits at `u` into two curves clamped there.
+    fn split(&self, u: f64) -> Result<(Self, Self)>;
+    /// The Bézier segments, each a clamped curve on its span.
+    fn bezier_pieces(&self) -> Result<Vec<Self>>;
+    /// The derivative curve of order `order`, where the kind of curve has one.
+    fn derivative_curve(&self, order: usize) -> Result<Self>;
+}
+
+impl CurveOperations for BSpline<f64, Pt> {
+    fn insert_knot(&self, u: f64, times: usize) -> Result<Self> {
+        BSpline::insert_knot(self, u, times)
+    }
+
+    fn refine(&self, knots: &[f64]) -> Result<Self> {
+        BSpline::refine(self, knots)
+    }
+
+    fn remove_knot(&self, u: f64, times: usize, relative_tolerance: f64) -> Result<Self> {
+        BSpline::remove_knot(self, u, times, relative_tolerance)
+    }
+
+    fn elevate_degree(&self, times: usize) -> Result<Self> {
+        BSpline::elevate_degree(self, times)
+    }
+
+    fn split(&self, u: f64) -> Result<(Self, Self)> {
+        BSpline::split(self, u)
+    }
+
+    fn bezier_pieces(&self) -> Result<Vec<Self>> {
+        self.bezier_segments()
+            .into_iter()
+            .map(|b| b.to_bspline())
+            .collect()
+    }
+
+    fn derivative_curve(&self, order: usize) -> Result<Self> {
+        self.derivative(order)
+    }
+}
+
+/// Applies a structural operation to a curve; `one` writes a resulting curve as JSON.
+pub fn apply_operation<C: CurveOperations>(
+    c: &C,
+    operation: &Operation,
+    one: impl Fn(C) -> Value,
+) -> Result<Value> {
     Ok(match operation {
         Operation::Insert { knot, times } => one(c.insert_knot(*knot, *times)?),
         Operation::Refine { knots } => one(c.refine(knots)?),
@@ -238,17 +299,17 @@ pub fn apply_to_curve(curve: &Curve, operation: &Operation) -> Result<Value> {
         Operation::Elevate { times } => one(c.elevate_degree(*times)?),
         Operation::Split { at } => {
             let (left, right) = c.split(*at)?;
-            json!([curve.with(left).to_record(), curve.with(right).to_record()])
+            json!([one(left), one(right)])
         }
-        Operation::Bezier => {
-            let segments = c
-                .bezier_segments()
-                .into_iter()
-                .map(|b| Ok(json!(curve.with(b.to_bspline()?).to_record())))
-                .collect::<Result<Vec<_>>>()?;
-            json!(segments)
-        }
-        Operation::Derivative { order } => one(c.derivative(*order)?),
+        Operation::Bezier => json!(c.bezier_pieces()?.into_iter().map(one).collect::<Vec<_>>()),
+        Operation::Derivative { order } => one(c.derivative_curve(*order)?),
+    })
+}
+
+/// Applies a structural operation to a curve.
+pub fn apply_to_curve(curve: &Curve, operation: &Operation) -> Result<Value> {
+    apply_operation(&curve.curve, operation, |b| {
+        json!(curve.with(b).to_record())
     })
 }
 

@@ -5,7 +5,7 @@
 //! [`io::MAX_DIM`] coordinates (zeros stay zero under every affine combination and under
 //! the rational projection), so one instantiation of the library serves every dimension.
 
-use crate::curves::{Direction, Operation};
+use crate::curves::{CurveOperations, Direction, Operation, apply_operation, derivative_rows};
 use crate::io::{self, MAX_DIM, Object, Pt};
 use clap::{Args, Subcommand, ValueEnum};
 use nalgebra::{SVector, Vector2, Vector3};
@@ -142,18 +142,7 @@ fn surface_json(surface: &ToolSurface, dim: usize) -> Value {
 /// `[param][k][coord]` rational derivatives of a NURBS curve.
 pub fn eval_nurbs(record: &CurveRecord, params: &[f64], order: usize) -> Result<Value> {
     let (curve, dim) = nurbs_from_record(record)?;
-    let mut ders = vec![Pt::zeros(); order + 1];
-    let out = params
-        .iter()
-        .enumerate()
-        .map(|(i, &u)| {
-            curve
-                .derivatives_into(u, &mut ders)
-                .map_err(|e| e.context(format_args!("parameter {i}")))?;
-            Ok(ders.iter().map(|p| io::unpad(p, dim)).collect::<Vec<_>>())
-        })
-        .collect::<Result<Vec<_>>>()?;
-    Ok(json!(out))
+    derivative_rows(params, order, dim, |u, out| curve.derivatives_into(u, out))
 }
 
 /// `[param][k][l][coord]` partial derivatives of a surface, `k, l = 0..=order`.
@@ -179,35 +168,43 @@ pub fn eval_surface(surface: Value, params: &[[f64; 2]], order: usize) -> Result
     Ok(json!(out))
 }
 
+/// Structural operations on NURBS curves run in homogeneous space.
+impl CurveOperations for Nurbs {
+    fn insert_knot(&self, u: f64, times: usize) -> Result<Self> {
+        NurbsCurve::insert_knot(self, u, times)
+    }
+
+    fn refine(&self, knots: &[f64]) -> Result<Self> {
+        NurbsCurve::refine(self, knots)
+    }
+
+    fn remove_knot(&self, u: f64, times: usize, relative_tolerance: f64) -> Result<Self> {
+        NurbsCurve::remove_knot(self, u, times, relative_tolerance)
+    }
+
+    fn elevate_degree(&self, times: usize) -> Result<Self> {
+        NurbsCurve::elevate_degree(self, times)
+    }
+
+    fn split(&self, u: f64) -> Result<(Self, Self)> {
+        NurbsCurve::split(self, u)
+    }
+
+    fn bezier_pieces(&self) -> Result<Vec<Self>> {
+        Ok(self.bezier_segments())
+    }
+
+    fn derivative_curve(&self, _order: usize) -> Result<Self> {
+        Err(invalid(
+            "the derivative of a NURBS curve is not a NURBS curve on the same knots; use `spline eval --derivatives K` for rational derivatives",
+        ))
+    }
+}
+
 /// A structural operation on a NURBS curve (in homogeneous space).
 pub fn apply_to_nurbs(record: &CurveRecord, operation: &Operation) -> Result<Value> {
     let (c, dim) = nurbs_from_record(record)?;
-    let one = |curve: Nurbs| nurbs_json(&curve, dim);
-    Ok(match operation {
-        Operation::Insert { knot, times } => one(c.insert_knot(*knot, *times)?),
-        Operation::Refine { knots } => one(c.refine(knots)?),
-        Operation::Remove {
-            knot,
-            times,
-            tolerance,
-        } => one(c.remove_knot(*knot, *times, *tolerance)?),
-        Operation::Elevate { times } => one(c.elevate_degree(*times)?),
-        Operation::Split { at } => {
-            let (left, right) = c.split(*at)?;
-            json!([nurbs_json(&left, dim), nurbs_json(&right, dim)])
-        }
-        Operation::Bezier => json!(
-            c.bezier_segments()
-                .iter()
-                .map(|s| nurbs_json(s, dim))
-                .collect::<Vec<_>>()
-        ),
-        Operation::Derivative { .. } => {
-            return Err(invalid(
-                "the derivative of a NURBS curve is not a NURBS curve on the same knots; use `spline eval --derivatives K` for rational derivatives",
-            ));
-        }
-    })
+    apply_operation(&c, operation, |curve| nurbs_json(&curve, dim))
 }
 
 /// A structural operation on a surface in one direction.
@@ -629,6 +626,25 @@ fn polynomial(curve: &Nurbs) -> BSpline<f64, Pt> {
         .expect("a B-spline read as NURBS has unit weights")
 }
 
+/// A surface built from the curve in `path` and the point given by `option`
+/// (`(name, JSON)`, of the curve's dimension): NURBS when the curve is, polynomial otherwise.
+fn curve_and_point(
+    path: &str,
+    (option, text): (&str, &str),
+    rational: impl FnOnce(&Nurbs, Pt) -> Result<NurbsSurf>,
+    plain: impl FnOnce(&BSpline<f64, Pt>, Pt) -> Result<Surf>,
+) -> Result<Value> {
+    let (curve, dim, is_rational) = read_curve(path)?;
+    let (point, d) = padded_point(option, text)?;
+    same_dim(option, d, dim)?;
+    let surface = if is_rational {
+        ToolSurface::Rational(rational(&curve, point)?)
+    } else {
+        ToolSurface::Plain(plain(&polynomial(&curve), point)?)
+    };
+    Ok(surface_json(&surface, dim))
+}
+
 fn make_json(shape: &Shape) -> Result<Value> {
     Ok(match shape {
         Shape::Circle(a) => {
@@ -670,22 +686,12 @@ fn make_json(shape: &Shape) -> Result<Value> {
             };
             nurbs_json(&arc, d0)
         }
-        Shape::Extrude(a) => {
-            let (curve, dim, rational) = read_curve(&a.curve)?;
-            let (v, dv) = padded_point("--vector", &a.vector)?;
-            same_dim("--vector", dv, dim)?;
-            if rational {
-                surface_json(
-                    &ToolSurface::Rational(NurbsSurface::extrusion(&curve, v)?),
-                    dim,
-                )
-            } else {
-                surface_json(
-                    &ToolSurface::Plain(Surface::extrusion(&polynomial(&curve), v)?),
-                    dim,
-                )
-            }
-        }
+        Shape::Extrude(a) => curve_and_point(
+            &a.curve,
+            ("--vector", &a.vector),
+            NurbsSurface::extrusion,
+            Surface::extrusion,
+        )?,
         Shape::Ruled(a) => {
             let (c1, d1, r1) = read_curve(&a.first)?;
             let (c2, d2, r2) = read_curve(&a.second)?;
@@ -704,22 +710,12 @@ fn make_json(shape: &Shape) -> Result<Value> {
                 )
             }
         }
-        Shape::Cone(a) => {
-            let (curve, dim, rational) = read_curve(&a.curve)?;
-            let (apex, da) = padded_point("--apex", &a.apex)?;
-            same_dim("--apex", da, dim)?;
-            if rational {
-                surface_json(
-                    &ToolSurface::Rational(NurbsSurface::cone(&curve, apex)?),
-                    dim,
-                )
-            } else {
-                surface_json(
-                    &ToolSurface::Plain(Surface::cone(&polynomial(&curve), apex)?),
-                    dim,
-                )
-            }
-        }
+        Shape::Cone(a) => curve_and_point(
+            &a.curve,
+            ("--apex", &a.apex),
+            NurbsSurface::cone,
+            Surface::cone,
+        )?,
         Shape::Revolve(a) => {
             let (curve, dim, _) = read_curve(&a.profile)?;
             if !(2..=3).contains(&dim) {

@@ -405,6 +405,34 @@ impl<T: Scalar> KnotVector<T> {
             .collect()
     }
 
+    /// The ends of the polynomial pieces of a spline on `[a, b]`: `a`, the distinct knots
+    /// strictly between `a` and `b` in increasing order, then `b` (only `a` when `a = b`).
+    ///
+    /// ```
+    /// use spline_core::KnotVector;
+    /// let knots = KnotVector::new(2, vec![0.0, 0.0, 0.0, 1.0, 1.0, 2.0, 3.0, 3.0, 3.0])?;
+    /// assert_eq!(knots.breaks_between(0.5, 2.5), vec![0.5, 1.0, 2.0, 2.5]);
+    /// assert_eq!(knots.breaks_between(1.0, 1.0), vec![1.0]);
+    /// assert_eq!(knots.domain_breaks(), vec![0.0, 1.0, 2.0, 3.0]);
+    /// # Ok::<(), spline_core::Error>(())
+    /// ```
+    #[must_use]
+    pub fn breaks_between(&self, a: T, b: T) -> Vec<T> {
+        let mut breaks = vec![a];
+        breaks.extend(self.knots.iter().copied().filter(|&k| k > a && k < b));
+        breaks.push(b);
+        breaks.dedup();
+        breaks
+    }
+
+    /// The ends of the polynomial pieces on the whole domain $[u_p, u_n]$: its ends and the
+    /// distinct interior knots ([`KnotVector::breaks_between`] on the domain).
+    #[must_use]
+    pub fn domain_breaks(&self) -> Vec<T> {
+        let (a, b) = self.domain();
+        self.breaks_between(a, b)
+    }
+
     /// Greville abscissae $u^*_i = (u_{i+1} + … + u_{i+p})/p$, `i = 0 … n − 1`: the
     /// parameters at which the control polygon of a function is drawn. For degree 0, the
     /// midpoints of the supports.

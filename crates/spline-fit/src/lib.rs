@@ -20,8 +20,8 @@
 //! or Givens QR for least squares). Everything is generic over the scalar (`f64`, `f32`,
 //! dual numbers) and the point type.
 //!
-//! Surface fits return plain data ([`SurfaceFit`]: two knot vectors and a row-major
-//! control net) that any surface container can take.
+//! Surface fits return a [`spline_geom::Surface`] with the parameters of the data and the
+//! deviation ([`SurfaceFit`]), as curve fits return a [`spline_geom::BSpline`] ([`CurveFit`]).
 //!
 //! ```
 //! use nalgebra::Vector2;

@@ -5,7 +5,9 @@
 
 use crate::banded::{BandCholesky, BandQr};
 use crate::interpolate::check_degree;
-use crate::params::{KnotChoice, Parametrization, check_points, knots_for, parametrize};
+use crate::params::{
+    KnotChoice, Parametrization, check_control_count, check_points, knots_for, parametrize,
+};
 use crate::report::CurveFit;
 use spline_core::gauss_legendre;
 use spline_core::{
@@ -345,6 +347,27 @@ impl<'a, T: Scalar, P: ControlPoint<T>> LeastSquares<'a, T, P> {
         };
         let mut basis = [T::zero(); MAX_ORDER];
         let mut compressed = [T::zero(); MAX_ORDER];
+        // A row `row` on the basis functions first, first + 1, … with right-hand side
+        // `target`: the fixed control points move to the right-hand side, the entries of
+        // the free ones are compressed to their columns.
+        let mut add_constrained =
+            |sink: &mut Sink<T, P>, first: usize, row: &[T], w: T, mut target: P| {
+                let mut start = None;
+                let mut len = 0;
+                for (a, &b) in row.iter().enumerate() {
+                    let i = first + a;
+                    if free[i] {
+                        start.get_or_insert(column[i]);
+                        compressed[len] = b;
+                        len += 1;
+                    } else {
+                        target -= values[i] * b;
+                    }
+                }
+                if let Some(s) = start {
+                    sink.add(s, &mut compressed[..len], w, target);
+                }
+            };
         // Streaming Schoenberg–Whitney check (greedy assignment of data to free basis
         // functions in order).
         let check = self.check_sw && self.smoothing == T::zero();
@@ -405,22 +428,7 @@ impl<'a, T: Scalar, P: ControlPoint<T>> LeastSquares<'a, T, P> {
             if all_free {
                 sink.add(f, &mut basis[..width], w, q);
             } else {
-                let mut target = q;
-                let mut start = None;
-                let mut len = 0;
-                for a in 0..width {
-                    let i = f + a;
-                    if free[i] {
-                        start.get_or_insert(column[i]);
-                        compressed[len] = basis[a];
-                        len += 1;
-                    } else {
-                        target -= values[i] * basis[a];
-                    }
-                }
-                if let Some(s) = start {
-                    sink.add(s, &mut compressed[..len], w, target);
-                }
+                add_constrained(&mut sink, f, &basis[..width], w, q);
             }
         }
         if check {
@@ -442,25 +450,9 @@ impl<'a, T: Scalar, P: ControlPoint<T>> LeastSquares<'a, T, P> {
                 for &(x, wq) in &rule {
                     let u = mid + rad * x;
                     knots.basis_derivatives(s, u, 2, &mut table[..3 * width]);
-                    let row = &mut table[2 * width..3 * width];
+                    let row = &table[2 * width..3 * width];
                     let w = (self.smoothing * wq * rad).sqrt();
-                    let f = s - p;
-                    let mut target = P::origin();
-                    let mut start = None;
-                    let mut len = 0;
-                    for a in 0..width {
-                        let i = f + a;
-                        if free[i] {
-                            start.get_or_insert(column[i]);
-                            compressed[len] = row[a];
-                            len += 1;
-                        } else {
-                            target -= values[i] * row[a];
-                        }
-                    }
-                    if let Some(st) = start {
-                        sink.add(st, &mut compressed[..len], w, target);
-                    }
+                    add_constrained(&mut sink, s - p, row, w, P::origin());
                 }
             }
         }
@@ -643,24 +635,7 @@ pub fn approximate<T: Scalar, P: ControlPoint<T>>(
     knots: &KnotChoice<T>,
 ) -> Result<CurveFit<T, P>> {
     check_degree(degree)?;
-    if num_control <= degree {
-        return Err(Error::new(
-            ErrorKind::TooFewPoints,
-            format!(
-                "a degree-{degree} curve needs at least {} control points, got {num_control}",
-                degree + 1
-            ),
-        ));
-    }
-    if points.len() < num_control {
-        return Err(Error::new(
-            ErrorKind::TooFewPoints,
-            format!(
-                "{num_control} control points need at least {num_control} data points, got {}",
-                points.len()
-            ),
-        ));
-    }
+    check_control_count(degree, num_control, points.len())?;
     let params = parametrize(points, parametrization)?;
     let knot_vector = knots_for(knots, degree, num_control, &params)?;
     LeastSquares::new(points, &params, knot_vector).solve()

@@ -1,8 +1,9 @@
 //! Parametrisation of data points and knot placement.
 
+use crate::interpolate::check_degree;
 use spline_core::{
-    ControlPoint, Error, ErrorKind, KnotVector, MAX_DEGREE, Result, Scalar, cast, check_params,
-    from_count, to_f64,
+    ControlPoint, Error, ErrorKind, KnotVector, Result, Scalar, cast, check_params, from_count,
+    to_f64,
 };
 
 /// How parameters are assigned to the data points `Q_0 … Q_m`.
@@ -267,30 +268,8 @@ pub fn nurbs_book_knots<T: Scalar>(
     params: &[T],
 ) -> Result<KnotVector<T>> {
     check_params(params)?;
-    if degree > MAX_DEGREE {
-        return Err(Error::new(
-            ErrorKind::DegreeTooHigh,
-            format!("degree {degree} is above the supported maximum {MAX_DEGREE}"),
-        ));
-    }
-    if num_control <= degree {
-        return Err(Error::new(
-            ErrorKind::TooFewPoints,
-            format!(
-                "a degree-{degree} curve needs at least {} control points, got {num_control}",
-                degree + 1
-            ),
-        ));
-    }
-    if params.len() < num_control {
-        return Err(Error::new(
-            ErrorKind::TooFewPoints,
-            format!(
-                "{num_control} control points need at least {num_control} data points, got {}",
-                params.len()
-            ),
-        ));
-    }
+    check_degree(degree)?;
+    check_control_count(degree, num_control, params.len())?;
     let count = params.len(); // m + 1
     let n = num_control - 1;
     let (a, b) = (params[0], params[count - 1]);
@@ -311,6 +290,36 @@ pub fn nurbs_book_knots<T: Scalar>(
     knots.extend(interior);
     knots.extend(std::iter::repeat_n(b, degree + 1));
     KnotVector::new(degree, knots)
+}
+
+/// Checks that `num_control` control points of degree `p` can be fitted to `num_data` data:
+/// `p < num_control ≤ num_data`.
+///
+/// # Errors
+/// [`ErrorKind::TooFewPoints`] otherwise.
+pub(crate) fn check_control_count(
+    degree: usize,
+    num_control: usize,
+    num_data: usize,
+) -> Result<()> {
+    if num_control <= degree {
+        return Err(Error::new(
+            ErrorKind::TooFewPoints,
+            format!(
+                "a degree-{degree} curve needs at least {} control points, got {num_control}",
+                degree + 1
+            ),
+        ));
+    }
+    if num_data < num_control {
+        return Err(Error::new(
+            ErrorKind::TooFewPoints,
+            format!(
+                "{num_control} control points need at least {num_control} data points, got {num_data}"
+            ),
+        ));
+    }
+    Ok(())
 }
 
 /// The knot vector that `choice` describes for `num_control` control points and the data

@@ -14,16 +14,22 @@ pub struct Projection<T, P> {
     pub distance: T,
 }
 
+/// The extent `(min, max)` of coordinate `c` over the points (not empty).
+fn coordinate_range<T: Scalar, P: ControlPoint<T>>(points: &[P], c: usize) -> (T, T) {
+    let (mut lo, mut hi) = (points[0].coord(c), points[0].coord(c));
+    for p in &points[1..] {
+        lo = lo.min(p.coord(c));
+        hi = hi.max(p.coord(c));
+    }
+    (lo, hi)
+}
+
 /// Distance from `q` to the axis-aligned box of the control points (a lower bound of the
 /// distance to the piece by the convex hull property).
 fn box_distance<T: Scalar, P: ControlPoint<T>>(points: &[P], q: &P) -> T {
     let mut sum = T::zero();
     for c in 0..P::DIM {
-        let (mut lo, mut hi) = (points[0].coord(c), points[0].coord(c));
-        for p in &points[1..] {
-            lo = lo.min(p.coord(c));
-            hi = hi.max(p.coord(c));
-        }
+        let (lo, hi) = coordinate_range(points, c);
         let x = q.coord(c);
         let d = (lo - x).max(x - hi).max(T::zero());
         sum += d * d;
@@ -34,11 +40,7 @@ fn box_distance<T: Scalar, P: ControlPoint<T>>(points: &[P], q: &P) -> T {
 fn box_diagonal<T: Scalar, P: ControlPoint<T>>(points: &[P]) -> T {
     let mut sum = T::zero();
     for c in 0..P::DIM {
-        let (mut lo, mut hi) = (points[0].coord(c), points[0].coord(c));
-        for p in &points[1..] {
-            lo = lo.min(p.coord(c));
-            hi = hi.max(p.coord(c));
-        }
+        let (lo, hi) = coordinate_range(points, c);
         sum += (hi - lo) * (hi - lo);
     }
     sum.sqrt()

@@ -1,8 +1,8 @@
 //! Tensor-product surfaces: interpolation of grids by two passes (seed 004 §7), least
 //! squares from grids and from scattered points.
 //!
-//! Results are plain data — two knot vectors and a row-major control net — so that any
-//! surface container can take them.
+//! Results are [`spline_geom::Surface`]s (two knot vectors and a row-major control net,
+//! `i` along `u`) with the parameters of the data and the deviation.
 
 // Index loops mirror the formulas (basis index ↔ control-point index).
 #![allow(clippy::needless_range_loop)]
@@ -16,17 +16,16 @@ use spline_core::gauss_legendre;
 use spline_core::{
     ControlPoint, Error, ErrorKind, KnotVector, MAX_ORDER, Result, Scalar, cast, from_count, to_f64,
 };
+use spline_geom::Surface;
 
-/// A fitted tensor-product surface $S(u, v) = \sum_i \sum_j N_i(u) N_j(v) P_{ij}$.
+/// A fitted tensor-product surface $S(u, v) = \sum_i \sum_j N_i(u) N_j(v) P_{ij}$ with the
+/// parameters of the data and its deviation from them.
 #[derive(Clone, Debug, PartialEq)]
 pub struct SurfaceFit<T, P> {
-    /// Knots in `u` (index `i`).
-    pub knots_u: KnotVector<T>,
-    /// Knots in `v` (index `j`).
-    pub knots_v: KnotVector<T>,
-    /// The control net, row-major: $P_{ij}$ is `control_points[i * n_v + j]`, `i` along `u`
-    /// (the exchange format's `control_points[i][j]`).
-    pub control_points: Vec<P>,
+    /// The surface: knots in `u` (index `i`) and `v` (index `j`), the control net row-major
+    /// ($P_{ij}$ is `control_points()[i * n_v + j]`, the exchange format's
+    /// `control_points[i][j]`).
+    pub surface: Surface<T, P>,
     /// Grid fits: the `u` parameter of each grid row. Scattered fits: the `u` parameter of
     /// each point.
     pub params_u: Vec<T>,
@@ -35,42 +34,6 @@ pub struct SurfaceFit<T, P> {
     pub params_v: Vec<T>,
     /// Distances of the data from the surface (grid points in row-major order).
     pub deviation: Deviation<T>,
-}
-
-impl<T: Scalar, P: ControlPoint<T>> SurfaceFit<T, P> {
-    /// The point $S(u, v)$.
-    ///
-    /// # Errors
-    /// [`ErrorKind::NonFinite`] or [`ErrorKind::OutOfDomain`].
-    pub fn eval(&self, u: T, v: T) -> Result<P> {
-        eval_net(&self.knots_u, &self.knots_v, &self.control_points, u, v)
-    }
-}
-
-fn eval_net<T: Scalar, P: ControlPoint<T>>(
-    ku: &KnotVector<T>,
-    kv: &KnotVector<T>,
-    net: &[P],
-    u: T,
-    v: T,
-) -> Result<P> {
-    let (su, sv) = (ku.find_span(u)?, kv.find_span(v)?);
-    let (p, q) = (ku.degree(), kv.degree());
-    let nv = kv.num_basis();
-    let mut bu = [T::zero(); MAX_ORDER];
-    let mut bv = [T::zero(); MAX_ORDER];
-    ku.basis_values(su, u, &mut bu);
-    kv.basis_values(sv, v, &mut bv);
-    let mut acc = P::origin();
-    for a in 0..=p {
-        let row = (su - p + a) * nv;
-        let mut inner = P::origin();
-        for b in 0..=q {
-            inner += net[row + sv - q + b] * bv[b];
-        }
-        acc += inner * bu[a];
-    }
-    Ok(acc)
 }
 
 fn check_grid<T: Scalar, P: ControlPoint<T>>(grid: &[P], rows: usize, cols: usize) -> Result<()> {
@@ -91,6 +54,25 @@ fn check_grid<T: Scalar, P: ControlPoint<T>>(grid: &[P], rows: usize, cols: usiz
         ));
     }
     Ok(())
+}
+
+/// Checks the degrees and the grid of a grid fit, then `enough` (the numbers of points and
+/// control points agree with the degrees); `shortfall` describes the problem otherwise.
+fn check_grid_fit<T: Scalar, P: ControlPoint<T>>(
+    grid: &[P],
+    (rows, cols): (usize, usize),
+    (degree_u, degree_v): (usize, usize),
+    enough: bool,
+    shortfall: impl FnOnce() -> String,
+) -> Result<()> {
+    check_degree(degree_u)?;
+    check_degree(degree_v)?;
+    check_grid(grid, rows, cols)?;
+    if enough {
+        Ok(())
+    } else {
+        Err(Error::new(ErrorKind::TooFewPoints, shortfall()))
+    }
 }
 
 /// Parameters of a grid $Q_{kl}$ (`rows × cols`, row-major, `k` along `u`) by The NURBS
@@ -153,9 +135,7 @@ pub fn surface_grid_params<T: Scalar, P: ControlPoint<T>>(
 }
 
 fn grid_deviation<T: Scalar, P: ControlPoint<T>>(
-    fit_u: &KnotVector<T>,
-    fit_v: &KnotVector<T>,
-    net: &[P],
+    surface: &Surface<T, P>,
     grid: &[P],
     u: &[T],
     v: &[T],
@@ -163,7 +143,7 @@ fn grid_deviation<T: Scalar, P: ControlPoint<T>>(
     let mut d = Vec::with_capacity(grid.len());
     for (k, &uk) in u.iter().enumerate() {
         for (l, &vl) in v.iter().enumerate() {
-            d.push((eval_net(fit_u, fit_v, net, uk, vl)? - grid[k * v.len() + l]).length());
+            d.push((surface.eval(uk, vl)? - grid[k * v.len() + l]).length());
         }
     }
     Ok(Deviation::from_distances(d))
@@ -201,19 +181,19 @@ pub fn interpolate_surface<T: Scalar, P: ControlPoint<T>>(
     param_u: &Parametrization<T>,
     param_v: &Parametrization<T>,
 ) -> Result<SurfaceFit<T, P>> {
-    check_degree(degree_u)?;
-    check_degree(degree_v)?;
-    check_grid(grid, rows, cols)?;
-    if rows <= degree_u || cols <= degree_v {
-        return Err(Error::new(
-            ErrorKind::TooFewPoints,
+    check_grid_fit(
+        grid,
+        (rows, cols),
+        (degree_u, degree_v),
+        rows > degree_u && cols > degree_v,
+        || {
             format!(
                 "a surface of degrees ({degree_u}, {degree_v}) needs at least {} × {} points, got {rows} × {cols}",
                 degree_u + 1,
                 degree_v + 1
-            ),
-        ));
-    }
+            )
+        },
+    )?;
     let (u, v) = surface_grid_params(grid, rows, cols, param_u, param_v)?;
     let ku = KnotVector::averaging(degree_u, &u)?;
     let kv = KnotVector::averaging(degree_v, &v)?;
@@ -253,11 +233,10 @@ fn two_passes<T: Scalar, P: ControlPoint<T>>(
             .map_err(|e| e.context(format_args!("control row {i}")))?;
         net[i * nv..(i + 1) * nv].copy_from_slice(&ctrl);
     }
-    let deviation = grid_deviation(ku, kv, &net, grid, u, v)?;
+    let surface = Surface::new_unchecked(ku.clone(), kv.clone(), net);
+    let deviation = grid_deviation(&surface, grid, u, v)?;
     Ok(SurfaceFit {
-        knots_u: ku.clone(),
-        knots_v: kv.clone(),
-        control_points: net,
+        surface,
         params_u: u.to_vec(),
         params_v: v.to_vec(),
         deviation,
@@ -284,19 +263,19 @@ pub fn approximate_surface_grid<T: Scalar, P: ControlPoint<T>>(
     param_u: &Parametrization<T>,
     param_v: &Parametrization<T>,
 ) -> Result<SurfaceFit<T, P>> {
-    check_degree(degree_u)?;
-    check_degree(degree_v)?;
-    check_grid(grid, rows, cols)?;
-    if num_u <= degree_u || num_v <= degree_v || num_u > rows || num_v > cols {
-        return Err(Error::new(
-            ErrorKind::TooFewPoints,
+    check_grid_fit(
+        grid,
+        (rows, cols),
+        (degree_u, degree_v),
+        num_u > degree_u && num_v > degree_v && num_u <= rows && num_v <= cols,
+        || {
             format!(
                 "{num_u} × {num_v} control points of degrees ({degree_u}, {degree_v}) need {} ≤ num_u ≤ {rows} and {} ≤ num_v ≤ {cols}",
                 degree_u + 1,
                 degree_v + 1
-            ),
-        ));
-    }
+            )
+        },
+    )?;
     let (u, v) = surface_grid_params(grid, rows, cols, param_u, param_v)?;
     let ku = knots_for(&KnotChoice::NurbsBook, degree_u, num_u, &u)?;
     let kv = knots_for(&KnotChoice::NurbsBook, degree_v, num_v, &v)?;
@@ -433,15 +412,14 @@ pub fn approximate_surface_scattered<T: Scalar, P: ControlPoint<T>>(
     debug_assert_eq!(matrix.bandwidth(), bw);
     matrix.factor(&|k| format!("control point ({}, {})", k / nv, k % nv))?;
     matrix.solve(&mut rhs);
+    let surface = Surface::new_unchecked(knots_u.clone(), knots_v.clone(), rhs);
     let distances = params
         .iter()
         .zip(points)
-        .map(|(&(u, v), q)| Ok((eval_net(knots_u, knots_v, &rhs, u, v)? - *q).length()))
+        .map(|(&(u, v), q)| Ok((surface.eval(u, v)? - *q).length()))
         .collect::<Result<Vec<T>>>()?;
     Ok(SurfaceFit {
-        knots_u: knots_u.clone(),
-        knots_v: knots_v.clone(),
-        control_points: rhs,
+        surface,
         params_u: params.iter().map(|&(u, _)| u).collect(),
         params_v: params.iter().map(|&(_, v)| v).collect(),
         deviation: Deviation::from_distances(distances),

@@ -282,7 +282,7 @@ fn surfaces_from_grids_and_scattered_points() {
         &Parametrization::Chordal,
     )
     .unwrap();
-    assert_eq!(fit.control_points.len(), 72);
+    assert_eq!(fit.surface.control_points().len(), 72);
     assert!(fit.deviation.max < 5e-3, "{}", fit.deviation.max);
     // The two passes solve the tensor-product least-squares problem exactly: compare with
     // the dense solution A_u⁺ Q (A_v⁺)ᵀ.
@@ -290,8 +290,8 @@ fn surfaces_from_grids_and_scattered_points() {
         let rows: Vec<Vec<f64>> = params.iter().map(|&t| k.dense_basis(t).unwrap()).collect();
         nalgebra::DMatrix::from_fn(rows.len(), rows[0].len(), |i, j| rows[i][j])
     };
-    let au = dense(&fit.knots_u, &fit.params_u);
-    let av = dense(&fit.knots_v, &fit.params_v);
+    let au = dense(fit.surface.knots_u(), &fit.params_u);
+    let av = dense(fit.surface.knots_v(), &fit.params_v);
     let pinv =
         |a: &nalgebra::DMatrix<f64>| (a.transpose() * a).try_inverse().unwrap() * a.transpose();
     let (pu, pv) = (pinv(&au), pinv(&av));
@@ -300,7 +300,7 @@ fn surfaces_from_grids_and_scattered_points() {
         let x = &pu * q * pv.transpose();
         for i in 0..8 {
             for j in 0..9 {
-                let got = fit.control_points[i * 9 + j][c];
+                let got = fit.surface.control_points()[i * 9 + j][c];
                 assert!((got - x[(i, j)]).abs() < 1e-9, "({i}, {j}) coordinate {c}");
             }
         }
@@ -322,7 +322,7 @@ fn surfaces_from_grids_and_scattered_points() {
     let g = |u: f64, w: f64| 1.0 + u * u * u - u * w * w;
     let gp: Vec<f64> = uv.iter().map(|&(u, w)| g(u, w)).collect();
     let s = approximate_surface_scattered(&uv, &gp, &ku, &kv, 0.0).unwrap();
-    assert!(s.eval(0.37, 0.81).unwrap() - g(0.37, 0.81) < 1e-11);
+    assert!(s.surface.eval(0.37, 0.81).unwrap() - g(0.37, 0.81) < 1e-11);
     assert!(s.deviation.max < 1e-11);
     // Data in one corner only: singular without smoothing, fine with it.
     let corner: Vec<(f64, f64)> = uv.iter().map(|&(u, w)| (0.3 * u, 0.3 * w)).collect();

@@ -303,11 +303,11 @@ fn seed004_surface_interpolation_by_two_passes_reproduces_bicubic_polynomials() 
     )
     .unwrap();
     assert!(fit.deviation.max < 1e-12);
-    assert_eq!(fit.control_points.len(), 36);
+    assert_eq!(fit.surface.control_points().len(), 36);
     for k in 0..=10 {
         for l in 0..=10 {
             let (u, v) = (f64::from(k) / 10.0, f64::from(l) / 10.0);
-            let s = fit.eval(u, v).unwrap();
+            let s = fit.surface.eval(u, v).unwrap();
             assert!(
                 (s - Vector3::new(u, v, f(u, v))).norm() < 1e-12,
                 "({u}, {v})"

@@ -84,16 +84,7 @@ impl<T: Scalar, P: ControlPoint<T>> BSpline<T, P> {
             self.derivatives_in_span(span, u, &mut d);
             d[1].length()
         };
-        let mut breaks = vec![a];
-        breaks.extend(
-            self.knots()
-                .knots()
-                .iter()
-                .copied()
-                .filter(|&k| k > a && k < b),
-        );
-        breaks.push(b);
-        breaks.dedup();
+        let breaks = self.knots().breaks_between(a, b);
         let pieces = breaks.len().saturating_sub(1).max(1);
         let tol_piece = accuracy / spline_core::from_count::<T>(pieces);
         let mut total = T::zero();

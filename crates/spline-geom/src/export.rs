@@ -14,25 +14,14 @@ pub fn sample_params<T: Scalar, P: ControlPoint<T>>(
     per_span: usize,
 ) -> Vec<T> {
     let per_span = per_span.max(1);
-    let (a, b) = curve.domain();
-    let mut breaks: Vec<T> = vec![a];
-    breaks.extend(
-        curve
-            .knots()
-            .knots()
-            .iter()
-            .copied()
-            .filter(|&k| k > a && k < b),
-    );
-    breaks.push(b);
-    breaks.dedup();
+    let breaks = curve.knots().domain_breaks();
     let mut params = Vec::with_capacity((breaks.len() - 1) * per_span + 1);
     for w in breaks.windows(2) {
         for j in 0..per_span {
             params.push(w[0] + (w[1] - w[0]) * from_count::<T>(j) / from_count::<T>(per_span));
         }
     }
-    params.push(b);
+    params.push(curve.domain().1);
     params
 }
 

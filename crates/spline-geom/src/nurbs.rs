@@ -8,6 +8,7 @@
 
 use crate::bspline::BSpline;
 use crate::homogeneous::{Homogeneous, check_weight, check_weights};
+use crate::structural::relative_scale;
 use crate::surface::{Direction, Surface, bezier_as_bspline, flatten_net};
 use nalgebra::{RealField, SVector};
 use spline_core::{
@@ -59,6 +60,61 @@ fn check_point<T: Scalar, const D: usize>(
             format!("{} is not finite", what()),
         ))
     }
+}
+
+/// The homogeneous points $(w_k P_k, w_k)$ of Cartesian control points and their weights,
+/// checked; `index(k)` names entry `k` in messages (`3` on a curve, `(0, 3)` on a net).
+fn weighted_points<T: Scalar, const D: usize>(
+    control_points: Vec<SVector<T, D>>,
+    weights: Vec<T>,
+    index: impl Fn(usize) -> String,
+) -> Result<Vec<Homogeneous<T, D>>> {
+    if weights.len() != control_points.len() {
+        return Err(Error::new(
+            ErrorKind::InvalidLength,
+            format!(
+                "{} control points need {} weights, got {}",
+                control_points.len(),
+                control_points.len(),
+                weights.len()
+            ),
+        ));
+    }
+    for (k, &w) in weights.iter().enumerate() {
+        check_weight(w).map_err(|e| e.context(format_args!("weight {}", index(k))))?;
+    }
+    for (k, p) in control_points.iter().enumerate() {
+        check_point(p, || format!("control point {}", index(k)))?;
+    }
+    Ok(control_points
+        .into_iter()
+        .zip(weights)
+        .map(|(p, w)| Homogeneous::new(p * w, w))
+        .collect())
+}
+
+/// The Cartesian points $P_k$ of homogeneous ones.
+fn cartesian<T: Scalar, const D: usize>(points: &[Homogeneous<T, D>]) -> Vec<SVector<T, D>> {
+    points.iter().map(Homogeneous::project).collect()
+}
+
+/// The weights $w_k$ of homogeneous points.
+fn weights_of<T: Scalar, const D: usize>(points: &[Homogeneous<T, D>]) -> Vec<T> {
+    points.iter().map(|h| h.weight).collect()
+}
+
+/// The homogeneous point of `f(P)` with the weight of `h = (w P, w)`.
+fn mapped<T: Scalar, const D: usize, const E: usize>(
+    h: &Homogeneous<T, D>,
+    f: &mut impl FnMut(&SVector<T, D>) -> SVector<T, E>,
+) -> Homogeneous<T, E> {
+    Homogeneous::new(f(&h.project()) * h.weight, h.weight)
+}
+
+/// The scale of a relative removal tolerance: the largest Cartesian coordinate magnitude,
+/// or 1 if that is smaller.
+fn cartesian_scale<T: Scalar, const D: usize>(points: &[Homogeneous<T, D>]) -> T {
+    relative_scale(points.iter().map(|h| h.project().amax()))
 }
 
 /// Rational derivatives of a curve from the homogeneous ones (The NURBS Book A4.2):
@@ -137,6 +193,24 @@ fn check_tolerance<T: Scalar>(tolerance: T) -> Result<()> {
     }
 }
 
+/// Accepts a knot removal done in homogeneous space if the rational shape moves by at most
+/// `tolerance` and every weight stays positive: `back` is `removed` with the knots
+/// re-inserted, compared with `original` by [`rational_deviation_bound`].
+fn check_rational_removal<T: Scalar, const D: usize>(
+    original: &[Homogeneous<T, D>],
+    removed: &[Homogeneous<T, D>],
+    back: &[Homogeneous<T, D>],
+    (t, times): (T, usize),
+    tolerance: T,
+) -> Result<()> {
+    let bound = rational_deviation_bound(original, back);
+    let weights_ok = removed.iter().all(|h| check_weight(h.weight).is_ok());
+    match bound {
+        Some(b) if b <= tolerance && weights_ok => Ok(()),
+        _ => Err(exceeded(t, times, bound.filter(|_| weights_ok), tolerance)),
+    }
+}
+
 fn exceeded<T: Scalar>(t: T, times: usize, bound: Option<T>, tolerance: T) -> Error {
     let what = match bound {
         Some(b) => format!("by up to {:.3e}", to_f64(b)),
@@ -170,26 +244,7 @@ impl<T: Scalar, const D: usize> NurbsCurve<T, D> {
         control_points: Vec<SVector<T, D>>,
         weights: Vec<T>,
     ) -> Result<Self> {
-        if weights.len() != control_points.len() {
-            return Err(Error::new(
-                ErrorKind::InvalidLength,
-                format!(
-                    "{} control points need {} weights, got {}",
-                    control_points.len(),
-                    control_points.len(),
-                    weights.len()
-                ),
-            ));
-        }
-        check_weights(weights.iter().copied())?;
-        for (i, p) in control_points.iter().enumerate() {
-            check_point(p, || format!("control point {i}"))?;
-        }
-        let points = control_points
-            .into_iter()
-            .zip(weights)
-            .map(|(p, w)| Homogeneous::new(p * w, w))
-            .collect();
+        let points = weighted_points(control_points, weights, |i| i.to_string())?;
         Ok(Self {
             curve: BSpline::new(knots, points)?,
         })
@@ -281,21 +336,13 @@ impl<T: Scalar, const D: usize> NurbsCurve<T, D> {
     /// The Cartesian control points $P_i$.
     #[must_use]
     pub fn control_points(&self) -> Vec<SVector<T, D>> {
-        self.curve
-            .control_points()
-            .iter()
-            .map(Homogeneous::project)
-            .collect()
+        cartesian(self.curve.control_points())
     }
 
     /// The weights $w_i$.
     #[must_use]
     pub fn weights(&self) -> Vec<T> {
-        self.curve
-            .control_points()
-            .iter()
-            .map(|h| h.weight)
-            .collect()
+        weights_of(self.curve.control_points())
     }
 
     /// Whether all weights are equal: the curve is then a polynomial B-spline curve.
@@ -321,10 +368,7 @@ impl<T: Scalar, const D: usize> NurbsCurve<T, D> {
         &self,
         mut f: impl FnMut(&SVector<T, D>) -> SVector<T, E>,
     ) -> NurbsCurve<T, E> {
-        NurbsCurve::new_unchecked(
-            self.curve
-                .map_control_points(|h| Homogeneous::new(f(&h.project()) * h.weight, h.weight)),
-        )
+        NurbsCurve::new_unchecked(self.curve.map_control_points(|h| mapped(h, &mut f)))
     }
 
     /// The point $R(u)$: de Boor in homogeneous space, then the projection (6.5).
@@ -474,15 +518,14 @@ impl<T: Scalar, const D: usize> NurbsCurve<T, D> {
         check_tolerance(tolerance)?;
         let removed = self.curve.remove_knot_within(u, times, unbounded())?;
         let back = removed.insert_knot(u, times)?;
-        let bound = rational_deviation_bound(self.curve.control_points(), back.control_points());
-        let weights_ok = removed
-            .control_points()
-            .iter()
-            .all(|h| check_weight(h.weight).is_ok());
-        match bound {
-            Some(b) if b <= tolerance && weights_ok => Ok(Self::new_unchecked(removed)),
-            _ => Err(exceeded(u, times, bound.filter(|_| weights_ok), tolerance)),
-        }
+        check_rational_removal(
+            self.curve.control_points(),
+            removed.control_points(),
+            back.control_points(),
+            (u, times),
+            tolerance,
+        )?;
+        Ok(Self::new_unchecked(removed))
     }
 
     /// [`NurbsCurve::remove_knot_within`] with a tolerance relative to the size of the
@@ -491,11 +534,7 @@ impl<T: Scalar, const D: usize> NurbsCurve<T, D> {
     /// # Errors
     /// As [`NurbsCurve::remove_knot_within`].
     pub fn remove_knot(&self, u: T, times: usize, relative_tolerance: T) -> Result<Self> {
-        let scale = self
-            .curve
-            .control_points()
-            .iter()
-            .fold(T::one(), |m, h| m.max(h.project().amax()));
+        let scale = cartesian_scale(self.curve.control_points());
         self.remove_knot_within(u, times, relative_tolerance * scale)
     }
 
@@ -620,30 +659,10 @@ impl<T: Scalar, const D: usize> NurbsSurface<T, D> {
         control_points: Vec<SVector<T, D>>,
         weights: Vec<T>,
     ) -> Result<Self> {
-        if weights.len() != control_points.len() {
-            return Err(Error::new(
-                ErrorKind::InvalidLength,
-                format!(
-                    "{} control points need {} weights, got {}",
-                    control_points.len(),
-                    control_points.len(),
-                    weights.len()
-                ),
-            ));
-        }
         let nv = knots_v.num_basis();
-        for (k, &w) in weights.iter().enumerate() {
-            check_weight(w)
-                .map_err(|e| e.context(format_args!("weight ({}, {})", k / nv, k % nv)))?;
-        }
-        for (k, p) in control_points.iter().enumerate() {
-            check_point(p, || format!("control point ({}, {})", k / nv, k % nv))?;
-        }
-        let points = control_points
-            .into_iter()
-            .zip(weights)
-            .map(|(p, w)| Homogeneous::new(p * w, w))
-            .collect();
+        let points = weighted_points(control_points, weights, |k| {
+            format!("({}, {})", k / nv, k % nv)
+        })?;
         Ok(Self {
             surface: Surface::new(knots_u, knots_v, points)?,
         })
@@ -757,21 +776,13 @@ impl<T: Scalar, const D: usize> NurbsSurface<T, D> {
     /// The Cartesian control points, row-major.
     #[must_use]
     pub fn control_points(&self) -> Vec<SVector<T, D>> {
-        self.surface
-            .control_points()
-            .iter()
-            .map(Homogeneous::project)
-            .collect()
+        cartesian(self.surface.control_points())
     }
 
     /// The weights, row-major.
     #[must_use]
     pub fn weights(&self) -> Vec<T> {
-        self.surface
-            .control_points()
-            .iter()
-            .map(|h| h.weight)
-            .collect()
+        weights_of(self.surface.control_points())
     }
 
     /// The Cartesian control point $P_{ij}$.
@@ -799,10 +810,7 @@ impl<T: Scalar, const D: usize> NurbsSurface<T, D> {
         &self,
         mut f: impl FnMut(&SVector<T, D>) -> SVector<T, E>,
     ) -> NurbsSurface<T, E> {
-        NurbsSurface::new_unchecked(
-            self.surface
-                .map_control_points(|h| Homogeneous::new(f(&h.project()) * h.weight, h.weight)),
-        )
+        NurbsSurface::new_unchecked(self.surface.map_control_points(|h| mapped(h, &mut f)))
     }
 
     /// The point $S(u, v)$.
@@ -920,16 +928,15 @@ impl<T: Scalar, const D: usize> NurbsSurface<T, D> {
             .surface
             .remove_knot_within(direction, t, times, unbounded())?;
         let back = removed.insert_knot(direction, t, times)?;
-        let bound = rational_deviation_bound(self.surface.control_points(), back.control_points());
-        let weights_ok = removed
-            .control_points()
-            .iter()
-            .all(|h| check_weight(h.weight).is_ok());
-        match bound {
-            Some(b) if b <= tolerance && weights_ok => Ok(Self::new_unchecked(removed)),
-            _ => Err(exceeded(t, times, bound.filter(|_| weights_ok), tolerance)
-                .context(format_args!("direction {direction}"))),
-        }
+        check_rational_removal(
+            self.surface.control_points(),
+            removed.control_points(),
+            back.control_points(),
+            (t, times),
+            tolerance,
+        )
+        .map_err(|e| e.context(format_args!("direction {direction}")))?;
+        Ok(Self::new_unchecked(removed))
     }
 
     /// [`NurbsSurface::remove_knot_within`] with a tolerance relative to the size of the
@@ -944,11 +951,7 @@ impl<T: Scalar, const D: usize> NurbsSurface<T, D> {
         times: usize,
         relative_tolerance: T,
     ) -> Result<Self> {
-        let scale = self
-            .surface
-            .control_points()
-            .iter()
-            .fold(T::one(), |m, h| m.max(h.project().amax()));
+        let scale = cartesian_scale(self.surface.control_points());
         self.remove_knot_within(direction, t, times, relative_tolerance * scale)
     }
 

@@ -4,6 +4,7 @@
 
 use crate::bezier::Bezier;
 use crate::bspline::BSpline;
+use nalgebra::RealField;
 use spline_core::{
     ControlPoint, Error, ErrorKind, KnotVector, MAX_DEGREE, MAX_ORDER, Result, Scalar, binomial,
     to_f64,
@@ -12,6 +13,12 @@ use spline_core::{
 /// The default relative tolerance of [`BSpline::remove_knot`]: `1e-9` times the size of the
 /// control polygon.
 pub const DEFAULT_REMOVAL_TOLERANCE: f64 = 1e-9;
+
+/// The scale that turns a relative removal tolerance into an absolute one: the largest of
+/// the control points' coordinate magnitudes, or 1 if that is smaller.
+pub(crate) fn relative_scale<T: Scalar>(magnitudes: impl IntoIterator<Item = T>) -> T {
+    magnitudes.into_iter().fold(T::one(), RealField::max)
+}
 
 impl<T: Scalar, P: ControlPoint<T>> BSpline<T, P> {
     /// Inserts the knot `u` once (Boehm; seed 000 Algorithm 3, seed 004 (8.4)–(8.5)):
@@ -205,10 +212,7 @@ impl<T: Scalar, P: ControlPoint<T>> BSpline<T, P> {
     /// # Errors
     /// As [`BSpline::remove_knot_within`].
     pub fn remove_knot(&self, u: T, times: usize, relative_tolerance: T) -> Result<Self> {
-        let scale = self
-            .control_points()
-            .iter()
-            .fold(T::one(), |m, p| m.max(p.max_abs()));
+        let scale = relative_scale(self.control_points().iter().map(ControlPoint::max_abs));
         self.remove_knot_within(u, times, relative_tolerance * scale)
     }
 

@@ -9,6 +9,7 @@
 
 use crate::bezier::Bezier;
 use crate::bspline::BSpline;
+use crate::structural::relative_scale;
 use spline_core::{ControlPoint, Error, ErrorKind, KnotVector, MAX_ORDER, Result, Scalar, to_f64};
 use std::fmt;
 
@@ -472,6 +473,49 @@ impl<T: Scalar, P: ControlPoint<T>> Surface<T, P> {
         Ok(flat.chunks_exact(order + 1).map(<[P]>::to_vec).collect())
     }
 
+    /// The single partial derivative $\partial^{k+l} S / \partial u^k \partial v^l$ at
+    /// `(u, v)`: the `k`-th basis derivatives in `u` and the `l`-th in `v` against the
+    /// `(p + 1)(q + 1)` control points of the spans. Zero when `k > p` or `l > q`. No heap
+    /// allocation for `k, l ≤ 3`.
+    ///
+    /// ```
+    /// use spline_geom::{KnotVector, Surface};
+    /// let k = KnotVector::bezier(2, 0.0f64, 1.0)?;
+    /// // s(u, v) = u² v².
+    /// let mut c = vec![0.0; 9];
+    /// c[8] = 1.0;
+    /// let s = Surface::new(k.clone(), k, c)?;
+    /// assert!((s.derivative_at(0.5, 0.3, 1, 2)? - 2.0 * 0.5 * 2.0).abs() < 1e-14);
+    /// assert_eq!(s.derivative_at(0.5, 0.3, 3, 0)?, 0.0);
+    /// # Ok::<(), spline_core::Error>(())
+    /// ```
+    ///
+    /// # Errors
+    /// [`ErrorKind::NonFinite`] or [`ErrorKind::OutOfDomain`].
+    pub fn derivative_at(&self, u: T, v: T, k: usize, l: usize) -> Result<P> {
+        let (su, sv) = self.find_spans(u, v)?;
+        let (p, q) = self.degrees();
+        if k > p || l > q {
+            return Ok(P::origin());
+        }
+        let nv = self.knots_v.num_basis();
+        let mut table_u = BasisTable::new();
+        let mut table_v = BasisTable::new();
+        let du = &table_u.fill(&self.knots_u, su, u, k)[k * (p + 1)..];
+        let dv = &table_v.fill(&self.knots_v, sv, v, l)[l * (q + 1)..];
+        let mut acc = P::origin();
+        for (r, &a) in du.iter().enumerate() {
+            let start = (su - p + r) * nv + sv - q;
+            let row = &self.control_points[start..=start + q];
+            let mut inner = row[0] * dv[0];
+            for s in 1..=q {
+                inner += row[s] * dv[s];
+            }
+            acc += inner * a;
+        }
+        Ok(acc)
+    }
+
     /// Evaluates on the grid `us × vs` into `out[a * vs.len() + b]` $= S(u_a, v_b)$.
     ///
     /// The tensor fast path: the basis functions of every `v` are computed once; for each
@@ -766,10 +810,7 @@ impl<T: Scalar, P: ControlPoint<T>> Surface<T, P> {
         times: usize,
         relative_tolerance: T,
     ) -> Result<Self> {
-        let scale = self
-            .control_points
-            .iter()
-            .fold(T::one(), |m, p| m.max(p.max_abs()));
+        let scale = relative_scale(self.control_points.iter().map(ControlPoint::max_abs));
         self.remove_knot_within(direction, t, times, relative_tolerance * scale)
     }
 

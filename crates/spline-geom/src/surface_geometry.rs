@@ -168,8 +168,14 @@ impl<T: Scalar> LocalProperties<T> {
     }
 }
 
-fn from_square<T: Scalar>(d: &[Vector3<T>; 9]) -> Result<LocalProperties<T>> {
-    // d[k * 3 + l] = ∂^{k+l} S / ∂u^k ∂v^l.
+/// The local properties from the partial derivatives up to order 2 that `derivatives_into`
+/// writes (`d[k * 3 + l]` $= \partial^{k+l} S / \partial u^k \partial v^l$), polynomial or
+/// rational.
+fn second_order_properties<T: Scalar>(
+    derivatives_into: impl FnOnce(&mut [Vector3<T>]) -> Result<()>,
+) -> Result<LocalProperties<T>> {
+    let mut d = [Vector3::zeros(); 9];
+    derivatives_into(&mut d)?;
     LocalProperties::from_partials(d[0], d[3], d[1], d[6], d[4], d[2])
 }
 
@@ -201,9 +207,7 @@ impl<T: Scalar> Surface<T, Vector3<T>> {
     /// [`ErrorKind::NonFinite`] or [`ErrorKind::OutOfDomain`]; [`ErrorKind::DegenerateGeometry`]
     /// at a singular point.
     pub fn local_properties(&self, u: T, v: T) -> Result<LocalProperties<T>> {
-        let mut d = [Vector3::zeros(); 9];
-        self.derivatives_into(u, v, 2, &mut d)?;
-        from_square(&d)
+        second_order_properties(|d| self.derivatives_into(u, v, 2, d))
     }
 }
 
@@ -223,8 +227,6 @@ impl<T: Scalar> NurbsSurface<T, 3> {
     /// [`ErrorKind::NonFinite`] or [`ErrorKind::OutOfDomain`]; [`ErrorKind::DegenerateGeometry`]
     /// at a singular point (the poles of a sphere).
     pub fn local_properties(&self, u: T, v: T) -> Result<LocalProperties<T>> {
-        let mut d = [Vector3::zeros(); 9];
-        self.derivatives_into(u, v, 2, &mut d)?;
-        from_square(&d)
+        second_order_properties(|d| self.derivatives_into(u, v, 2, d))
     }
 }
