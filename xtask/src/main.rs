@@ -9,6 +9,7 @@
 mod bench_fit;
 mod demo;
 mod docs_curves;
+mod docs_shape_functions;
 mod docs_surfaces;
 
 use std::path::{Path, PathBuf};
@@ -39,6 +40,7 @@ fn run_docs(root: &Path) -> Result<(), String> {
     std::fs::create_dir_all(&out).map_err(|e| e.to_string())?;
     docs_curves::render(&out)?;
     docs_surfaces::render(&out)?;
+    docs_shape_functions::render(&out)?;
     println!("pictures written to {}", out.display());
     Ok(())
 }

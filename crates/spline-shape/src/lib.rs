@@ -3,13 +3,25 @@
 //! - [`barrier`]: a log-barrier interior-point solver on sparse matrices, with a phase-I
 //!   search for a strictly feasible start and a shifted Newton matrix for non-convex
 //!   problems.
+//! - [`constrained`]: least-squares approximation of functions of one variable under sign
+//!   constraints on their derivatives, on sub-intervals, with sign changes (thesis §5.1–5.4).
+//! - [`constrained_surface`]: the same for functions of two variables on grids: sign
+//!   constraints on partial derivatives and convexity (thesis §5.5–5.6).
 //! - [`eraser`]: the selective eraser of curvature extrema of planar curves (thesis ch. 6),
 //!   e.g. airfoil smoothing.
 
 pub mod barrier;
+pub mod constrained;
+pub mod constrained_surface;
 pub mod eraser;
+mod problem;
 
 pub use barrier::{
     BarrierOptions, BarrierProblem, BarrierReport, find_feasible, find_feasible_near, minimize,
 };
+pub use constrained::{
+    ConstraintCheck, FunctionApproximation, FunctionConstraint, FunctionFit, MAX_SIGN_PATTERNS,
+};
+pub use constrained_surface::{Region, SurfaceApproximation, SurfaceConstraint, SurfaceFit};
 pub use eraser::{EraserOptions, SmoothedCurve, erase_curvature_extrema};
+pub use problem::{ApproximationProblem, Sign};
