@@ -2,10 +2,13 @@
 //!
 //! - `ci`: exactly what CI runs (`.ci/run`): format check, clippy with warnings denied, tests.
 //! - `docs`: regenerate the SVG pictures in `docs/`.
-//! - `bench fit`: criterion benchmarks of spline-fit against scipy in the same run.
+//! - `bench fit`, `bench eval`: criterion benchmarks of fitting and of curve evaluation against
+//!   scipy in the same run (a Python virtual environment with scipy is created under `target/`).
 //! - `demo`: the main job — fit an airfoil shipped in `data/airfoils/`, print the result and
 //!   write `docs/airfoil.svg`.
 
+mod bench;
+mod bench_eval;
 mod bench_fit;
 mod demo;
 mod docs_curves;
@@ -46,7 +49,7 @@ fn run_docs(root: &Path) -> Result<(), String> {
 }
 
 fn usage() -> String {
-    "usage: cargo xtask <ci | docs | bench fit | demo>".into()
+    "usage: cargo xtask <ci | docs | bench fit | bench eval | demo>".into()
 }
 
 fn main() -> ExitCode {
@@ -58,7 +61,8 @@ fn main() -> ExitCode {
         Some("demo") => demo::run(&root),
         Some("bench") => match args.get(1).map(String::as_str) {
             Some("fit") => bench_fit::run(&root),
-            _ => Err("usage: cargo xtask bench fit".into()),
+            Some("eval") => bench_eval::run(&root),
+            _ => Err("usage: cargo xtask bench fit | eval".into()),
         },
         _ => Err(usage()),
     };

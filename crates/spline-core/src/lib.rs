@@ -20,6 +20,7 @@
 //!   module.
 
 mod basis;
+mod batch;
 mod error;
 mod knots;
 mod point;
@@ -29,6 +30,7 @@ mod scalar;
 pub mod strategies;
 
 pub use basis::{BasisValues, SpanBasis, bernstein, bernstein_all, binomial};
+pub use batch::BatchBasis;
 pub use error::{Error, ErrorKind, Result};
 pub use knots::{KnotVector, MAX_DEGREE, MAX_ORDER, check_params};
 pub use point::{ControlPoint, lerp};

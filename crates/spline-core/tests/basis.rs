@@ -303,3 +303,30 @@ fn basis_errors() {
         ErrorKind::InvalidArgument
     );
 }
+
+proptest! {
+    #[test]
+    fn batch_tables_agree_with_the_exact_routine(knots in knot_vector(5, 10, 1.0, true), ts in proptest::collection::vec(0.0f64..=1.0, 1..50)) {
+        prop_assume!(knots.degree() >= 1);
+        let batch = spline_core::BatchBasis::new(&knots);
+        let (a, b) = knots.domain();
+        let mut us: Vec<f64> = ts.iter().map(|t| a + (b - a) * t).collect();
+        us.extend(knots.knots().iter().copied().filter(|&k| k >= a && k <= b));
+        for u in us {
+            let span = knots.find_span(u).unwrap();
+            prop_assert_eq!(batch.span(&knots, u), span, "u = {}", u);
+            let mut exact = vec![0.0; knots.degree() + 1];
+            knots.basis_values(span, u, &mut exact);
+            let values: Vec<f64> = match knots.degree() {
+                1 => batch.eval_fixed::<2>(&knots, u).1.to_vec(),
+                2 => batch.eval_fixed::<3>(&knots, u).1.to_vec(),
+                3 => batch.eval_fixed::<4>(&knots, u).1.to_vec(),
+                4 => batch.eval_fixed::<5>(&knots, u).1.to_vec(),
+                _ => batch.eval_fixed::<6>(&knots, u).1.to_vec(),
+            };
+            for (x, y) in values.iter().zip(&exact) {
+                prop_assert!((x - y).abs() < 1e-13, "{} vs {}", x, y);
+            }
+        }
+    }
+}

@@ -1,7 +1,7 @@
 //! The B-spline container and its evaluation.
 
 use spline_core::{
-    ControlPoint, Error, ErrorKind, KnotVector, MAX_ORDER, Result, Scalar, SpanBasis, from_count,
+    BatchBasis, ControlPoint, Error, ErrorKind, KnotVector, MAX_ORDER, Result, Scalar, from_count,
 };
 
 /// A B-spline: a degree, a [`KnotVector`] and `n` control points of any type `P` that forms a
@@ -315,8 +315,9 @@ impl<T: Scalar, P: ControlPoint<T>> BSpline<T, P> {
         Ok(out)
     }
 
-    /// Evaluates at many parameters into `out` (same length). Parameters in increasing order
-    /// take a constant-time span search; any order is accepted. All parameters are checked
+    /// Evaluates at many parameters into `out` (same length), in any order: for degrees 1 to 5
+    /// the spans come from a bucket table in constant time and the basis functions need no
+    /// division ([`BatchBasis`]). All parameters are checked
     /// before anything is written.
     ///
     /// # Errors
@@ -324,18 +325,7 @@ impl<T: Scalar, P: ControlPoint<T>> BSpline<T, P> {
     /// [`ErrorKind::OutOfDomain`] for the first bad parameter.
     pub fn eval_many_into(&self, params: &[T], out: &mut [P]) -> Result<()> {
         check_same_len(params.len(), out.len())?;
-        for (i, &u) in params.iter().enumerate() {
-            self.knots
-                .check_param(u)
-                .map_err(|e| e.context(format_args!("parameter {i}")))?;
-        }
-        if !params.windows(2).all(|w| w[0] <= w[1]) {
-            // Unsorted: a span hint would only cost a mispredicted branch per point.
-            for (slot, &u) in out.iter_mut().zip(params) {
-                *slot = self.eval_in_span(self.knots.span_in_domain(u), u);
-            }
-            return Ok(());
-        }
+        self.check_params_in_domain(params)?;
         match self.degree() {
             1 => self.eval_many_fixed::<2>(params, out),
             2 => self.eval_many_fixed::<3>(params, out),
@@ -353,15 +343,14 @@ impl<T: Scalar, P: ControlPoint<T>> BSpline<T, P> {
         Ok(())
     }
 
-    /// Batch evaluation of sorted parameters for a fixed degree: the reciprocal knot
-    /// differences of the current span are kept ([`SpanBasis`]).
+    /// Batch evaluation for a fixed degree, parameters in any order: spans from a bucket
+    /// table, division-free basis functions ([`BatchBasis`]).
     fn eval_many_fixed<const N: usize>(&self, params: &[T], out: &mut [P]) {
-        let mut cursor = SpanBasis::new();
-        let mut basis = [T::zero(); N];
-        let mut span = self.degree();
+        let batch = BatchBasis::new(&self.knots);
+        let mut span = usize::MAX;
         for (slot, &u) in out.iter_mut().zip(params) {
-            span = self.knots.span_in_domain_from(u, span);
-            cursor.eval(&self.knots, span, u, &mut basis);
+            let (found, basis) = batch.eval_fixed_from::<N>(&self.knots, u, span);
+            span = found;
             let points = &self.control_points[span + 1 - N..=span];
             let mut acc = points[0] * basis[0];
             for r in 1..N {
@@ -387,11 +376,7 @@ impl<T: Scalar, P: ControlPoint<T>> BSpline<T, P> {
     /// As [`BSpline::eval_many_into`]; `out.len()` must be `params.len() (order + 1)`.
     pub fn derivatives_many_into(&self, params: &[T], order: usize, out: &mut [P]) -> Result<()> {
         check_same_len(params.len() * (order + 1), out.len())?;
-        for (i, &u) in params.iter().enumerate() {
-            self.knots
-                .check_param(u)
-                .map_err(|e| e.context(format_args!("parameter {i}")))?;
-        }
+        self.check_params_in_domain(params)?;
         let mut span = self.degree();
         for (chunk, &u) in out.chunks_exact_mut(order + 1).zip(params) {
             span = self.knots.span_in_domain_from(u, span);
@@ -454,6 +439,25 @@ impl<T: Scalar, P: ControlPoint<T>> BSpline<T, P> {
             KnotVector::new_unchecked(p, knots),
             points,
         ))
+    }
+}
+
+impl<T: Scalar, P: ControlPoint<T>> BSpline<T, P> {
+    /// Checks a batch of parameters with one comparison each (NaN fails it); the error
+    /// names the first bad parameter.
+    fn check_params_in_domain(&self, params: &[T]) -> Result<()> {
+        let (a, b) = self.domain();
+        match params.iter().position(|&u| !(u >= a && u <= b)) {
+            None => Ok(()),
+            Some(i) => Err(self
+                .knots
+                .check_param(params[i])
+                .err()
+                .unwrap_or_else(|| {
+                    Error::new(ErrorKind::OutOfDomain, "parameter outside the domain")
+                })
+                .context(format_args!("parameter {i}"))),
+        }
     }
 }
 

@@ -1,0 +1,121 @@
+//! Shared pieces of the `cargo xtask bench` comparisons: a Python virtual environment with
+//! scipy, running a timing script, reading criterion's medians.
+
+use serde_json::Value;
+use std::path::{Path, PathBuf};
+use std::process::{Command, Stdio};
+
+/// `$CARGO_TARGET_DIR` or `<repo>/target`.
+pub(crate) fn target_dir(repo_root: &Path) -> PathBuf {
+    match std::env::var_os("CARGO_TARGET_DIR") {
+        Some(dir) => {
+            let dir = PathBuf::from(dir);
+            if dir.is_absolute() {
+                dir
+            } else {
+                repo_root.join(dir)
+            }
+        }
+        None => repo_root.join("target"),
+    }
+}
+
+fn venv_python(venv: &Path) -> PathBuf {
+    if cfg!(windows) {
+        venv.join("Scripts").join("python.exe")
+    } else {
+        venv.join("bin").join("python")
+    }
+}
+
+fn status_of(command: &mut Command, what: &str) -> Result<(), String> {
+    let status = command
+        .status()
+        .map_err(|e| format!("cannot run {what}: {e}"))?;
+    if status.success() {
+        Ok(())
+    } else {
+        Err(format!("{what} failed ({status})"))
+    }
+}
+
+/// The Python of `<target>/bench-venv`, created and given scipy on first use.
+pub(crate) fn ensure_venv(target: &Path) -> Result<PathBuf, String> {
+    let venv = target.join("bench-venv");
+    let python = venv_python(&venv);
+    if !python.exists() {
+        std::fs::create_dir_all(target)
+            .map_err(|e| format!("cannot create {}: {e}", target.display()))?;
+        eprintln!(
+            "bench: creating a Python virtual environment in {}",
+            venv.display()
+        );
+        let base = if cfg!(windows) { "python" } else { "python3" };
+        status_of(
+            Command::new(base).arg("-m").arg("venv").arg(&venv),
+            &format!("{base} -m venv"),
+        )?;
+    }
+    let has_scipy = Command::new(&python)
+        .args(["-c", "import scipy, numpy"])
+        .stdout(Stdio::null())
+        .stderr(Stdio::null())
+        .status()
+        .is_ok_and(|s| s.success());
+    if !has_scipy {
+        eprintln!("bench: installing scipy with pip");
+        status_of(
+            Command::new(&python).args(["-m", "pip", "install", "--quiet", "scipy"]),
+            "pip install scipy",
+        )?;
+    }
+    Ok(python)
+}
+
+/// Runs a Python script and parses the one JSON document it prints. `OpenBLAS` core-type
+/// overrides are removed from its environment so that numpy picks its kernels itself.
+pub(crate) fn run_python_json(python: &Path, script: &Path) -> Result<Value, String> {
+    let out = Command::new(python)
+        .arg(script)
+        .env_remove("OPENBLAS_CORETYPE")
+        .env_remove("OPENBLAS_L2_SIZE")
+        .stderr(Stdio::inherit())
+        .output()
+        .map_err(|e| format!("cannot run {}: {e}", script.display()))?;
+    if !out.status.success() {
+        return Err(format!("{} failed ({})", script.display(), out.status));
+    }
+    let text = String::from_utf8_lossy(&out.stdout);
+    serde_json::from_str(text.trim())
+        .map_err(|e| format!("output of {}: {e}: {text}", script.display()))
+}
+
+/// The median (seconds) criterion stored for benchmark `id` (`group/function`).
+pub(crate) fn criterion_median(target: &Path, id: &str) -> Result<f64, String> {
+    let path = target
+        .join("criterion")
+        .join(id.replace('/', std::path::MAIN_SEPARATOR_STR))
+        .join("new")
+        .join("estimates.json");
+    let text = std::fs::read_to_string(&path)
+        .map_err(|e| format!("cannot read {}: {e}", path.display()))?;
+    let json: Value =
+        serde_json::from_str(&text).map_err(|e| format!("{}: {e}", path.display()))?;
+    json.pointer("/median/point_estimate")
+        .and_then(Value::as_f64)
+        .map(|ns| ns * 1e-9)
+        .ok_or_else(|| format!("{}: no median.point_estimate", path.display()))
+}
+
+/// A duration for tables.
+pub(crate) fn seconds(s: f64) -> String {
+    if s >= 1.0 {
+        format!("{s:.3} s")
+    } else if s >= 1e-3 {
+        format!("{:.3} ms", s * 1e3)
+    } else if s >= 1e-6 {
+        format!("{:.1} µs", s * 1e6)
+    } else {
+        format!("{:.1} ns", s * 1e9)
+    }
+}
