@@ -537,10 +537,7 @@ pub(crate) fn refined(map: SplineMap<f64>, pieces: usize) -> Result<SplineMap<f6
     if pieces <= 1 || target.degree() == 0 {
         return Ok(map);
     }
-    let (a, b) = target.domain();
-    let mut breaks: Vec<f64> = vec![a];
-    breaks.extend(target.interior_breakpoints().into_iter().map(|(k, _)| k));
-    breaks.push(b);
+    let breaks = target.domain_breaks();
     #[allow(clippy::cast_precision_loss)]
     let new: Vec<f64> = breaks
         .windows(2)
