@@ -1,5 +1,7 @@
 //! Shape control and optimisation with B-splines.
 //!
+//! - [`adaptive`]: shape optimisation with adaptive parametrisation (seed 000 §3: minimise
+//!   perimeter² / area by Nelder–Mead, re-fitting the parametrisation between steps).
 //! - [`barrier`]: a log-barrier interior-point solver on sparse matrices, with a phase-I
 //!   search for a strictly feasible start and a shifted Newton matrix for non-convex
 //!   problems.
@@ -10,12 +12,16 @@
 //! - [`eraser`]: the selective eraser of curvature extrema of planar curves (thesis ch. 6),
 //!   e.g. airfoil smoothing.
 
+pub mod adaptive;
 pub mod barrier;
 pub mod constrained;
 pub mod constrained_surface;
 pub mod eraser;
 mod problem;
 
+pub use adaptive::{
+    AdaptiveIteration, AdaptiveOptions, optimise_perimeter_over_area, perimeter_squared_over_area,
+};
 pub use barrier::{
     BarrierOptions, BarrierProblem, BarrierReport, find_feasible, find_feasible_near, minimize,
 };

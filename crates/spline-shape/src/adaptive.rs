@@ -1,0 +1,258 @@
+//! Shape optimisation coupled with an adaptation of the parametrisation (seed 000 §3, after
+//! Clarich & Désidéri): find the arc from `(0, 0)` to `(1, 0)`, vertical at `(0, 0)`, that
+//! minimises $J = \mathcal P^2 / \mathcal A$ (perimeter squared over the area under it). The
+//! minimiser is the upper half of the circle of centre `(½, 0)` and radius `½`, `J = 2π`.
+//!
+//! Each iteration (seed 000 §3.3–3.4):
+//! 1. **adapt the parametrisation**: least squares through `N + 1` points of the current shape
+//!    with chord-length parameters, averaging knots and the fixed coordinates
+//!    `x_0 = x_1 = y_0 = y_n = 0`, `x_n = 1` (so the curve starts vertically at the origin and
+//!    ends at `(1, 0)`), giving a regular control polygon for the same shape;
+//! 2. **optimise**: with the abscissae of the control points frozen, minimise `J` over the
+//!    free ordinates `y_1 … y_{n−1}` by the Nelder–Mead simplex method (derivative free);
+//! 3. sample the optimised curve at its `N + 1` parameters for the next adaptation.
+//!
+//! `𝒫` is the adaptive arc length; `𝒜 = ∫ y x′ dt` is integrated exactly by Gauss–Legendre
+//! quadrature on every knot span (`y x′` is a polynomial of degree `2d − 1` there).
+
+use argmin::core::{CostFunction, Executor};
+use argmin::solver::neldermead::NelderMead;
+use nalgebra::Vector2;
+use spline_core::{Error, ErrorKind, KnotVector, Result, gauss_legendre};
+use spline_fit::{LeastSquares, Parametrization, parametrize};
+use spline_geom::{BSpline, Curve2};
+
+/// Settings of [`optimise_perimeter_over_area`].
+#[derive(Clone, Debug)]
+pub struct AdaptiveOptions {
+    /// Degree `d` of the curve.
+    pub degree: usize,
+    /// Number of control points `n + 1`.
+    pub control_points: usize,
+    /// Number of sample points `N + 1` of each adaptation of the parametrisation.
+    pub samples: usize,
+    /// Number of outer iterations (adaptation + optimisation).
+    pub iterations: usize,
+    /// Nelder–Mead stops when the standard deviation of the simplex's costs is below this.
+    pub simplex_tolerance: f64,
+    /// Largest number of Nelder–Mead iterations per optimisation.
+    pub max_simplex_iterations: u64,
+    /// Absolute accuracy of the perimeter.
+    pub arc_length_accuracy: f64,
+}
+
+impl Default for AdaptiveOptions {
+    /// The setting of seed 000 Table 1: `n = 10`, `d = 3`, `N = 10`, eight iterations.
+    fn default() -> Self {
+        Self {
+            degree: 3,
+            control_points: 11,
+            samples: 11,
+            iterations: 8,
+            simplex_tolerance: 1e-12,
+            max_simplex_iterations: 20_000,
+            arc_length_accuracy: 1e-12,
+        }
+    }
+}
+
+/// One iteration of [`optimise_perimeter_over_area`].
+#[derive(Clone, Debug)]
+pub struct AdaptiveIteration {
+    /// The curve after the optimisation step.
+    pub curve: Curve2<f64>,
+    /// `J = 𝒫² / 𝒜` of that curve.
+    pub criterion: f64,
+    /// Its perimeter `𝒫`.
+    pub perimeter: f64,
+    /// The area `𝒜` under it.
+    pub area: f64,
+    /// Nelder–Mead iterations used.
+    pub simplex_iterations: u64,
+}
+
+/// The perimeter $\mathcal P = \int \lVert c'\rVert$, the area $\mathcal A = \int y\,x'\,dt$
+/// and $J = \mathcal P^2 / \mathcal A$ of a planar curve.
+///
+/// ```
+/// use nalgebra::Vector2;
+/// use spline_geom::BSpline;
+/// // y = 4x(1 − x) as a quadratic Bézier curve: area 2/3.
+/// let arch = BSpline::from_knots(2, vec![0.0, 0.0, 0.0, 1.0, 1.0, 1.0],
+///     vec![Vector2::new(0.0, 0.0), Vector2::new(0.5, 2.0), Vector2::new(1.0, 0.0)])?;
+/// let (_, _, area) = spline_shape::perimeter_squared_over_area(&arch, 1e-12)?;
+/// assert!((area - 2.0 / 3.0).abs() < 1e-14);
+/// # Ok::<(), spline_core::Error>(())
+/// ```
+///
+/// # Errors
+/// [`ErrorKind::DegenerateGeometry`] if the area is not positive; the errors of the arc length.
+pub fn perimeter_squared_over_area(curve: &Curve2<f64>, accuracy: f64) -> Result<(f64, f64, f64)> {
+    let perimeter = curve.arc_length(accuracy)?;
+    let rule = gauss_legendre::<f64>(curve.degree().max(1));
+    let breaks = curve.knots().domain_breaks();
+    let mut area = 0.0;
+    let mut ders = [Vector2::zeros(); 2];
+    for w in breaks.windows(2) {
+        let (half, mid) = (0.5 * (w[1] - w[0]), 0.5 * (w[0] + w[1]));
+        for &(x, weight) in &rule {
+            curve.derivatives_into(mid + half * x, &mut ders)?;
+            area += weight * half * ders[0].y * ders[1].x;
+        }
+    }
+    if !(area > 0.0) {
+        return Err(Error::new(
+            ErrorKind::DegenerateGeometry,
+            format!("the area under the curve is not positive ({area:.3e})"),
+        ));
+    }
+    Ok((perimeter * perimeter / area, perimeter, area))
+}
+
+/// Least squares through `points` (chord-length parameters, averaging knots) with the fixed
+/// coordinates of seed 000 §3.3.
+fn adapt(points: &[Vector2<f64>], options: &AdaptiveOptions) -> Result<(Curve2<f64>, Vec<f64>)> {
+    let params = parametrize(points, &Parametrization::Chordal)?;
+    let knots = averaging_knots(options.degree, options.control_points, &params)?;
+    let n = options.control_points - 1;
+    let fit = LeastSquares::new(points, &params, knots)
+        .fix_coordinate(0, 0, 0.0)
+        .fix_coordinate(1, 0, 0.0)
+        .fix_coordinate(0, 1, 0.0)
+        .fix_coordinate(n, 1, 0.0)
+        .fix_coordinate(n, 0, 1.0)
+        .solve()?;
+    Ok((fit.curve, params))
+}
+
+/// Clamped knots on `[0, 1]` for `count` control points, interior knots averaging the
+/// parameters `t` (seed 000 §3.3, in the form of seed 004 (7.6) for `count ≤ N + 1`).
+fn averaging_knots(degree: usize, count: usize, params: &[f64]) -> Result<KnotVector<f64>> {
+    if count == params.len() {
+        return KnotVector::averaging(degree, params);
+    }
+    spline_fit::nurbs_book_knots(degree, count, params)
+}
+
+struct Criterion<'a> {
+    template: &'a Curve2<f64>,
+    accuracy: f64,
+}
+
+impl Criterion<'_> {
+    fn curve(&self, free: &[f64]) -> Curve2<f64> {
+        let mut points = self.template.control_points().to_vec();
+        let last = points.len() - 1;
+        for (p, &y) in points[1..last].iter_mut().zip(free) {
+            p.y = y;
+        }
+        BSpline::new_unchecked(self.template.knots().clone(), points)
+    }
+}
+
+impl CostFunction for Criterion<'_> {
+    type Param = Vec<f64>;
+    type Output = f64;
+
+    fn cost(&self, free: &Vec<f64>) -> std::result::Result<f64, argmin::core::Error> {
+        // Shapes with no area (or a loop below the axis) are simply very bad.
+        Ok(
+            perimeter_squared_over_area(&self.curve(free), self.accuracy)
+                .map_or(1e300, |(j, _, _)| j),
+        )
+    }
+}
+
+/// Runs the coupled optimisation from an initial shape given by points from `(0, 0)` to
+/// `(1, 0)` (at least `control_points` of them), and returns every iteration.
+///
+/// # Errors
+/// [`ErrorKind::InvalidArgument`] for fewer samples than control points, fewer than
+/// `degree + 2` control points, or data that do not start at `(0, 0)` and end at `(1, 0)`;
+/// the errors of the least-squares fits; [`ErrorKind::NoConvergence`] if Nelder–Mead fails.
+pub fn optimise_perimeter_over_area(
+    initial: &[Vector2<f64>],
+    options: &AdaptiveOptions,
+) -> Result<Vec<AdaptiveIteration>> {
+    let d = options.degree;
+    if options.control_points < d + 2 || options.samples < options.control_points {
+        return Err(Error::new(
+            ErrorKind::InvalidArgument,
+            format!(
+                "need degree + 2 ≤ control points ≤ samples, got degree {d}, {} control points, {} samples",
+                options.control_points, options.samples
+            ),
+        ));
+    }
+    let ends_ok = |p: Option<&Vector2<f64>>, x: f64| {
+        p.is_some_and(|p| (p - Vector2::new(x, 0.0)).norm() < 1e-9)
+    };
+    if !ends_ok(initial.first(), 0.0) || !ends_ok(initial.last(), 1.0) {
+        return Err(Error::new(
+            ErrorKind::InvalidArgument,
+            "the initial shape must run from (0, 0) to (1, 0)",
+        ));
+    }
+    let (mut curve, _) = adapt(initial, options)?;
+    let mut samples: Vec<Vector2<f64>> = curve.eval_many(&uniform(options.samples))?;
+    let mut history = Vec::with_capacity(options.iterations);
+    for _ in 0..options.iterations {
+        let (adapted, params) = adapt(&samples, options)?;
+        let criterion = Criterion {
+            template: &adapted,
+            accuracy: options.arc_length_accuracy,
+        };
+        let start: Vec<f64> = adapted.control_points()[1..options.control_points - 1]
+            .iter()
+            .map(|p| p.y)
+            .collect();
+        let scale = start.iter().fold(0.0f64, |m, y| m.max(y.abs())).max(1e-3);
+        let mut simplex = vec![start.clone()];
+        for i in 0..start.len() {
+            let mut vertex = start.clone();
+            vertex[i] += 0.05 * scale;
+            simplex.push(vertex);
+        }
+        let solver = NelderMead::new(simplex)
+            .with_sd_tolerance(options.simplex_tolerance)
+            .map_err(|e| Error::new(ErrorKind::InvalidArgument, e.to_string()))?;
+        let result = Executor::new(criterion, solver)
+            .configure(|state| state.max_iters(options.max_simplex_iterations))
+            .run()
+            .map_err(|e| {
+                Error::new(ErrorKind::NoConvergence, format!("Nelder–Mead failed: {e}"))
+            })?;
+        let best =
+            result.state.best_param.clone().ok_or_else(|| {
+                Error::new(ErrorKind::NoConvergence, "Nelder–Mead returned no point")
+            })?;
+        let criterion = Criterion {
+            template: &adapted,
+            accuracy: options.arc_length_accuracy,
+        };
+        curve = criterion.curve(&best);
+        let (j, perimeter, area) =
+            perimeter_squared_over_area(&curve, options.arc_length_accuracy)?;
+        history.push(AdaptiveIteration {
+            curve: curve.clone(),
+            criterion: j,
+            perimeter,
+            area,
+            simplex_iterations: result.state.iter,
+        });
+        samples = curve.eval_many(&params)?;
+    }
+    Ok(history)
+}
+
+fn uniform(count: usize) -> Vec<f64> {
+    (0..count)
+        .map(|i| {
+            if i + 1 == count {
+                1.0
+            } else {
+                i as f64 / (count - 1) as f64
+            }
+        })
+        .collect()
+}
