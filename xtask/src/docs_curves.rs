@@ -8,7 +8,7 @@ use spline::geom::{BSpline, Bezier, Curve2};
 use std::path::Path;
 
 fn write(out: &Path, name: &str, plot: &SvgPlot) -> Result<(), String> {
-    std::fs::write(out.join(name), plot.render()).map_err(|e| format!("{name}: {e}"))
+    crate::write_doc(out, name, &plot.render())
 }
 
 fn seed_curve() -> Curve2 {

@@ -328,7 +328,7 @@ fn surface_pictures(out_dir: &Path) -> std::result::Result<(), String> {
             ],
         )
         .map_err(failed)?;
-        write(out_dir, &format!("shape_{file}.svg"), &maps)?;
+        crate::write_doc(out_dir, &format!("shape_{file}.svg"), &maps)?;
         if file != "5_5_2" {
             let (along_u, what) = if file == "5_6" {
                 (true, "u ↦ s(u, v) for v = 0, 2π/3, …, 4π (convex)")
@@ -337,15 +337,10 @@ fn surface_pictures(out_dir: &Path) -> std::result::Result<(), String> {
             };
             let iso = iso_curves(title, &format!("iso-curves {what}"), &fit.surface, along_u)
                 .map_err(failed)?;
-            write(out_dir, &format!("shape_{file}_iso.svg"), &iso)?;
+            crate::write_doc(out_dir, &format!("shape_{file}_iso.svg"), &iso)?;
         }
     }
     Ok(())
-}
-
-fn write(out_dir: &Path, name: &str, text: &str) -> std::result::Result<(), String> {
-    let path = out_dir.join(name);
-    std::fs::write(&path, text).map_err(|e| format!("cannot write {}: {e}", path.display()))
 }
 
 /// Writes `shape_<experiment>_<11|200>.svg` for the one-variable experiments, and
@@ -362,7 +357,7 @@ pub(crate) fn render(out_dir: &Path) -> std::result::Result<(), String> {
     for e in &experiments() {
         for n in [11, 200] {
             let svg = function_picture(e, n).map_err(failed)?;
-            write(out_dir, &format!("shape_{}_{n}.svg", e.file), &svg)?;
+            crate::write_doc(out_dir, &format!("shape_{}_{n}.svg", e.file), &svg)?;
         }
     }
     surface_pictures(out_dir)

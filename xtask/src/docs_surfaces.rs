@@ -66,11 +66,6 @@ fn mesh_picture(
     Ok(surface.tessellate(segments.0, segments.1)?.to_svg(view))
 }
 
-fn write(out_dir: &Path, name: &str, text: &str) -> std::result::Result<(), String> {
-    let path = out_dir.join(name);
-    std::fs::write(&path, text).map_err(|e| format!("cannot write {}: {e}", path.display()))
-}
-
 /// Writes `circle_square.svg`, `circle_triangle.svg`, `conics.svg`, `sphere.svg` and
 /// `torus.svg` into `out_dir` (created if needed).
 ///
@@ -85,20 +80,20 @@ pub(crate) fn render(out_dir: &Path) -> std::result::Result<(), String> {
         "Full circle: 9 control points on a square, knots (6.9), weights (6.10)",
     )
     .map_err(failed)?;
-    write(out_dir, "circle_square.svg", &square)?;
+    crate::write_doc(out_dir, "circle_square.svg", &square)?;
     let triangle = circle_picture(
         CircleConstruction::Triangle,
         "Full circle: 7 control points on a triangle, weights [1, 1/2, 1, 1/2, 1, 1/2, 1]",
     )
     .map_err(failed)?;
-    write(out_dir, "circle_triangle.svg", &triangle)?;
-    write(out_dir, "conics.svg", &conics_picture().map_err(failed)?)?;
+    crate::write_doc(out_dir, "circle_triangle.svg", &triangle)?;
+    crate::write_doc(out_dir, "conics.svg", &conics_picture().map_err(failed)?)?;
     let sphere = NurbsSurface::sphere(Vector3::zeros(), 1.0).map_err(failed)?;
     let view = MeshView {
         title: Some("NURBS sphere (6.13)-(6.14): 5 x 9 control points, 24 x 48 mesh".into()),
         ..MeshView::default()
     };
-    write(
+    crate::write_doc(
         out_dir,
         "sphere.svg",
         &mesh_picture(&sphere, (24, 48), &view).map_err(failed)?,
@@ -110,7 +105,7 @@ pub(crate) fn render(out_dir: &Path) -> std::result::Result<(), String> {
         title: Some("NURBS torus: 9 x 9 control points, 24 x 64 mesh".into()),
         ..MeshView::default()
     };
-    write(
+    crate::write_doc(
         out_dir,
         "torus.svg",
         &mesh_picture(&torus, (24, 64), &view).map_err(failed)?,

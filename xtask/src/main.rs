@@ -25,6 +25,12 @@ fn repo_root() -> PathBuf {
         .to_path_buf()
 }
 
+/// Writes one generated document into `out_dir`.
+pub(crate) fn write_doc(out_dir: &Path, name: &str, text: &str) -> Result<(), String> {
+    let path = out_dir.join(name);
+    std::fs::write(&path, text).map_err(|e| format!("cannot write {}: {e}", path.display()))
+}
+
 fn run_ci(root: &Path) -> Result<(), String> {
     let status = Command::new("bash")
         .arg(root.join(".ci/run"))
