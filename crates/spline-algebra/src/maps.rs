@@ -4,7 +4,7 @@ use crate::blossom::{SpanChoice, transfer_matrix};
 use crate::sparse::{apply_points, check_len, csr_from_rows, identity, matmul};
 use nalgebra_sparse::CsrMatrix;
 use spline_core::{
-    ControlPoint, Error, ErrorKind, KnotVector, MAX_DEGREE, Result, Scalar, binomial, from_count,
+    ControlPoint, Error, ErrorKind, KnotVector, Result, Scalar, binomial, from_count,
     to_f64,
 };
 use spline_geom::BSpline;
@@ -477,12 +477,7 @@ impl<T: Scalar> SplineMap<T> {
             return Ok(Self::identity(knots));
         }
         let p = knots.degree();
-        if p + times > MAX_DEGREE {
-            return Err(Error::new(
-                ErrorKind::DegreeTooHigh,
-                format!("degree {p} + {times} is above the supported maximum {MAX_DEGREE}"),
-            ));
-        }
+        spline_core::check_elevated_degree(p, times)?;
         let target = clamped_knots(knots).elevated(times)?;
         let extraction = Self::bezier_extraction(knots);
         let segments = extraction.target.num_basis() / (p + 1);

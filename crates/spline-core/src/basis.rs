@@ -152,14 +152,23 @@ impl<T: Scalar> KnotVector<T> {
     /// turned into derivatives in place (right to left) with the coefficients
     /// $a_{k,j}$ of (2).
     ///
+    /// Only the orders up to `p` are computed; the rows above are set to zero.
+    ///
     /// # Panics
-    /// If `out.len() < (order + 1)(p + 1)` or `span` is invalid.
+    /// If `out.len() < (order + 1)(p + 1)` (a buffer of that size cannot exist when the
+    /// product overflows) or `span` is invalid.
     pub fn basis_derivatives(&self, span: usize, u: T, order: usize, out: &mut [T]) {
         let p = self.degree();
         let knots = self.knots();
         let width = p + 1;
         assert!(span >= p && span < self.num_basis(), "invalid span {span}");
-        assert!(out.len() >= (order + 1) * width, "output buffer too short");
+        let needed = order
+            .checked_add(1)
+            .and_then(|rows| rows.checked_mul(width));
+        assert!(
+            needed.is_some_and(|needed| out.len() >= needed),
+            "output buffer too short"
+        );
         let top = order.min(p);
         for v in out[(top + 1) * width..(order + 1) * width].iter_mut() {
             *v = T::zero();
@@ -249,16 +258,22 @@ impl<T: Scalar> KnotVector<T> {
     /// ```
     ///
     /// # Errors
+    /// [`ErrorKind::InvalidArgument`] if `order` is above [`crate::MAX_DERIVATIVE_ORDER`];
     /// [`ErrorKind::NonFinite`] or [`ErrorKind::OutOfDomain`].
     pub fn dense_basis_derivatives(&self, u: T, order: usize) -> Result<Vec<Vec<T>>> {
+        crate::check_derivative_order(order)?;
         let span = self.find_span(u)?;
         let p = self.degree();
-        let mut local = vec![T::zero(); (order + 1) * (p + 1)];
-        self.basis_derivatives(span, u, order, &mut local);
+        // Orders above the degree are zero rows: only the others are computed.
+        let top = order.min(p);
+        let mut local = [T::zero(); MAX_ORDER * MAX_ORDER];
+        self.basis_derivatives(span, u, top, &mut local[..(top + 1) * (p + 1)]);
         Ok((0..=order)
             .map(|k| {
                 let mut row = vec![T::zero(); self.num_basis()];
-                row[span - p..=span].copy_from_slice(&local[k * (p + 1)..(k + 1) * (p + 1)]);
+                if k <= top {
+                    row[span - p..=span].copy_from_slice(&local[k * (p + 1)..(k + 1) * (p + 1)]);
+                }
                 row
             })
             .collect())

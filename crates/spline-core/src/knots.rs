@@ -12,6 +12,31 @@ pub const MAX_DEGREE: usize = 32;
 /// `MAX_DEGREE + 1`: the largest number of basis functions non-zero at a parameter.
 pub const MAX_ORDER: usize = MAX_DEGREE + 1;
 
+/// The highest derivative order that the functions returning all derivatives up to an order
+/// (`dense_basis_derivatives`, curve, NURBS and surface `derivatives`) accept.
+///
+/// Derivatives of a polynomial piece above its degree (at most [`MAX_DEGREE`]) are zero and
+/// cost nothing to compute, but the result holds one row per order; rational derivatives of
+/// order `k` grow like `k!` and leave the range of `f64` near order 170. The limit keeps
+/// the size of such results bounded by the input.
+pub const MAX_DERIVATIVE_ORDER: usize = 1000;
+
+/// Checks a derivative order against [`MAX_DERIVATIVE_ORDER`].
+///
+/// # Errors
+/// [`ErrorKind::InvalidArgument`] above the limit.
+pub fn check_derivative_order(order: usize) -> Result<()> {
+    if order > MAX_DERIVATIVE_ORDER {
+        return Err(Error::new(
+            ErrorKind::InvalidArgument,
+            format!(
+                "derivative order {order} is above the supported maximum {MAX_DERIVATIVE_ORDER}"
+            ),
+        ));
+    }
+    Ok(())
+}
+
 /// A knot vector together with the degree of the spline space it defines.
 ///
 /// `n + p + 1` non-decreasing finite knots `u_0 ≤ … ≤ u_{n+p}` define `n` B-spline basis
@@ -460,6 +485,19 @@ impl<T: Scalar> KnotVector<T> {
     /// multiplicity would exceed `p + 1`.
     pub fn with_inserted(&self, u: T, times: usize) -> Result<Self> {
         self.check_param(u)?;
+        let present = self.multiplicity(u);
+        if times > self.order() - present.min(self.order()) {
+            return Err(Error::new(
+                ErrorKind::KnotMultiplicity,
+                format!(
+                    "knot {} appears {present} times; inserting it {times} more times exceeds the degree-{} limit of {} (at most {} more)",
+                    to_f64(u),
+                    self.degree,
+                    self.order(),
+                    self.order() - present.min(self.order())
+                ),
+            ));
+        }
         let at = self.knots.partition_point(|&k| k <= u);
         let mut knots = Vec::with_capacity(self.len() + times);
         knots.extend_from_slice(&self.knots[..at]);
@@ -490,13 +528,15 @@ impl<T: Scalar> KnotVector<T> {
     /// repeated `times` more times.
     ///
     /// # Errors
-    /// [`ErrorKind::DegreeTooHigh`] above [`MAX_DEGREE`].
+    /// [`ErrorKind::DegreeTooHigh`] above [`MAX_DEGREE`] (checked before anything is
+    /// allocated, without overflow for any `times`).
     pub fn elevated(&self, times: usize) -> Result<Self> {
+        let degree = check_elevated_degree(self.degree, times)?;
         let mut knots = Vec::with_capacity(self.len() + times * self.len());
         for (k, m) in self.breakpoints() {
             knots.extend(std::iter::repeat_n(k, m + times));
         }
-        Self::new(self.degree + times, knots)
+        Self::new(degree, knots)
     }
 
     /// The reversed knot vector `u ↦ a + b − u` (same domain `[a, b]`).
@@ -534,6 +574,24 @@ impl<T: Scalar> KnotVector<T> {
             self.degree - 1,
             self.knots[1..self.len() - 1].to_vec(),
         ))
+    }
+}
+
+/// The degree `p + times` of a degree elevation, checked against [`MAX_DEGREE`] without
+/// overflow.
+///
+/// # Errors
+/// [`ErrorKind::DegreeTooHigh`] if `p + times` is above [`MAX_DEGREE`].
+pub fn check_elevated_degree(degree: usize, times: usize) -> Result<usize> {
+    match degree.checked_add(times) {
+        Some(d) if d <= MAX_DEGREE => Ok(d),
+        _ => Err(Error::new(
+            ErrorKind::DegreeTooHigh,
+            format!(
+                "raising degree {degree} by {times} goes above the supported maximum degree {MAX_DEGREE} (at most {} more)",
+                MAX_DEGREE.saturating_sub(degree)
+            ),
+        )),
     }
 }
 

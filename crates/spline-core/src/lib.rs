@@ -31,8 +31,11 @@ pub mod strategies;
 
 pub use basis::{BasisValues, SpanBasis, bernstein, bernstein_all, binomial};
 pub use batch::BatchBasis;
-pub use error::{Error, ErrorKind, Result};
-pub use knots::{KnotVector, MAX_DEGREE, MAX_ORDER, check_params};
+pub use error::{Error, ErrorKind, Result, Short};
+pub use knots::{
+    KnotVector, MAX_DEGREE, MAX_DERIVATIVE_ORDER, MAX_ORDER, check_derivative_order,
+    check_elevated_degree, check_params,
+};
 pub use point::{ControlPoint, lerp};
 pub use quadrature::gauss_legendre;
 pub use scalar::{Scalar, cast, from_count, to_f64};

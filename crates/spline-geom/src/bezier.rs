@@ -193,10 +193,15 @@ impl<T: Scalar, P: ControlPoint<T>> Bezier<T, P> {
 
     /// Raises the degree by `times`:
     /// $Q_i = \sum_j \binom{n}{j}\binom{r}{i-j} / \binom{n+r}{i}\, P_j$.
+    ///
+    /// # Panics
+    /// If `n + times` overflows `usize` (a programmer error: no such curve fits in memory).
     #[must_use]
     pub fn elevate_degree(&self, times: usize) -> Self {
         let n = self.degree();
-        let nh = n + times;
+        let nh = n
+            .checked_add(times)
+            .expect("the elevated degree of a Bézier curve overflows usize");
         let points = (0..=nh)
             .map(|i| {
                 let inv = T::one() / binomial::<T>(nh, i);

@@ -219,7 +219,7 @@ impl<T: Scalar, P: ControlPoint<T>> BSpline<T, P> {
     }
 
     /// $C(u), C'(u), …, C^{(k)}(u)$ with `k = out.len() − 1`, written into `out`. Orders above
-    /// the degree are zero. No heap allocation for `k ≤ 3`.
+    /// the degree are zero and cost only their writing. No heap allocation.
     ///
     /// # Errors
     /// [`ErrorKind::NonFinite`] or [`ErrorKind::OutOfDomain`].
@@ -241,17 +241,12 @@ impl<T: Scalar, P: ControlPoint<T>> BSpline<T, P> {
             5 => return self.derivatives_fixed::<6>(span, u, out),
             _ => {}
         }
-        let order = out.len() - 1;
         let p = self.degree();
+        // Orders above the degree are zero: only the others are computed.
+        let order = (out.len() - 1).min(p);
         let width = p + 1;
-        let mut stack = [T::zero(); 4 * MAX_ORDER];
-        let mut heap = Vec::new();
-        let table: &mut [T] = if order < 4 {
-            &mut stack[..(order + 1) * width]
-        } else {
-            heap.resize((order + 1) * width, T::zero());
-            &mut heap
-        };
+        let mut stack = [T::zero(); MAX_ORDER * MAX_ORDER];
+        let table = &mut stack[..(order + 1) * width];
         self.knots.basis_derivatives(span, u, order, table);
         let points = &self.control_points[span - p..=span];
         for (k, slot) in out.iter_mut().enumerate() {
@@ -308,8 +303,10 @@ impl<T: Scalar, P: ControlPoint<T>> BSpline<T, P> {
     /// ```
     ///
     /// # Errors
+    /// [`ErrorKind::InvalidArgument`] above [`spline_core::MAX_DERIVATIVE_ORDER`];
     /// [`ErrorKind::NonFinite`] or [`ErrorKind::OutOfDomain`].
     pub fn derivatives(&self, u: T, order: usize) -> Result<Vec<P>> {
+        spline_core::check_derivative_order(order)?;
         let mut out = vec![P::origin(); order + 1];
         self.derivatives_into(u, &mut out)?;
         Ok(out)
@@ -375,7 +372,16 @@ impl<T: Scalar, P: ControlPoint<T>> BSpline<T, P> {
     /// # Errors
     /// As [`BSpline::eval_many_into`]; `out.len()` must be `params.len() (order + 1)`.
     pub fn derivatives_many_into(&self, params: &[T], order: usize, out: &mut [P]) -> Result<()> {
-        check_same_len(params.len() * (order + 1), out.len())?;
+        let needed = order
+            .checked_add(1)
+            .and_then(|rows| rows.checked_mul(params.len()))
+            .ok_or_else(|| {
+                Error::new(
+                    ErrorKind::InvalidLength,
+                    format!("{} parameters with derivatives up to order {order} do not fit in memory", params.len()),
+                )
+            })?;
+        check_same_len(needed, out.len())?;
         self.check_params_in_domain(params)?;
         let mut span = self.degree();
         for (chunk, &u) in out.chunks_exact_mut(order + 1).zip(params) {
@@ -459,6 +465,20 @@ impl<T: Scalar, P: ControlPoint<T>> BSpline<T, P> {
                 .context(format_args!("parameter {i}"))),
         }
     }
+}
+
+/// `(order + 1)²`, the number of partial derivatives of a surface up to `order` in each
+/// direction, without overflow.
+pub(crate) fn square_len(order: usize) -> Result<usize> {
+    order
+        .checked_add(1)
+        .and_then(|w| w.checked_mul(w))
+        .ok_or_else(|| {
+            Error::new(
+                ErrorKind::InvalidArgument,
+                format!("derivatives up to order {order} do not fit in memory"),
+            )
+        })
 }
 
 pub(crate) fn check_same_len(expected: usize, got: usize) -> Result<()> {

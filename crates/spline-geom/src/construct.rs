@@ -373,6 +373,10 @@ fn arc_template<T: Scalar>(start: T, sweep: T, pieces: usize) -> ArcTemplate<T> 
     }
 }
 
+/// The largest number of rational quadratic pieces of an arc (`NurbsCurve::arc_with_max_piece`):
+/// a full circle in pieces of at least 0.36°.
+pub const MAX_ARC_PIECES: usize = 1000;
+
 /// Validates a sweep angle and returns the number of pieces of at most `max_piece`.
 fn arc_pieces<T: Scalar>(sweep: T, max_piece: T) -> Result<usize> {
     if !(sweep.is_finite() && max_piece.is_finite()) {
@@ -401,10 +405,22 @@ fn arc_pieces<T: Scalar>(sweep: T, max_piece: T) -> Result<usize> {
             ),
         ));
     }
-    let ratio = to_f64(sweep.abs() / max_piece);
     // Sweeps that are whole multiples of the piece angle (360° / 90°) up to rounding.
+    let ratio = (to_f64(sweep.abs() / max_piece) * (1.0 - 1e-12)).ceil().max(1.0);
+    #[allow(clippy::cast_precision_loss)]
+    if !(ratio <= MAX_ARC_PIECES as f64) {
+        return Err(Error::new(
+            ErrorKind::InvalidArgument,
+            format!(
+                "an arc of {} rad in pieces of at most {} rad needs {} pieces, more than the supported maximum {MAX_ARC_PIECES}; allow larger pieces",
+                to_f64(sweep.abs()),
+                to_f64(max_piece),
+                spline_core::Short(ratio)
+            ),
+        ));
+    }
     #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]
-    let pieces = (ratio * (1.0 - 1e-12)).ceil().max(1.0) as usize;
+    let pieces = ratio as usize;
     Ok(pieces)
 }
 

@@ -72,7 +72,7 @@ impl TriangleMesh {
     /// [`ErrorKind::InvalidLength`] unless `points.len() = rows · cols` with
     /// `rows, cols ≥ 2`; [`ErrorKind::NonFinite`] for a non-finite point.
     pub fn from_grid(rows: usize, cols: usize, points: &[Vector3<f64>]) -> Result<Self> {
-        if rows < 2 || cols < 2 || points.len() != rows * cols {
+        if rows < 2 || cols < 2 || rows.checked_mul(cols) != Some(points.len()) {
             return Err(Error::new(
                 ErrorKind::InvalidLength,
                 format!(
@@ -97,7 +97,14 @@ impl TriangleMesh {
             ),
             |(lo, hi), p| (lo.inf(p), hi.sup(p)),
         );
-        let tolerance = ((hi - lo).norm() * 1e-10).max(f64::MIN_POSITIVE);
+        // The size of the grid without overflow (coordinates may be near the range of f64).
+        let extent = (hi - lo).amax();
+        let size = if extent.is_finite() {
+            extent
+        } else {
+            hi.amax().max(lo.amax())
+        };
+        let tolerance = (size * 1e-10).max(f64::MIN_POSITIVE);
         let mut cells: HashMap<[i64; 3], Vec<usize>> = HashMap::new();
         let mut vertices: Vec<Vector3<f64>> = Vec::new();
         #[allow(clippy::cast_possible_truncation)]
@@ -112,7 +119,7 @@ impl TriangleMesh {
                             if let Some(list) = cells.get(&[c.x + dx, c.y + dy, c.z + dz]) {
                                 if let Some(&k) = list
                                     .iter()
-                                    .find(|&&k| (vertices[k] - p).norm() <= tolerance)
+                                    .find(|&&k| (vertices[k] - p).amax() <= tolerance)
                                 {
                                     return k;
                                 }
@@ -154,9 +161,21 @@ impl TriangleMesh {
     /// Recomputes the vertex normals as area-weighted averages of the triangle normals
     /// (vertices without triangles get `+z`).
     pub fn compute_normals(&mut self) {
+        // Directions do not depend on the scale: work on coordinates of magnitude at most 1,
+        // so that cross products neither overflow nor underflow.
+        let largest = self
+            .vertices
+            .iter()
+            .fold(0.0f64, |m, v| m.max(v.amax()));
+        let scale = if largest > 0.0 && largest.is_finite() {
+            largest
+        } else {
+            1.0
+        };
         let mut normals = vec![Vector3::zeros(); self.vertices.len()];
         for t in &self.triangles {
-            let n = self.face_normal(t);
+            let [a, b, c] = t.map(|k| self.vertices[k] / scale);
+            let n = (b - a).cross(&(c - a));
             for &k in t {
                 normals[k] += n;
             }
@@ -374,6 +393,11 @@ struct Face {
     shade: f64,
 }
 
+/// The largest number of equal parameter steps of a tessellation in each direction
+/// ([`Surface::tessellate`]): a mesh has at most about a million vertices besides those at
+/// the knots.
+pub const MAX_MESH_SEGMENTS: usize = 1000;
+
 /// Parameters for tessellation: `segments` equal steps over the domain, plus every interior
 /// knot (so that creases at knots of high multiplicity are kept).
 fn mesh_params<T: Scalar>(knots: &KnotVector<T>, segments: usize) -> Result<Vec<T>> {
@@ -381,6 +405,14 @@ fn mesh_params<T: Scalar>(knots: &KnotVector<T>, segments: usize) -> Result<Vec<
         return Err(Error::new(
             ErrorKind::InvalidArgument,
             "a tessellation needs at least one segment in each direction",
+        ));
+    }
+    if segments > MAX_MESH_SEGMENTS {
+        return Err(Error::new(
+            ErrorKind::InvalidArgument,
+            format!(
+                "{segments} segments in one direction are more than the supported maximum {MAX_MESH_SEGMENTS}"
+            ),
         ));
     }
     let (a, b) = knots.domain();
@@ -417,7 +449,7 @@ impl<T: Scalar, P: ControlPoint<T>> Surface<T, P> {
     ///
     /// # Errors
     /// [`ErrorKind::DimensionMismatch`] for points of more than 3 coordinates;
-    /// [`ErrorKind::InvalidArgument`] for zero segments.
+    /// [`ErrorKind::InvalidArgument`] for zero segments or more than [`MAX_MESH_SEGMENTS`].
     pub fn tessellate(&self, segments_u: usize, segments_v: usize) -> Result<TriangleMesh> {
         check_mesh_dimension(P::DIM)?;
         let us = mesh_params(self.knots_u(), segments_u)?;

@@ -12,7 +12,7 @@ use crate::structural::relative_scale;
 use crate::surface::{Direction, Surface, bezier_as_bspline, flatten_net};
 use nalgebra::{RealField, SVector};
 use spline_core::{
-    ControlPoint, Error, ErrorKind, KnotVector, MAX_ORDER, Result, Scalar, binomial, cast, to_f64,
+    ControlPoint, Error, ErrorKind, KnotVector, MAX_ORDER, Result, Scalar, cast, from_count, to_f64,
 };
 
 /// A NURBS curve in $\mathbb{R}^D$ (seed 004 Definition 6.1):
@@ -119,48 +119,96 @@ fn cartesian_scale<T: Scalar, const D: usize>(points: &[Homogeneous<T, D>]) -> T
 
 /// Rational derivatives of a curve from the homogeneous ones (The NURBS Book A4.2):
 /// $C^{(k)} = \big(A^{(k)} - \sum_{i=1}^{k} \binom{k}{i} w^{(i)} C^{(k-i)}\big) / w$.
+///
+/// `hom` holds the homogeneous derivatives of orders `0 … hom.len() − 1`; those above are
+/// zero (orders above the degree), so the sums stop there and order `k` costs `O(p)`.
+///
+/// # Errors
+/// [`ErrorKind::NonFinite`] when a derivative leaves the range of the scalar type (rational
+/// derivatives of order `k` grow like `k!`).
 fn rational_curve_derivatives<T: Scalar, const D: usize>(
     hom: &[Homogeneous<T, D>],
     out: &mut [SVector<T, D>],
-) {
+) -> Result<()> {
     let w0 = hom[0].weight;
+    let top = hom.len() - 1;
     for k in 0..out.len() {
-        let mut v = hom[k].point;
-        for i in 1..=k {
-            v -= out[k - i] * (binomial::<T>(k, i) * hom[i].weight);
+        let mut v = if k <= top {
+            hom[k].point
+        } else {
+            SVector::zeros()
+        };
+        let mut binom = T::one();
+        for i in 1..=k.min(top) {
+            // C(k, i) from C(k, i − 1).
+            binom = binom * from_count::<T>(k - i + 1) / from_count::<T>(i);
+            v -= out[k - i] * (binom * hom[i].weight);
         }
         out[k] = v / w0;
+        if !out[k].iter().all(|x| x.is_finite()) {
+            return Err(derivative_overflow(k));
+        }
     }
+    Ok(())
+}
+
+fn derivative_overflow(order: usize) -> Error {
+    Error::new(
+        ErrorKind::NonFinite,
+        format!(
+            "the rational derivative of order {order} is too large for floating point (rational derivatives grow like order!)"
+        ),
+    )
 }
 
 /// Rational partial derivatives of a surface on the square `0 ≤ k, l ≤ order` from the
-/// homogeneous ones (The NURBS Book A4.4), both row-major with rows of `order + 1`.
+/// homogeneous ones (The NURBS Book A4.4). `hom` holds the homogeneous derivatives on the
+/// square `0 ≤ i, j ≤ top` (row-major, rows of `top + 1`; those above are zero); `out` is
+/// row-major with rows of `order + 1`.
+///
+/// # Errors
+/// [`ErrorKind::NonFinite`] when a derivative leaves the range of the scalar type.
 fn rational_surface_derivatives<T: Scalar, const D: usize>(
     hom: &[Homogeneous<T, D>],
+    top: usize,
     order: usize,
     out: &mut [SVector<T, D>],
-) {
+) -> Result<()> {
     let w = order + 1;
-    let w00 = hom[0].weight;
+    let hw = top + 1;
+    let weight = |i: usize, j: usize| hom[i * hw + j].weight;
+    let w00 = weight(0, 0);
     for k in 0..=order {
         for l in 0..=order {
-            let mut v = hom[k * w + l].point;
-            for j in 1..=l {
-                v -= out[k * w + l - j] * (binomial::<T>(l, j) * hom[j].weight);
+            let mut v = if k <= top && l <= top {
+                hom[k * hw + l].point
+            } else {
+                SVector::zeros()
+            };
+            let mut blj = T::one();
+            for j in 1..=l.min(top) {
+                blj = blj * from_count::<T>(l - j + 1) / from_count::<T>(j);
+                v -= out[k * w + l - j] * (blj * weight(0, j));
             }
-            for i in 1..=k {
-                let bki = binomial::<T>(k, i);
-                v -= out[(k - i) * w + l] * (bki * hom[i * w].weight);
+            let mut bki = T::one();
+            for i in 1..=k.min(top) {
+                bki = bki * from_count::<T>(k - i + 1) / from_count::<T>(i);
+                v -= out[(k - i) * w + l] * (bki * weight(i, 0));
                 let mut mixed = SVector::<T, D>::zeros();
-                for j in 1..=l {
-                    mixed +=
-                        out[(k - i) * w + l - j] * (binomial::<T>(l, j) * hom[i * w + j].weight);
+                let mut blj = T::one();
+                for j in 1..=l.min(top) {
+                    blj = blj * from_count::<T>(l - j + 1) / from_count::<T>(j);
+                    mixed += out[(k - i) * w + l - j] * (blj * weight(i, j));
                 }
                 v -= mixed * bki;
             }
             out[k * w + l] = v / w00;
+            if !out[k * w + l].iter().all(|x| x.is_finite()) {
+                return Err(derivative_overflow(k + l));
+            }
         }
     }
+    Ok(())
 }
 
 /// The largest homogeneous distance between two lists of homogeneous points, turned into a
@@ -404,26 +452,22 @@ impl<T: Scalar, const D: usize> NurbsCurve<T, D> {
 
     /// $R(u), R'(u), …, R^{(k)}(u)$ with `k = out.len() − 1` (The NURBS Book A4.2), written
     /// into `out`. Unlike polynomial curves, rational derivatives above the degree are not
-    /// zero. No heap allocation for `k ≤ 3`.
+    /// zero; order `k` costs `O(p)` operations (the homogeneous derivatives above the degree
+    /// vanish). No heap allocation.
     ///
     /// # Errors
-    /// [`ErrorKind::NonFinite`] or [`ErrorKind::OutOfDomain`].
+    /// [`ErrorKind::NonFinite`] or [`ErrorKind::OutOfDomain`] for the parameter;
+    /// [`ErrorKind::NonFinite`] when a derivative is too large for the scalar type (rational
+    /// derivatives of order `k` grow like `k!`; `f64` overflows near order 170).
     pub fn derivatives_into(&self, u: T, out: &mut [SVector<T, D>]) -> Result<()> {
         let span = self.curve.knots().find_span(u)?;
         if out.is_empty() {
             return Ok(());
         }
         let mut stack = [Homogeneous::<T, D>::origin(); MAX_ORDER];
-        let mut heap = Vec::new();
-        let hom: &mut [Homogeneous<T, D>] = if out.len() <= MAX_ORDER {
-            &mut stack[..out.len()]
-        } else {
-            heap.resize(out.len(), Homogeneous::origin());
-            &mut heap
-        };
+        let hom = &mut stack[..out.len().min(self.degree() + 1)];
         self.curve.derivatives_in_span(span, u, hom);
-        rational_curve_derivatives(hom, out);
-        Ok(())
+        rational_curve_derivatives(hom, out)
     }
 
     /// The derivatives $R^{(j)}(u)$ for `j = 0 … order`.
@@ -440,8 +484,10 @@ impl<T: Scalar, const D: usize> NurbsCurve<T, D> {
     /// ```
     ///
     /// # Errors
-    /// [`ErrorKind::NonFinite`] or [`ErrorKind::OutOfDomain`].
+    /// [`ErrorKind::InvalidArgument`] above [`spline_core::MAX_DERIVATIVE_ORDER`]; the errors
+    /// of [`NurbsCurve::derivatives_into`].
     pub fn derivatives(&self, u: T, order: usize) -> Result<Vec<SVector<T, D>>> {
+        spline_core::check_derivative_order(order)?;
         let mut out = vec![SVector::zeros(); order + 1];
         self.derivatives_into(u, &mut out)?;
         Ok(out)
@@ -824,11 +870,13 @@ impl<T: Scalar, const D: usize> NurbsSurface<T, D> {
 
     /// All rational partial derivatives $\partial^{k+l} S / \partial u^k \partial v^l$,
     /// `0 ≤ k, l ≤ order`, into `out[k * (order + 1) + l]` (The NURBS Book A4.4 on the full
-    /// square of orders). No heap allocation for `order ≤ 3`.
+    /// square of orders). The homogeneous derivatives vanish above the degrees, so order
+    /// `(k, l)` costs `O(p q)` operations; the working memory is bounded by the degrees.
     ///
     /// # Errors
     /// [`ErrorKind::InvalidLength`] unless `out.len() = (order + 1)²`;
-    /// [`ErrorKind::NonFinite`] or [`ErrorKind::OutOfDomain`].
+    /// [`ErrorKind::NonFinite`] or [`ErrorKind::OutOfDomain`] for the parameters;
+    /// [`ErrorKind::NonFinite`] when a derivative is too large for the scalar type.
     pub fn derivatives_into(
         &self,
         u: T,
@@ -836,27 +884,23 @@ impl<T: Scalar, const D: usize> NurbsSurface<T, D> {
         order: usize,
         out: &mut [SVector<T, D>],
     ) -> Result<()> {
-        let len = (order + 1) * (order + 1);
+        let len = crate::bspline::square_len(order)?;
         crate::bspline::check_same_len(len, out.len())?;
         let (su, sv) = self.surface.find_spans(u, v)?;
-        let mut stack = [Homogeneous::<T, D>::origin(); 16];
-        let mut heap = Vec::new();
-        let hom: &mut [Homogeneous<T, D>] = if len <= 16 {
-            &mut stack[..len]
-        } else {
-            heap.resize(len, Homogeneous::origin());
-            &mut heap
-        };
-        self.surface.derivatives_in_spans(su, sv, u, v, order, hom);
-        rational_surface_derivatives(hom, order, out);
-        Ok(())
+        let (p, q) = self.surface.degrees();
+        let top = order.min(p.max(q));
+        let mut hom = vec![Homogeneous::<T, D>::origin(); (top + 1) * (top + 1)];
+        self.surface.derivatives_in_spans(su, sv, u, v, top, &mut hom);
+        rational_surface_derivatives(&hom, top, order, out)
     }
 
     /// The rational partial derivatives `[k][l]` for `0 ≤ k, l ≤ order`.
     ///
     /// # Errors
-    /// [`ErrorKind::NonFinite`] or [`ErrorKind::OutOfDomain`].
+    /// [`ErrorKind::InvalidArgument`] above [`spline_core::MAX_DERIVATIVE_ORDER`]; the errors
+    /// of [`NurbsSurface::derivatives_into`].
     pub fn derivatives(&self, u: T, v: T, order: usize) -> Result<Vec<Vec<SVector<T, D>>>> {
+        spline_core::check_derivative_order(order)?;
         let mut flat = vec![SVector::zeros(); (order + 1) * (order + 1)];
         self.derivatives_into(u, v, order, &mut flat)?;
         Ok(flat.chunks_exact(order + 1).map(<[_]>::to_vec).collect())

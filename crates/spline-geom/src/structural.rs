@@ -6,7 +6,7 @@ use crate::bezier::Bezier;
 use crate::bspline::BSpline;
 use nalgebra::RealField;
 use spline_core::{
-    ControlPoint, Error, ErrorKind, KnotVector, MAX_DEGREE, MAX_ORDER, Result, Scalar, binomial,
+    ControlPoint, Error, ErrorKind, KnotVector, MAX_ORDER, Result, Scalar, binomial,
     to_f64,
 };
 
@@ -262,7 +262,7 @@ impl<T: Scalar, P: ControlPoint<T>> BSpline<T, P> {
     /// An unclamped curve is first clamped at its domain ends.
     ///
     /// # Errors
-    /// [`ErrorKind::DegreeTooHigh`] if `p + times` exceeds [`MAX_DEGREE`].
+    /// [`ErrorKind::DegreeTooHigh`] if `p + times` exceeds [`spline_core::MAX_DEGREE`].
     ///
     /// # Panics
     /// Never: the internal `expect`s guard invariants of the algorithm.
@@ -273,13 +273,7 @@ impl<T: Scalar, P: ControlPoint<T>> BSpline<T, P> {
             return Ok(self.clone());
         }
         let p = self.degree();
-        let ph = p + times;
-        if ph > MAX_DEGREE {
-            return Err(Error::new(
-                ErrorKind::DegreeTooHigh,
-                format!("degree {p} + {times} is above the supported maximum {MAX_DEGREE}"),
-            ));
-        }
+        let ph = spline_core::check_elevated_degree(p, times)?;
         if p == 0 {
             // Piecewise constants: every knot gains `times` copies, every coefficient too.
             let knots = self.knots().elevated(times)?;

@@ -104,28 +104,23 @@ fn basis_into<T: Scalar>(knots: &KnotVector<T>, span: usize, t: T, out: &mut [T;
     }
 }
 
-/// Working memory for basis-function derivatives: on the stack up to order 3.
+/// Working memory for basis-function derivatives, on the stack: orders above the degree
+/// are zero and never stored.
 struct BasisTable<T> {
-    stack: [T; 4 * MAX_ORDER],
-    heap: Vec<T>,
+    stack: [T; MAX_ORDER * MAX_ORDER],
 }
 
 impl<T: Scalar> BasisTable<T> {
     fn new() -> Self {
         Self {
-            stack: [T::zero(); 4 * MAX_ORDER],
-            heap: Vec::new(),
+            stack: [T::zero(); MAX_ORDER * MAX_ORDER],
         }
     }
 
+    /// The derivatives of orders `0 … min(order, p)`, rows of `p + 1`.
     fn fill(&mut self, knots: &KnotVector<T>, span: usize, t: T, order: usize) -> &[T] {
-        let len = (order + 1) * knots.order();
-        let table: &mut [T] = if order < 4 {
-            &mut self.stack[..len]
-        } else {
-            self.heap.resize(len, T::zero());
-            &mut self.heap
-        };
+        let order = order.min(knots.degree());
+        let table = &mut self.stack[..(order + 1) * knots.order()];
         knots.basis_derivatives(span, t, order, table);
         table
     }
@@ -410,14 +405,14 @@ impl<T: Scalar, P: ControlPoint<T>> Surface<T, P> {
 
     /// All partial derivatives $\partial^{k+l} S / \partial u^k \partial v^l$ for
     /// `0 ≤ k, l ≤ order`, written into `out[k * (order + 1) + l]` (The NURBS Book A3.6 on the
-    /// full square of orders). Orders above the degrees give zero. No heap allocation for
-    /// `order ≤ 3`.
+    /// full square of orders). Orders above the degrees give zero and cost only their
+    /// writing. No heap allocation.
     ///
     /// # Errors
     /// [`ErrorKind::InvalidLength`] unless `out.len() = (order + 1)²`;
     /// [`ErrorKind::NonFinite`] or [`ErrorKind::OutOfDomain`].
     pub fn derivatives_into(&self, u: T, v: T, order: usize, out: &mut [P]) -> Result<()> {
-        crate::bspline::check_same_len((order + 1) * (order + 1), out.len())?;
+        crate::bspline::check_same_len(crate::bspline::square_len(order)?, out.len())?;
         let (su, sv) = self.find_spans(u, v)?;
         self.derivatives_in_spans(su, sv, u, v, order, out);
         Ok(())
@@ -466,8 +461,10 @@ impl<T: Scalar, P: ControlPoint<T>> Surface<T, P> {
     /// `0 ≤ k, l ≤ order`.
     ///
     /// # Errors
+    /// [`ErrorKind::InvalidArgument`] above [`spline_core::MAX_DERIVATIVE_ORDER`];
     /// [`ErrorKind::NonFinite`] or [`ErrorKind::OutOfDomain`].
     pub fn derivatives(&self, u: T, v: T, order: usize) -> Result<Vec<Vec<P>>> {
+        spline_core::check_derivative_order(order)?;
         let mut flat = vec![P::origin(); (order + 1) * (order + 1)];
         self.derivatives_into(u, v, order, &mut flat)?;
         Ok(flat.chunks_exact(order + 1).map(<[P]>::to_vec).collect())
