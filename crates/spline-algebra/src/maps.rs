@@ -4,8 +4,7 @@ use crate::blossom::{SpanChoice, transfer_matrix};
 use crate::sparse::{apply_points, check_len, csr_from_rows, identity, matmul};
 use nalgebra_sparse::CsrMatrix;
 use spline_core::{
-    ControlPoint, Error, ErrorKind, KnotVector, Result, Scalar, binomial, from_count,
-    to_f64,
+    ControlPoint, Error, ErrorKind, KnotVector, Result, Scalar, binomial, from_count, to_f64,
 };
 use spline_geom::BSpline;
 

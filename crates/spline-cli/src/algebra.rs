@@ -4,7 +4,6 @@
 use crate::curves::{ObjectArgs, planar};
 use crate::io::{self, Curve, Object};
 use clap::Args;
-use nalgebra::{Vector2, Vector3};
 use serde_json::{Value, json};
 use spline_algebra::{CsrMatrix, ProductMap};
 use spline_core::{Error, ErrorKind, Result};
@@ -111,68 +110,6 @@ pub fn product(args: &ProductArgs) -> Result<()> {
     }
 }
 
-/// Signed curvature of a planar NURBS curve from the derivatives of its homogeneous form
-/// `(w x, w y, w)`: `C' = (A' − w' C)/w`, `C'' = (A'' − 2 w' C' − w'' C)/w`.
-fn nurbs_curvature(record: &CurveRecord, params: &[f64]) -> Result<Vec<f64>> {
-    let dim = record.dimension()?;
-    if dim != 2 {
-        return Err(Error::new(
-            ErrorKind::DimensionMismatch,
-            format!("expected a planar curve (2 coordinates), got {dim}"),
-        ));
-    }
-    let weights = record.weights.as_deref().unwrap_or_default();
-    if weights.len() != record.control_points.len() {
-        return Err(Error::new(
-            ErrorKind::InvalidLength,
-            format!(
-                "{} control points need as many weights, got {}",
-                record.control_points.len(),
-                weights.len()
-            ),
-        ));
-    }
-    if let Some(i) = weights.iter().position(|w| !(w.is_finite() && *w > 0.0)) {
-        return Err(Error::new(
-            ErrorKind::InvalidWeight,
-            format!("weight {i} must be positive and finite, got {}", weights[i]),
-        ));
-    }
-    let points: Vec<Vector3<f64>> = record
-        .control_points
-        .iter()
-        .zip(weights)
-        .map(|(p, &w)| Vector3::new(w * p[0], w * p[1], w))
-        .collect();
-    let homogeneous = BSpline::from_knots(record.degree, record.knots.clone(), points)?;
-    params
-        .iter()
-        .enumerate()
-        .map(|(i, &u)| {
-            let d = homogeneous
-                .derivatives(u, 2)
-                .map_err(|e| e.context(format_args!("parameter {i}")))?;
-            let (a0, a1, a2) = (d[0].xy(), d[1].xy(), d[2].xy());
-            let (w0, w1, w2) = (d[0].z, d[1].z, d[2].z);
-            let c0 = a0 / w0;
-            let c1 = (a1 - c0 * w1) / w0;
-            let c2 = (a2 - c1 * (2.0 * w1) - c0 * w2) / w0;
-            let s2 = c1.norm_squared();
-            if !(s2 > 0.0) {
-                return Err(Error::new(
-                    ErrorKind::DegenerateGeometry,
-                    format!("parameter {i}: the curve has zero velocity at u = {u}: curvature is undefined there"),
-                ));
-            }
-            Ok(wedge(c1, c2) / (s2 * s2.sqrt()))
-        })
-        .collect()
-}
-
-fn wedge(a: Vector2<f64>, b: Vector2<f64>) -> f64 {
-    a.x * b.y - a.y * b.x
-}
-
 pub fn curvature(args: &CurvatureArgs) -> Result<()> {
     let params: Vec<f64> = io::parse_arg("--at", &args.at)?;
     let values = match io::read_object(&args.object)? {
@@ -183,12 +120,20 @@ pub fn curvature(args: &CurvatureArgs) -> Result<()> {
                 .enumerate()
                 .map(|(i, &u)| {
                     c.signed_curvature(u)
-                        .map_err(|e| e.context(format_args!("parameter {i}")))
+                        .map_err(|e| e.context(format_args!("--at entry {i}")))
                 })
                 .collect::<Result<Vec<f64>>>()?
         }
-        Object::Nurbs(record) => {
-            nurbs_curvature(&record, &params).map_err(|e| e.context(&args.object))?
+        Object::Nurbs(nurbs) => {
+            let c = nurbs.planar().map_err(|e| e.context(&args.object))?;
+            params
+                .iter()
+                .enumerate()
+                .map(|(i, &u)| {
+                    c.signed_curvature(u)
+                        .map_err(|e| e.context(format_args!("--at entry {i}")))
+                })
+                .collect::<Result<Vec<f64>>>()?
         }
         Object::Surface(_) => {
             return Err(Error::new(

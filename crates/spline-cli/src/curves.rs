@@ -1,9 +1,8 @@
 //! Subcommands on B-spline curves: basis, eval, insert, refine, remove, elevate, split,
 //! bezier, derivative, plot. NURBS curves and surfaces are handed to [`crate::surfaces`].
 
-use crate::io::{self, Curve, Object, Pt};
+use crate::io::{self, Curve, Json, Object, Pt};
 use clap::{Args, ValueEnum};
-use serde_json::{Value, json};
 use spline_core::{Error, ErrorKind, KnotVector, Result};
 use spline_geom::BSpline;
 use spline_geom::export::SvgPlot;
@@ -172,62 +171,83 @@ pub struct PlotArgs {
 pub fn basis(args: &BasisArgs) -> Result<()> {
     let knots: Vec<f64> = io::parse_arg("--knots", &args.knots)?;
     let params: Vec<f64> = io::parse_arg("--at", &args.at)?;
-    let knots = KnotVector::new(args.degree, knots)?;
+    let knots = KnotVector::new(args.degree, knots).map_err(|e| e.context("--knots"))?;
+    check_order("--derivatives", args.derivatives)?;
+    io::check_output_size(
+        "basis",
+        &[params.len(), args.derivatives + 1, knots.num_basis()],
+    )?;
     let rows = params
         .iter()
         .enumerate()
         .map(|(i, &u)| {
             knots
                 .dense_basis_derivatives(u, args.derivatives)
-                .map_err(|e| e.context(format_args!("parameter {i}")))
+                .map_err(|e| e.context(format_args!("--at entry {i}")))
         })
         .collect::<Result<Vec<_>>>()?;
     io::print_json(&rows)
 }
 
+/// Checks a derivative order given on the command line against
+/// [`spline_core::MAX_DERIVATIVE_ORDER`].
+pub fn check_order(option: &str, order: usize) -> Result<()> {
+    spline_core::check_derivative_order(order).map_err(|e| e.context(option))
+}
+
 /// `[param][k][coord]`: `derivatives_into(u, out)` writes the derivatives of orders
 /// `0..=order` of a curve (polynomial or rational) at `u`; points are unpadded to `dim`.
+/// The order and the size of the output are checked before anything is computed.
 pub fn derivative_rows(
     params: &[f64],
     order: usize,
     dim: usize,
     mut derivatives_into: impl FnMut(f64, &mut [Pt]) -> Result<()>,
-) -> Result<Value> {
+) -> Result<Vec<Vec<Vec<f64>>>> {
+    check_order("--derivatives", order)?;
+    io::check_output_size("eval", &[params.len(), order + 1, dim])?;
     let mut ders = vec![Pt::zeros(); order + 1];
-    let out = params
+    params
         .iter()
         .enumerate()
         .map(|(i, &u)| {
-            derivatives_into(u, &mut ders).map_err(|e| e.context(format_args!("parameter {i}")))?;
+            derivatives_into(u, &mut ders)
+                .map_err(|e| e.context(format_args!("--at entry {i}")))?;
             Ok(ders.iter().map(|p| io::unpad(p, dim)).collect::<Vec<_>>())
         })
-        .collect::<Result<Vec<_>>>()?;
-    Ok(json!(out))
+        .collect()
 }
 
 /// `[param][k][coord]` for a curve.
-pub fn eval_curve(curve: &Curve, params: &[f64], order: usize) -> Result<Value> {
+pub fn eval_curve(curve: &Curve, params: &[f64], order: usize) -> Result<Vec<Vec<Vec<f64>>>> {
     derivative_rows(params, order, curve.dim, |u, out| {
         curve.curve.derivatives_into(u, out)
     })
 }
 
 pub fn eval(args: &EvalArgs) -> Result<()> {
-    let value = match io::read_object(&args.object)? {
+    match io::read_object(&args.object)? {
         Object::Curve(curve) => {
             let params: Vec<f64> = io::parse_arg("--at", &args.at)?;
-            eval_curve(&curve, &params, args.derivatives)?
+            io::print_json(&eval_curve(&curve, &params, args.derivatives)?)
         }
-        Object::Nurbs(record) => {
+        Object::Nurbs(nurbs) => {
             let params: Vec<f64> = io::parse_arg("--at", &args.at)?;
-            crate::surfaces::eval_nurbs(&record, &params, args.derivatives)?
+            io::print_json(&crate::surfaces::eval_nurbs(
+                &nurbs,
+                &params,
+                args.derivatives,
+            )?)
         }
         Object::Surface(surface) => {
             let params: Vec<[f64; 2]> = io::parse_arg("--at", &args.at)?;
-            crate::surfaces::eval_surface(surface, &params, args.derivatives)?
+            io::print_json(&crate::surfaces::eval_surface(
+                &surface,
+                &params,
+                args.derivatives,
+            )?)
         }
-    };
-    io::print_json(&value)
+    }
 }
 
 /// The structural operations of the tool on one kind of curve (polynomial here, rational
@@ -282,13 +302,13 @@ impl CurveOperations for BSpline<f64, Pt> {
     }
 }
 
-/// Applies a structural operation to a curve; `one` writes a resulting curve as JSON.
+/// Applies a structural operation to a curve; `one` encodes a resulting curve as JSON.
 pub fn apply_operation<C: CurveOperations>(
     c: &C,
     operation: &Operation,
-    one: impl Fn(C) -> Value,
-) -> Result<Value> {
-    Ok(match operation {
+    one: impl Fn(C) -> Result<Json>,
+) -> Result<Json> {
+    match operation {
         Operation::Insert { knot, times } => one(c.insert_knot(*knot, *times)?),
         Operation::Refine { knots } => one(c.refine(knots)?),
         Operation::Remove {
@@ -299,17 +319,25 @@ pub fn apply_operation<C: CurveOperations>(
         Operation::Elevate { times } => one(c.elevate_degree(*times)?),
         Operation::Split { at } => {
             let (left, right) = c.split(*at)?;
-            json!([one(left), one(right)])
+            io::raw(&[one(left)?, one(right)?])
         }
-        Operation::Bezier => json!(c.bezier_pieces()?.into_iter().map(one).collect::<Vec<_>>()),
+        Operation::Bezier => {
+            // Each segment is encoded as soon as it is made: the output is held once, as text.
+            let pieces = c
+                .bezier_pieces()?
+                .into_iter()
+                .map(one)
+                .collect::<Result<Vec<_>>>()?;
+            io::raw(&pieces)
+        }
         Operation::Derivative { order } => one(c.derivative_curve(*order)?),
-    })
+    }
 }
 
 /// Applies a structural operation to a curve.
-pub fn apply_to_curve(curve: &Curve, operation: &Operation) -> Result<Value> {
+pub fn apply_to_curve(curve: &Curve, operation: &Operation) -> Result<Json> {
     apply_operation(&curve.curve, operation, |b| {
-        json!(curve.with(b).to_record())
+        io::raw(&curve.with(b).to_record())
     })
 }
 
@@ -334,7 +362,7 @@ fn apply(object: &str, operation: &Operation, direction: Option<Direction>) -> R
             crate::surfaces::apply_to_nurbs(&record, operation)?
         }
         Object::Surface(surface) => {
-            crate::surfaces::apply_to_surface(surface, operation, direction)?
+            crate::surfaces::apply_to_surface(&surface, operation, direction)?
         }
     };
     io::print_json(&value)
@@ -407,6 +435,7 @@ pub fn planar(curve: &Curve) -> Result<spline_geom::Curve2> {
 }
 
 pub fn plot(args: &PlotArgs) -> Result<()> {
+    let file = io::create_file(&args.output)?;
     let mut svg = SvgPlot::new();
     for path in &args.objects {
         match io::read_object(path)? {
@@ -417,12 +446,14 @@ pub fn plot(args: &PlotArgs) -> Result<()> {
                     svg.add_curvature_comb(&c, 200);
                 }
                 if args.features {
-                    let features = crate::algebra::planar_features(&c)?;
+                    let features =
+                        crate::algebra::planar_features(&c).map_err(|e| e.context(path))?;
                     svg.add_markers(&c.eval_many(&features.inflections)?, "inflection");
                     svg.add_markers(&c.eval_many(&features.curvature_extrema)?, "extremum");
                 }
             }
-            Object::Nurbs(record) => crate::surfaces::plot_nurbs(&mut svg, &record, args.comb)?,
+            Object::Nurbs(nurbs) => crate::surfaces::plot_nurbs(&mut svg, &nurbs, args.comb)
+                .map_err(|e| e.context(path))?,
             Object::Surface(_) => {
                 return Err(Error::new(
                     ErrorKind::InvalidArgument,
@@ -431,10 +462,5 @@ pub fn plot(args: &PlotArgs) -> Result<()> {
             }
         }
     }
-    std::fs::write(&args.output, svg.render()).map_err(|e| {
-        Error::new(
-            ErrorKind::InvalidArgument,
-            format!("cannot write {}: {e}", args.output),
-        )
-    })
+    io::write_file(file, &args.output, svg.render().as_bytes())
 }

@@ -4,10 +4,12 @@ use nalgebra::SVector;
 use serde::Serialize;
 use serde::de::DeserializeOwned;
 use serde_json::Value;
+use serde_json::value::RawValue;
 use spline_core::{Error, ErrorKind, Result};
 use spline_geom::BSpline;
 use spline_geom::exchange::{CurveRecord, parse_points};
-use std::io::Read;
+use std::io::{Read, Write};
+use std::sync::atomic::{AtomicBool, Ordering};
 
 /// The largest number of coordinates the tool accepts for control points and data points.
 pub const MAX_DIM: usize = 8;
@@ -34,50 +36,291 @@ pub fn read_text(path: &str) -> Result<String> {
 /// Reads a JSON document from a file or `-`.
 pub fn read_json(path: &str) -> Result<Value> {
     let text = read_text(path)?;
-    serde_json::from_str(&text)
-        .map_err(|e| Error::new(ErrorKind::Parse, format!("{path} is not valid JSON: {e}")))
-}
-
-/// Parses the JSON value of a command-line option.
-pub fn parse_arg<T: DeserializeOwned>(option: &str, text: &str) -> Result<T> {
-    serde_json::from_str(text).map_err(|e| {
+    serde_json::from_str(&text).map_err(|e| {
         Error::new(
             ErrorKind::Parse,
-            format!("{option}: cannot read {text:?} as expected: {e}"),
+            format!("{path} is not valid JSON: {}", plain_serde(&e.to_string())),
         )
     })
 }
 
-/// Deserialises a JSON value into a record type, with the file name in the message.
-pub fn from_value<T: DeserializeOwned>(what: &str, value: Value) -> Result<T> {
-    serde_json::from_value(value)
-        .map_err(|e| Error::new(ErrorKind::Parse, format!("malformed {what}: {e}")))
+/// The longest piece of a command-line value that a message quotes.
+const QUOTE_LIMIT: usize = 40;
+
+/// A command-line value as messages quote it: whole when short, its beginning otherwise.
+pub fn quote(text: &str) -> String {
+    if text.chars().count() <= QUOTE_LIMIT {
+        format!("{text:?}")
+    } else {
+        let head: String = text.chars().take(QUOTE_LIMIT).collect();
+        format!("{head:?}… ({} characters)", text.chars().count())
+    }
 }
 
-/// Prints a value as one line of JSON; refuses to print non-finite numbers.
-pub fn print_json(value: &impl Serialize) -> Result<()> {
-    let value = serde_json::to_value(value).map_err(|e| {
+/// Parses the JSON value of a command-line option. The message names the entry that could
+/// not be read (`--at: entry 3: …`) and quotes at most the beginning of the value.
+pub fn parse_arg<T: DeserializeOwned>(option: &str, text: &str) -> Result<T> {
+    let mut deserializer = serde_json::Deserializer::from_str(text);
+    let value: T = serde_path_to_error::deserialize(&mut deserializer).map_err(|e| {
+        let place = entry_name(&e.path().to_string());
+        let what = plain_serde(&e.inner().to_string());
+        let message = if e.inner().is_syntax() || e.inner().is_eof() {
+            format!("{option}: {} is not valid JSON: {what}", quote(text))
+        } else if place.is_empty() {
+            format!("{option}: {what}")
+        } else {
+            format!("{option}: {place}: {what}")
+        };
+        Error::new(ErrorKind::Parse, message)
+    })?;
+    deserializer.end().map_err(|e| {
+        Error::new(
+            ErrorKind::Parse,
+            format!(
+                "{option}: {} is not valid JSON: {}",
+                quote(text),
+                plain_serde(&e.to_string())
+            ),
+        )
+    })?;
+    Ok(value)
+}
+
+/// `[3]` → `entry 3`, `[3][1]` → `entry 3, coordinate 1`, `.` → nothing.
+fn entry_name(path: &str) -> String {
+    if path == "." {
+        return String::new();
+    }
+    let indices: Vec<&str> = path.split(['[', ']']).filter(|s| !s.is_empty()).collect();
+    match indices.as_slice() {
+        [i] => format!("entry {i}"),
+        [i, j] => format!("entry {i}, item {j}"),
+        _ => format!("at {path}"),
+    }
+}
+
+/// serde's words for JSON people: "expected an array, got the number 0" rather than
+/// "invalid type: floating point `0`, expected a sequence", and no line and column for
+/// one-line values.
+fn plain_serde(message: &str) -> String {
+    let mut m = message.to_string();
+    if let Some(at) = m.find(" at line 1 column") {
+        m.truncate(at);
+    }
+    let words = |text: &str| {
+        text.replace("a sequence", "an array")
+            .replace("sequence", "array")
+            .replace("a map", "an object")
+            .replace("usize", "a non-negative integer")
+            .replace("u64", "a non-negative integer")
+            .replace("f64", "a number")
+            .replace("floating point `", "the number `")
+            .replace("integer `", "the number `")
+            .replace('`', "")
+    };
+    for prefix in ["invalid type: ", "invalid value: "] {
+        if let Some(rest) = m.strip_prefix(prefix) {
+            if let Some((got, expected)) = rest.split_once(", expected ") {
+                return format!("expected {}, got {}", words(expected), words(got));
+            }
+        }
+    }
+    words(&m)
+}
+
+/// Deserialises a JSON value into a record type; the message names the field
+/// (`malformed curve: control_points[0]: …`).
+pub fn from_value<T: DeserializeOwned>(what: &str, value: Value) -> Result<T> {
+    serde_path_to_error::deserialize(value).map_err(|e| {
+        let path = e.path().to_string();
+        let what_went_wrong = plain_serde(&e.inner().to_string());
+        let message = if path == "." {
+            format!("malformed {what}: {what_went_wrong}")
+        } else {
+            format!("malformed {what}: field {path}: {what_went_wrong}")
+        };
+        Error::new(ErrorKind::Parse, message)
+    })
+}
+
+/// Set when standard output turned out to be a closed pipe: the tool then ends quietly.
+static OUTPUT_CLOSED: AtomicBool = AtomicBool::new(false);
+
+/// Whether standard output was a closed pipe (see [`write_stdout`]).
+pub fn output_closed() -> bool {
+    OUTPUT_CLOSED.load(Ordering::Relaxed)
+}
+
+/// Checks that standard output is open: with a closed descriptor the standard library
+/// drops everything written, which would lose the output and still exit with 0.
+///
+/// # Errors
+/// [`ErrorKind::InvalidArgument`] when standard output is closed.
+///
+/// The Rust runtime reopens a standard descriptor that was closed at start-up on
+/// `/dev/null` for reading and writing; a shell redirection (`> /dev/null`) opens it for
+/// writing only. On Linux the two are told apart by `/proc/self/fdinfo/1`.
+pub fn check_stdout_open() -> Result<()> {
+    use std::os::fd::AsFd;
+    let closed = || {
+        Error::new(
+            ErrorKind::InvalidArgument,
+            "standard output is closed; nothing can be printed",
+        )
+    };
+    if std::io::stdout().as_fd().try_clone_to_owned().is_err() {
+        return Err(closed());
+    }
+    let is_null = std::fs::read_link("/proc/self/fd/1")
+        .is_ok_and(|target| target == std::path::Path::new("/dev/null"));
+    if is_null {
+        let read_write = std::fs::read_to_string("/proc/self/fdinfo/1").is_ok_and(|info| {
+            info.lines()
+                .find_map(|l| l.strip_prefix("flags:"))
+                .and_then(|flags| u32::from_str_radix(flags.trim(), 8).ok())
+                .is_some_and(|flags| flags & 0o3 == 0o2)
+        });
+        if read_write {
+            return Err(closed());
+        }
+    }
+    Ok(())
+}
+
+/// Writes a line on standard output. A closed pipe (the reader has gone, as with `| head`)
+/// sets [`output_closed`] and returns an error that the tool does not print; any other
+/// failure (a full disk) is an error.
+///
+/// # Errors
+/// [`ErrorKind::InvalidArgument`] when the output cannot be written.
+pub fn write_stdout(bytes: &[u8]) -> Result<()> {
+    let mut out = std::io::stdout().lock();
+    let written = out
+        .write_all(bytes)
+        .and_then(|()| out.write_all(b"\n"))
+        .and_then(|()| out.flush());
+    match written {
+        Ok(()) => Ok(()),
+        Err(e) => {
+            if e.kind() == std::io::ErrorKind::BrokenPipe {
+                OUTPUT_CLOSED.store(true, Ordering::Relaxed);
+            }
+            Err(Error::new(
+                ErrorKind::InvalidArgument,
+                format!("cannot write to standard output: {e}"),
+            ))
+        }
+    }
+}
+
+/// Writes a whole file opened earlier; a full disk is a one-line error that names the file.
+///
+/// # Errors
+/// [`ErrorKind::InvalidArgument`] when the file cannot be written.
+pub fn write_file(mut file: std::fs::File, path: &str, bytes: &[u8]) -> Result<()> {
+    file.write_all(bytes)
+        .and_then(|()| file.flush())
+        .map_err(|e| {
+            Error::new(
+                ErrorKind::InvalidArgument,
+                format!("cannot write {path}: {e}"),
+            )
+        })
+}
+
+/// Creates an output file before the work that fills it, so that a bad path fails at once.
+///
+/// # Errors
+/// [`ErrorKind::InvalidArgument`] when the file cannot be created.
+pub fn create_file(path: &str) -> Result<std::fs::File> {
+    std::fs::File::create(path).map_err(|e| {
+        Error::new(
+            ErrorKind::InvalidArgument,
+            format!("cannot write {path}: {e}"),
+        )
+    })
+}
+
+/// A JSON formatter that refuses to write `null`: the exchange format has no nulls, and
+/// serde_json writes NaN and infinities as `null`.
+struct FiniteOnly;
+
+impl serde_json::ser::Formatter for FiniteOnly {
+    fn write_null<W: ?Sized + Write>(&mut self, _writer: &mut W) -> std::io::Result<()> {
+        Err(std::io::Error::other(NON_FINITE))
+    }
+}
+
+const NON_FINITE: &str = "the computation produced non-finite numbers; refusing to print them";
+
+/// Encodes a value as one line of JSON; refuses non-finite numbers.
+///
+/// # Errors
+/// [`ErrorKind::NonFinite`] if the value holds NaN or an infinity.
+pub fn encode(value: &impl Serialize) -> Result<Vec<u8>> {
+    let mut bytes = Vec::new();
+    let mut serializer = serde_json::Serializer::with_formatter(&mut bytes, FiniteOnly);
+    value.serialize(&mut serializer).map_err(|e| {
+        if e.is_io() {
+            Error::new(ErrorKind::NonFinite, NON_FINITE)
+        } else {
+            Error::new(
+                ErrorKind::InvalidArgument,
+                format!("cannot encode output: {e}"),
+            )
+        }
+    })?;
+    Ok(bytes)
+}
+
+/// JSON text encoded once.
+pub type Json = Box<RawValue>;
+
+/// A value encoded once (see [`encode`]), to be embedded in a larger output without a
+/// second copy as a `serde_json::Value` tree.
+///
+/// # Errors
+/// As [`encode`].
+pub fn raw(value: &impl Serialize) -> Result<Box<RawValue>> {
+    let text = String::from_utf8(encode(value)?)
+        .map_err(|_| Error::new(ErrorKind::InvalidArgument, "cannot encode output as UTF-8"))?;
+    RawValue::from_string(text).map_err(|e| {
         Error::new(
             ErrorKind::InvalidArgument,
             format!("cannot encode output: {e}"),
         )
-    })?;
-    if contains_null(&value) {
-        return Err(Error::new(
-            ErrorKind::NonFinite,
-            "the computation produced non-finite numbers; refusing to print them",
-        ));
-    }
-    println!("{value}");
-    Ok(())
+    })
 }
 
-fn contains_null(value: &Value) -> bool {
-    match value {
-        Value::Null => true,
-        Value::Array(items) => items.iter().any(contains_null),
-        Value::Object(map) => map.values().any(contains_null),
-        _ => false,
+/// Prints a value as one line of JSON; refuses to print non-finite numbers.
+///
+/// # Errors
+/// As [`encode`] and [`write_stdout`].
+pub fn print_json(value: &impl Serialize) -> Result<()> {
+    write_stdout(&encode(value)?)
+}
+
+/// The largest number of numbers that one output may hold when its size is chosen by a count
+/// on the command line (`eval --derivatives`, `basis --derivatives`): about 200 MB of JSON.
+pub const MAX_OUTPUT_NUMBERS: usize = 10_000_000;
+
+/// Checks the size of an output chosen by counts before anything is computed.
+///
+/// # Errors
+/// [`ErrorKind::InvalidArgument`] above [`MAX_OUTPUT_NUMBERS`] (or on overflow).
+pub fn check_output_size(what: &str, factors: &[usize]) -> Result<()> {
+    let total = factors
+        .iter()
+        .try_fold(1usize, |acc, &f| acc.checked_mul(f));
+    match total {
+        Some(n) if n <= MAX_OUTPUT_NUMBERS => Ok(()),
+        _ => Err(Error::new(
+            ErrorKind::InvalidArgument,
+            format!(
+                "{what} would print {} numbers, more than the limit {MAX_OUTPUT_NUMBERS}",
+                total.map_or_else(|| "too many".to_string(), |n| n.to_string())
+            ),
+        )),
     }
 }
 
@@ -150,39 +393,54 @@ impl Curve {
     }
 }
 
-/// What an object file holds.
+/// What an object file holds, validated.
 pub enum Object {
     /// A non-rational curve.
     Curve(Curve),
-    /// A NURBS curve (record with weights).
-    Nurbs(CurveRecord),
-    /// A tensor-product surface (rational or not), as JSON.
-    Surface(Value),
+    /// A NURBS curve (a record with weights).
+    Nurbs(crate::surfaces::NurbsObject),
+    /// A tensor-product surface (rational or not).
+    Surface(crate::surfaces::SurfaceObject),
 }
 
 /// Reads an object file and tells curves, NURBS curves and surfaces apart: a surface has a
-/// pair of degrees, a NURBS curve has weights.
+/// pair of degrees, a NURBS curve has weights. Every error names the file.
 pub fn read_object(path: &str) -> Result<Object> {
     let value = read_json(path)?;
     classify(value).map_err(|e| e.context(path))
 }
 
-/// Classifies a JSON object (see [`read_object`]).
+/// Classifies and validates a JSON object (see [`read_object`]).
 pub fn classify(value: Value) -> Result<Object> {
     if !value.is_object() {
         return Err(Error::new(
             ErrorKind::Parse,
-            "expected a JSON object with degree, knots and control_points",
+            format!(
+                "expected a JSON object with degree, knots and control_points, got {}",
+                json_kind(&value)
+            ),
         ));
     }
     if value.get("degree").is_some_and(Value::is_array) {
-        return Ok(Object::Surface(value));
+        return Ok(Object::Surface(crate::surfaces::surface_from_value(value)?));
     }
     let record: CurveRecord = from_value("curve", value)?;
     if record.weights.is_some() {
-        Ok(Object::Nurbs(record))
+        Ok(Object::Nurbs(crate::surfaces::nurbs_from_record(&record)?))
     } else {
         Ok(Object::Curve(Curve::from_record(&record)?))
+    }
+}
+
+/// What kind of JSON value this is, for messages.
+pub fn json_kind(value: &Value) -> &'static str {
+    match value {
+        Value::Null => "null",
+        Value::Bool(_) => "a boolean",
+        Value::Number(_) => "a number",
+        Value::String(_) => "a string",
+        Value::Array(_) => "an array",
+        Value::Object(_) => "an object",
     }
 }
 

@@ -90,43 +90,84 @@ fn run(command: Command) -> spline_core::Result<()> {
     }
 }
 
+/// The exit status of a tool whose reader went away (128 + SIGPIPE), as the shell reports
+/// for Unix tools stopped by a closed pipe.
+const CLOSED_PIPE: u8 = 141;
+
 fn main() -> ExitCode {
     let cli = match Cli::try_parse() {
         Ok(cli) => cli,
-        Err(e) => {
-            use clap::error::ErrorKind;
-            if matches!(
-                e.kind(),
-                ErrorKind::DisplayHelp
-                    | ErrorKind::DisplayVersion
-                    | ErrorKind::DisplayHelpOnMissingArgumentOrSubcommand
-            ) {
-                let _ = e.print();
-                return if e.kind() == ErrorKind::DisplayHelpOnMissingArgumentOrSubcommand {
-                    ExitCode::from(2)
-                } else {
-                    ExitCode::SUCCESS
-                };
-            }
-            // One line: the message and its details (e.g. the missing arguments), without usage.
-            let text = e.render().to_string();
-            let first = text
-                .lines()
-                .take_while(|l| !l.starts_with("Usage:") && !l.starts_with("For more information"))
-                .map(str::trim)
-                .filter(|l| !l.is_empty())
-                .collect::<Vec<_>>()
-                .join(" ");
-            let first = first.trim_start_matches("error: ");
-            eprintln!("spline: {first} (see spline --help)");
-            return ExitCode::from(2);
-        }
+        Err(e) => return usage_error(&e),
     };
+    if let Err(e) = io::check_stdout_open() {
+        eprintln!("spline: {e}");
+        return ExitCode::from(2);
+    }
     match run(cli.command) {
         Ok(()) => ExitCode::SUCCESS,
+        // The reader of a pipe has gone (`spline ... | head -c 1`): end quietly.
+        Err(_) if io::output_closed() => ExitCode::from(CLOSED_PIPE),
         Err(e) => {
             eprintln!("spline: {e}");
             ExitCode::from(2)
         }
     }
+}
+
+/// Prints help and version as asked, and every usage error as one line with exit status 2.
+fn usage_error(e: &clap::Error) -> ExitCode {
+    use clap::error::ErrorKind;
+    match e.kind() {
+        ErrorKind::DisplayHelp | ErrorKind::DisplayVersion => {
+            return match e.print() {
+                Ok(()) => ExitCode::SUCCESS,
+                Err(_) => ExitCode::from(CLOSED_PIPE),
+            };
+        }
+        ErrorKind::DisplayHelpOnMissingArgumentOrSubcommand => {
+            eprintln!("spline: {}", missing_subcommand());
+            return ExitCode::from(2);
+        }
+        _ => {}
+    }
+    // One line: the message and its details (e.g. the missing arguments, a suggestion),
+    // without usage.
+    let text = e.render().to_string();
+    let first = text
+        .lines()
+        .take_while(|l| !l.starts_with("Usage:") && !l.starts_with("For more information"))
+        .map(str::trim)
+        .filter(|l| !l.is_empty())
+        .collect::<Vec<_>>()
+        .join(" ");
+    let first = first.trim_start_matches("error: ");
+    eprintln!("spline: {first} (see spline --help)");
+    ExitCode::from(2)
+}
+
+/// The one-line message for a command given without its subcommand (`spline`,
+/// `spline make`): the choices, from the command-line definition.
+fn missing_subcommand() -> String {
+    use clap::CommandFactory;
+    let mut command = Cli::command();
+    let mut path = vec!["spline".to_string()];
+    for arg in std::env::args().skip(1) {
+        match command.find_subcommand(&arg) {
+            Some(sub) => {
+                path.push(arg.clone());
+                command = sub.clone();
+            }
+            None => break,
+        }
+    }
+    let choices: Vec<&str> = command
+        .get_subcommands()
+        .map(clap::Command::get_name)
+        .filter(|name| *name != "help")
+        .collect();
+    let path = path.join(" ");
+    format!(
+        "{path} needs one of: {} (see {path} --help)",
+        choices.join(", ")
+    )
 }

@@ -6,7 +6,7 @@
 //! the rational projection), so one instantiation of the library serves every dimension.
 
 use crate::curves::{CurveOperations, Direction, Operation, apply_operation, derivative_rows};
-use crate::io::{self, MAX_DIM, Object, Pt};
+use crate::io::{self, Json, MAX_DIM, Object, Pt};
 use clap::{Args, Subcommand, ValueEnum};
 use nalgebra::{SVector, Vector2, Vector3};
 use serde_json::{Value, json};
@@ -39,8 +39,42 @@ fn invalid(message: impl Into<String>) -> Error {
 // ---------------------------------------------------------------------------------------
 // Reading and writing NURBS curves and surfaces.
 
+/// A validated NURBS curve of the tool, with the dimension of its points.
+pub struct NurbsObject {
+    curve: Nurbs,
+    dim: usize,
+}
+
+impl NurbsObject {
+    /// The curve as a planar NURBS curve.
+    ///
+    /// # Errors
+    /// [`ErrorKind::DimensionMismatch`] unless the points have 2 coordinates.
+    pub fn planar(&self) -> Result<NurbsCurve<f64, 2>> {
+        if self.dim != 2 {
+            return Err(Error::new(
+                ErrorKind::DimensionMismatch,
+                format!("expected a planar curve (2 coordinates), got {}", self.dim),
+            ));
+        }
+        Ok(self.curve.map_control_points(|p| Vector2::new(p[0], p[1])))
+    }
+}
+
+/// A validated surface of the tool (rational or not), with the dimension of its points.
+pub struct SurfaceObject {
+    surface: ToolSurface,
+    dim: usize,
+}
+
+/// Reads a NURBS curve record (weights optional).
+pub fn nurbs_from_record(record: &CurveRecord) -> Result<NurbsObject> {
+    let (curve, dim) = nurbs_parts(record)?;
+    Ok(NurbsObject { curve, dim })
+}
+
 /// Reads a NURBS curve record (weights optional) into a padded curve and its dimension.
-fn nurbs_from_record(record: &CurveRecord) -> Result<(Nurbs, usize)> {
+fn nurbs_parts(record: &CurveRecord) -> Result<(Nurbs, usize)> {
     let dim = record.dimension()?;
     let points = record
         .control_points
@@ -80,7 +114,12 @@ enum ToolSurface {
 }
 
 /// Reads a surface object (see [`io::classify`]).
-fn surface_from_value(value: Value) -> Result<(ToolSurface, usize)> {
+pub fn surface_from_value(value: Value) -> Result<SurfaceObject> {
+    let (surface, dim) = surface_parts(value)?;
+    Ok(SurfaceObject { surface, dim })
+}
+
+fn surface_parts(value: Value) -> Result<(ToolSurface, usize)> {
     let record: SurfaceRecord = io::from_value("surface", value)?;
     let dim = record.dimension()?;
     let (ku, kv) = record.knot_vectors::<f64>()?;
@@ -140,32 +179,41 @@ fn surface_json(surface: &ToolSurface, dim: usize) -> Value {
 // eval, structural operations, plot.
 
 /// `[param][k][coord]` rational derivatives of a NURBS curve.
-pub fn eval_nurbs(record: &CurveRecord, params: &[f64], order: usize) -> Result<Value> {
-    let (curve, dim) = nurbs_from_record(record)?;
-    derivative_rows(params, order, dim, |u, out| curve.derivatives_into(u, out))
+pub fn eval_nurbs(nurbs: &NurbsObject, params: &[f64], order: usize) -> Result<Vec<Vec<Vec<f64>>>> {
+    derivative_rows(params, order, nurbs.dim, |u, out| {
+        nurbs.curve.derivatives_into(u, out)
+    })
 }
 
 /// `[param][k][l][coord]` partial derivatives of a surface, `k, l = 0..=order`.
-pub fn eval_surface(surface: Value, params: &[[f64; 2]], order: usize) -> Result<Value> {
-    let (surface, dim) = surface_from_value(surface)?;
+pub fn eval_surface(
+    surface: &SurfaceObject,
+    params: &[[f64; 2]],
+    order: usize,
+) -> Result<Vec<Vec<Vec<Vec<f64>>>>> {
+    crate::curves::check_order("--derivatives", order)?;
     let width = order + 1;
+    io::check_output_size("eval", &[params.len(), width, width, surface.dim])?;
     let mut flat = vec![Pt::zeros(); width * width];
-    let out = params
+    params
         .iter()
         .enumerate()
         .map(|(i, &[u, v])| {
-            match &surface {
+            match &surface.surface {
                 ToolSurface::Plain(s) => s.derivatives_into(u, v, order, &mut flat),
                 ToolSurface::Rational(s) => s.derivatives_into(u, v, order, &mut flat),
             }
-            .map_err(|e| e.context(format_args!("parameter {i}")))?;
+            .map_err(|e| e.context(format_args!("--at entry {i}")))?;
             Ok(flat
                 .chunks_exact(width)
-                .map(|row| row.iter().map(|p| io::unpad(p, dim)).collect::<Vec<_>>())
+                .map(|row| {
+                    row.iter()
+                        .map(|p| io::unpad(p, surface.dim))
+                        .collect::<Vec<_>>()
+                })
                 .collect::<Vec<_>>())
         })
-        .collect::<Result<Vec<_>>>()?;
-    Ok(json!(out))
+        .collect()
 }
 
 /// Structural operations on NURBS curves run in homogeneous space.
@@ -202,18 +250,19 @@ impl CurveOperations for Nurbs {
 }
 
 /// A structural operation on a NURBS curve (in homogeneous space).
-pub fn apply_to_nurbs(record: &CurveRecord, operation: &Operation) -> Result<Value> {
-    let (c, dim) = nurbs_from_record(record)?;
-    apply_operation(&c, operation, |curve| nurbs_json(&curve, dim))
+pub fn apply_to_nurbs(nurbs: &NurbsObject, operation: &Operation) -> Result<Json> {
+    apply_operation(&nurbs.curve, operation, |curve| {
+        io::raw(&nurbs_record(&curve, nurbs.dim))
+    })
 }
 
 /// A structural operation on a surface in one direction.
 pub fn apply_to_surface(
-    surface: Value,
+    object: &SurfaceObject,
     operation: &Operation,
     direction: Option<Direction>,
-) -> Result<Value> {
-    let (surface, dim) = surface_from_value(surface)?;
+) -> Result<Json> {
+    let (surface, dim) = (&object.surface, object.dim);
     // The direction defaults to u, as the optional `[--direction u|v]` of the contract.
     let needs_direction = || -> Result<spline_geom::Direction> {
         Ok(library_direction(direction.unwrap_or(Direction::U)))
@@ -225,7 +274,7 @@ pub fn apply_to_surface(
         }
         _ => {}
     }
-    Ok(match (&surface, operation) {
+    let value = match (surface, operation) {
         (ToolSurface::Plain(s), Operation::Insert { knot, times }) => one(ToolSurface::Plain(
             s.insert_knot(needs_direction()?, *knot, *times)?,
         )),
@@ -305,13 +354,14 @@ pub fn apply_to_surface(
                 "the derivative of a NURBS surface is not a NURBS surface on the same knots; use `spline eval --derivatives K`",
             ));
         }
-    })
+    };
+    io::raw(&value)
 }
 
 /// Draws a planar NURBS curve: control polygon, control points, the curve, and optionally
 /// its curvature comb.
-pub fn plot_nurbs(svg: &mut SvgPlot, record: &CurveRecord, comb: bool) -> Result<()> {
-    let (curve, dim) = nurbs_from_record(record)?;
+pub fn plot_nurbs(svg: &mut SvgPlot, nurbs: &NurbsObject, comb: bool) -> Result<()> {
+    let (curve, dim) = (&nurbs.curve, nurbs.dim);
     if dim != 2 {
         return Err(Error::new(
             ErrorKind::DimensionMismatch,
@@ -611,10 +661,7 @@ fn circle_frame(center: &str, normal: Option<&str>) -> Result<(Frame<f64, MAX_DI
 fn read_curve(path: &str) -> Result<(Nurbs, usize, bool)> {
     match io::read_object(path)? {
         Object::Curve(c) => Ok((NurbsCurve::from_bspline(&c.curve), c.dim, false)),
-        Object::Nurbs(record) => {
-            let (c, dim) = nurbs_from_record(&record).map_err(|e| e.context(path))?;
-            Ok((c, dim, true))
-        }
+        Object::Nurbs(NurbsObject { curve, dim }) => Ok((curve, dim, true)),
         Object::Surface(_) => Err(invalid(format!("{path}: expected a curve, got a surface"))),
     }
 }
@@ -656,6 +703,18 @@ fn make_json(shape: &Shape) -> Result<Value> {
         }
         Shape::Arc(a) => {
             let (frame, dim) = circle_frame(&a.center, a.normal.as_deref())?;
+            let pieces = (a.sweep.abs() / a.max_piece).ceil();
+            #[allow(clippy::cast_precision_loss)]
+            if a.max_piece > 0.0 && pieces > spline_geom::MAX_ARC_PIECES as f64 {
+                return Err(invalid(format!(
+                    "--max-piece {}: an arc of {}° needs {} pieces of at most {}°, more than the supported maximum {}",
+                    spline_core::Short(a.max_piece),
+                    spline_core::Short(a.sweep.abs()),
+                    spline_core::Short(pieces),
+                    spline_core::Short(a.max_piece),
+                    spline_geom::MAX_ARC_PIECES
+                )));
+            }
             let arc = NurbsCurve::arc_with_max_piece(
                 &frame,
                 a.radius,
@@ -811,8 +870,8 @@ fn mesh_format(path: &str) -> Result<MeshFormat> {
 /// `{"output", "vertices", "triangles"}`.
 pub fn mesh(args: &MeshArgs) -> Result<()> {
     let format = mesh_format(&args.output)?;
-    let value = match io::read_object(&args.surface)? {
-        Object::Surface(v) => v,
+    let SurfaceObject { surface, dim } = match io::read_object(&args.surface)? {
+        Object::Surface(s) => s,
         _ => {
             return Err(invalid(format!(
                 "{}: mesh needs a surface (degree [p, q])",
@@ -820,13 +879,14 @@ pub fn mesh(args: &MeshArgs) -> Result<()> {
             )));
         }
     };
-    let (surface, dim) = surface_from_value(value).map_err(|e| e.context(&args.surface))?;
     if dim > 3 {
         return Err(Error::new(
             ErrorKind::DimensionMismatch,
             format!("meshes are built from surfaces with 1 to 3 coordinates, got {dim}"),
         ));
     }
+    // Open the output before the work, so that a bad path fails at once.
+    let file = io::create_file(&args.output)?;
     let to3 = |p: &Pt| Vector3::new(p[0], p[1], p[2]);
     let mesh: TriangleMesh = match &surface {
         ToolSurface::Plain(s) => s
@@ -841,12 +901,7 @@ pub fn mesh(args: &MeshArgs) -> Result<()> {
         MeshFormat::Off => mesh.to_off(),
         MeshFormat::Svg => mesh.to_svg(&MeshView::default()),
     };
-    std::fs::write(&args.output, text).map_err(|e| {
-        Error::new(
-            ErrorKind::InvalidArgument,
-            format!("cannot write {}: {e}", args.output),
-        )
-    })?;
+    io::write_file(file, &args.output, text.as_bytes())?;
     io::print_json(&json!({
         "output": args.output,
         "vertices": mesh.vertices.len(),

@@ -490,7 +490,7 @@ impl<T: Scalar> KnotVector<T> {
             return Err(Error::new(
                 ErrorKind::KnotMultiplicity,
                 format!(
-                    "knot {} appears {present} times; inserting it {times} more times exceeds the degree-{} limit of {} (at most {} more)",
+                    "cannot insert knot {} {times} times: a degree-{} spline allows a knot at most {} times and it is there {present} times (at most {} more)",
                     to_f64(u),
                     self.degree,
                     self.order(),

@@ -378,7 +378,10 @@ impl<T: Scalar, P: ControlPoint<T>> BSpline<T, P> {
             .ok_or_else(|| {
                 Error::new(
                     ErrorKind::InvalidLength,
-                    format!("{} parameters with derivatives up to order {order} do not fit in memory", params.len()),
+                    format!(
+                        "{} parameters with derivatives up to order {order} do not fit in memory",
+                        params.len()
+                    ),
                 )
             })?;
         check_same_len(needed, out.len())?;

@@ -406,7 +406,9 @@ fn arc_pieces<T: Scalar>(sweep: T, max_piece: T) -> Result<usize> {
         ));
     }
     // Sweeps that are whole multiples of the piece angle (360° / 90°) up to rounding.
-    let ratio = (to_f64(sweep.abs() / max_piece) * (1.0 - 1e-12)).ceil().max(1.0);
+    let ratio = (to_f64(sweep.abs() / max_piece) * (1.0 - 1e-12))
+        .ceil()
+        .max(1.0);
     #[allow(clippy::cast_precision_loss)]
     if !(ratio <= MAX_ARC_PIECES as f64) {
         return Err(Error::new(

@@ -163,10 +163,7 @@ impl TriangleMesh {
     pub fn compute_normals(&mut self) {
         // Directions do not depend on the scale: work on coordinates of magnitude at most 1,
         // so that cross products neither overflow nor underflow.
-        let largest = self
-            .vertices
-            .iter()
-            .fold(0.0f64, |m, v| m.max(v.amax()));
+        let largest = self.vertices.iter().fold(0.0f64, |m, v| m.max(v.amax()));
         let scale = if largest > 0.0 && largest.is_finite() {
             largest
         } else {

@@ -511,11 +511,7 @@ impl<T: Scalar, const D: usize> NurbsCurve<T, D> {
     pub fn unit_tangent(&self, u: T) -> Result<SVector<T, D>> {
         let mut d = [SVector::zeros(); 2];
         self.derivatives_into(u, &mut d)?;
-        let speed = d[1].norm();
-        if !(speed > T::zero()) {
-            return Err(zero_velocity(u));
-        }
-        Ok(d[1] / speed)
+        crate::planar::unit(d[1]).ok_or_else(|| zero_velocity(u))
     }
 
     /// The unsigned curvature in any dimension,
@@ -526,12 +522,7 @@ impl<T: Scalar, const D: usize> NurbsCurve<T, D> {
     pub fn curvature_magnitude(&self, u: T) -> Result<T> {
         let mut d = [SVector::zeros(); 3];
         self.derivatives_into(u, &mut d)?;
-        let s2 = d[1].norm_squared();
-        if !(s2 > T::zero()) {
-            return Err(zero_velocity(u));
-        }
-        let cross2 = (s2 * d[2].norm_squared() - d[1].dot(&d[2]).powi(2)).max(T::zero());
-        Ok(cross2.sqrt() / (s2 * s2.sqrt()))
+        crate::planar::scaled_curvature(&d[1], &d[2], u, crate::planar::magnitude_formula)
     }
 
     /// Inserts the knot `u` `times` times, in homogeneous space; the curve is unchanged.
@@ -633,15 +624,7 @@ impl<T: Scalar, const D: usize> NurbsCurve<T, D> {
     }
 }
 
-fn zero_velocity<T: Scalar>(u: T) -> Error {
-    Error::new(
-        ErrorKind::DegenerateGeometry,
-        format!(
-            "the curve has zero velocity at u = {}: tangent and curvature are undefined there",
-            to_f64(u)
-        ),
-    )
-}
+use crate::planar::zero_velocity;
 
 impl<T: Scalar> NurbsCurve<T, 2> {
     /// The signed curvature $\kappa = \frac{R' \wedge R''}{\lVert R' \rVert^3}$ of a planar
@@ -652,11 +635,7 @@ impl<T: Scalar> NurbsCurve<T, 2> {
     pub fn signed_curvature(&self, u: T) -> Result<T> {
         let mut d = [SVector::zeros(); 3];
         self.derivatives_into(u, &mut d)?;
-        let s2 = d[1].norm_squared();
-        if !(s2 > T::zero()) {
-            return Err(zero_velocity(u));
-        }
-        Ok(crate::planar::wedge(&d[1], &d[2]) / (s2 * s2.sqrt()))
+        crate::planar::scaled_curvature(&d[1], &d[2], u, crate::planar::signed_formula)
     }
 
     /// The unit normal: the unit tangent turned by +90°.
@@ -890,7 +869,8 @@ impl<T: Scalar, const D: usize> NurbsSurface<T, D> {
         let (p, q) = self.surface.degrees();
         let top = order.min(p.max(q));
         let mut hom = vec![Homogeneous::<T, D>::origin(); (top + 1) * (top + 1)];
-        self.surface.derivatives_in_spans(su, sv, u, v, top, &mut hom);
+        self.surface
+            .derivatives_in_spans(su, sv, u, v, top, &mut hom);
         rational_surface_derivatives(&hom, top, order, out)
     }
 

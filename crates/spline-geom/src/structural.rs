@@ -6,8 +6,7 @@ use crate::bezier::Bezier;
 use crate::bspline::BSpline;
 use nalgebra::RealField;
 use spline_core::{
-    ControlPoint, Error, ErrorKind, KnotVector, MAX_ORDER, Result, Scalar, binomial,
-    to_f64,
+    ControlPoint, Error, ErrorKind, KnotVector, MAX_ORDER, Result, Scalar, binomial, to_f64,
 };
 
 /// The default relative tolerance of [`BSpline::remove_knot`]: `1e-9` times the size of the
