@@ -4,16 +4,22 @@
 //! - `docs`: regenerate the SVG pictures in `docs/`.
 //! - `bench fit`, `bench eval`: criterion benchmarks of fitting and of curve evaluation against
 //!   scipy in the same run (a Python virtual environment with scipy is created under `target/`).
+//! - `campaign [--cases N] [--seed S] [--jobs J] [--timeout S] [--memory-mb M]`: a mutation
+//!   campaign of the release binary over every subcommand (subprocesses, memory limit,
+//!   timeout), printing a table of panics, aborts, slow runs, non-finite outputs and
+//!   multi-line errors.
 //! - `demo`: the main job — fit an airfoil shipped in `data/airfoils/`, print the result and
 //!   write `docs/airfoil.svg`.
 
 mod bench;
 mod bench_eval;
 mod bench_fit;
+mod campaign;
 mod demo;
 mod docs_curves;
 mod docs_shape_functions;
 mod docs_surfaces;
+mod mutate;
 
 use std::path::{Path, PathBuf};
 use std::process::{Command, ExitCode};
@@ -55,7 +61,7 @@ fn run_docs(root: &Path) -> Result<(), String> {
 }
 
 fn usage() -> String {
-    "usage: cargo xtask <ci | docs | bench fit | bench eval | demo>".into()
+    "usage: cargo xtask <ci | docs | bench fit | bench eval | demo | fuzz [--cases N | --seconds S] | campaign [--cases N]>".into()
 }
 
 fn main() -> ExitCode {
@@ -65,6 +71,7 @@ fn main() -> ExitCode {
         Some("ci") => run_ci(&root),
         Some("docs") => run_docs(&root),
         Some("demo") => demo::run(&root),
+        Some("campaign") => campaign::run(&root, &args[1..]),
         Some("bench") => match args.get(1).map(String::as_str) {
             Some("fit") => bench_fit::run(&root),
             Some("eval") => bench_eval::run(&root),

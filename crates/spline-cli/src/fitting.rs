@@ -333,6 +333,15 @@ fn solve(
     match args.correct_parameters {
         None => output(&problem.solve()?, dim, args.report, None),
         Some(iterations) => {
+            if iterations > spline_fit::MAX_CORRECTION_ITERATIONS {
+                return Err(Error::new(
+                    ErrorKind::InvalidArgument,
+                    format!(
+                        "--correct-parameters {iterations}: more sweeps than the supported maximum {}",
+                        spline_fit::MAX_CORRECTION_ITERATIONS
+                    ),
+                ));
+            }
             let options = CorrectionOptions {
                 max_iterations: iterations,
                 angle_tolerance: args.angle_tolerance,

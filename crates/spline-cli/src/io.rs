@@ -121,7 +121,16 @@ fn plain_serde(message: &str) -> String {
     for prefix in ["invalid type: ", "invalid value: "] {
         if let Some(rest) = m.strip_prefix(prefix) {
             if let Some((got, expected)) = rest.split_once(", expected ") {
-                return format!("expected {}, got {}", words(expected), words(got));
+                let got = match got {
+                    "map" => "an object".to_string(),
+                    "sequence" => "an array".to_string(),
+                    "null" => "null".to_string(),
+                    other if other.starts_with("string ") || other.starts_with("boolean ") => {
+                        format!("the {}", words(other))
+                    }
+                    other => words(other),
+                };
+                return format!("expected {}, got {got}", words(expected));
             }
         }
     }

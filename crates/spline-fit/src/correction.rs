@@ -7,6 +7,11 @@ use crate::report::{CurveFit, Deviation};
 use spline_core::{ControlPoint, Error, ErrorKind, KnotVector, Result, Scalar, cast, to_f64};
 use spline_geom::{BSpline, Bezier};
 
+/// The largest number of correction sweeps (and of step halvings) that
+/// [`CorrectionOptions`] may ask for: each sweep projects every point, so the limit bounds
+/// the time by the size of the data, and the report holds one angle and one error per sweep.
+pub const MAX_CORRECTION_ITERATIONS: usize = 10_000;
+
 /// The stopping rules of [`correct_parameters`].
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct CorrectionOptions<T> {
@@ -164,6 +169,24 @@ fn check_inputs<T: Scalar, P: ControlPoint<T>>(
             ),
         ));
     }
+    if options.max_iterations > MAX_CORRECTION_ITERATIONS {
+        return Err(Error::new(
+            ErrorKind::InvalidArgument,
+            format!(
+                "{} correction sweeps are more than the supported maximum {MAX_CORRECTION_ITERATIONS}",
+                options.max_iterations
+            ),
+        ));
+    }
+    if options.max_halvings > MAX_CORRECTION_ITERATIONS {
+        return Err(Error::new(
+            ErrorKind::InvalidArgument,
+            format!(
+                "{} halvings are more than the supported maximum {MAX_CORRECTION_ITERATIONS}",
+                options.max_halvings
+            ),
+        ));
+    }
     if !(options.angle_tolerance > T::zero()) {
         return Err(Error::new(
             ErrorKind::InvalidArgument,
@@ -212,7 +235,8 @@ fn check_inputs<T: Scalar, P: ControlPoint<T>>(
 ///
 /// # Errors
 /// [`ErrorKind::InvalidLength`] with fewer than two points; [`ErrorKind::InvalidArgument`]
-/// for a non-positive tolerance; [`ErrorKind::DegenerateGeometry`] when all points
+/// for a non-positive tolerance or more than [`MAX_CORRECTION_ITERATIONS`] sweeps or
+/// halvings; [`ErrorKind::DegenerateGeometry`] when all points
 /// coincide; the errors of [`LeastSquares::solve`] at any refit.
 pub fn correct_parameters<T: Scalar, P: ControlPoint<T>>(
     problem: &LeastSquares<'_, T, P>,

@@ -48,7 +48,8 @@ mod surface;
 
 pub use bezier::{BezierFit, bezier_interpolate, bezier_least_squares};
 pub use correction::{
-    CorrectionOptions, CorrectionReport, correct_parameters, correct_parameters_bezier,
+    CorrectionOptions, CorrectionReport, MAX_CORRECTION_ITERATIONS, correct_parameters,
+    correct_parameters_bezier,
 };
 pub use interpolate::{
     InterpolationOptions, interpolate, interpolate_closed, interpolate_function,

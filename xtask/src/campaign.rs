@@ -1,0 +1,800 @@
+//! `cargo xtask campaign [--cases N] [--seed S] [--jobs J] [--timeout SECONDS] [--memory-mb M]`:
+//! a mutation campaign of the release `spline` binary over every subcommand.
+//!
+//! Valid command lines on small curves and surfaces made with the tool itself are mutated
+//! (extreme counts and numbers, mutated JSON arguments, mutated and rescaled input files,
+//! dropped or repeated options) and run as subprocesses under a memory limit (`ulimit -v`)
+//! and a timeout. Each run is classified: a panic, an abort (killed by a signal), a run over
+//! the timeout, non-finite numbers in the output (standard output or the written file), an
+//! error that is not one line, or an unexpected exit status. The table counts them per
+//! subcommand; failing command lines are written to `target/campaign/failures.txt`.
+
+use crate::mutate::{Rng, mutate_arg, mutate_text, mutate_value};
+use serde_json::Value;
+use std::collections::BTreeMap;
+use std::fmt::Write as _;
+use std::os::unix::process::ExitStatusExt;
+use std::path::{Path, PathBuf};
+use std::process::{Command, Stdio};
+use std::sync::{Arc, Mutex};
+use std::time::{Duration, Instant};
+
+/// The options of a campaign.
+struct Options {
+    cases: usize,
+    seed: u64,
+    jobs: usize,
+    timeout: Duration,
+    memory_mb: u64,
+}
+
+fn parse_options(args: &[String]) -> Result<Options, String> {
+    let mut o = Options {
+        cases: 5250,
+        seed: 2026,
+        jobs: 2,
+        timeout: Duration::from_secs(20),
+        memory_mb: 4096,
+    };
+    let mut it = args.iter();
+    while let Some(a) = it.next() {
+        let mut value = |name: &str| -> Result<u64, String> {
+            it.next()
+                .and_then(|v| v.parse().ok())
+                .ok_or_else(|| format!("{name} needs a non-negative integer"))
+        };
+        match a.as_str() {
+            "--cases" => o.cases = usize::try_from(value("--cases")?).map_err(|e| e.to_string())?,
+            "--seed" => o.seed = value("--seed")?,
+            "--jobs" => o.jobs = usize::try_from(value("--jobs")?).map_err(|e| e.to_string())?,
+            "--timeout" => o.timeout = Duration::from_secs(value("--timeout")?),
+            "--memory-mb" => o.memory_mb = value("--memory-mb")?,
+            other => return Err(format!("campaign: unknown option {other}")),
+        }
+    }
+    Ok(o)
+}
+
+/// How a run ended.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord)]
+enum Outcome {
+    Ok,
+    CleanError,
+    Panic,
+    Abort,
+    Timeout,
+    NonFinite,
+    MultiLine,
+    OtherStatus,
+}
+
+const SUBCOMMANDS: &[&str] = &[
+    "basis",
+    "eval",
+    "insert",
+    "refine",
+    "remove",
+    "elevate",
+    "split",
+    "bezier",
+    "derivative",
+    "plot",
+    "product",
+    "curvature",
+    "features",
+    "interpolate",
+    "natural",
+    "approximate",
+    "smooth",
+    "make",
+    "mesh",
+];
+
+/// The seed files of the campaign, made with the tool itself.
+fn make_seed_files(binary: &Path, dir: &Path, root: &Path) -> Result<(), String> {
+    let run = |args: &[&str], name: &str| -> Result<(), String> {
+        let out = Command::new(binary)
+            .args(args)
+            .current_dir(dir)
+            .output()
+            .map_err(|e| format!("cannot run {}: {e}", binary.display()))?;
+        if !out.status.success() {
+            return Err(format!(
+                "seed {name}: {}",
+                String::from_utf8_lossy(&out.stderr)
+            ));
+        }
+        std::fs::write(dir.join(name), &out.stdout).map_err(|e| e.to_string())
+    };
+    let write =
+        |name: &str, text: &str| std::fs::write(dir.join(name), text).map_err(|e| e.to_string());
+    write(
+        "line.json",
+        r#"{"degree":1,"knots":[0.0,0.0,1.0,1.0],"control_points":[[0.0,0.0],[1.0,1.0]]}"#,
+    )?;
+    write(
+        "cubic.json",
+        r#"{"degree":3,"knots":[0.0,0.0,0.0,0.0,1.0,2.0,3.0,3.0,3.0,3.0],"control_points":[[0.41705,0.10673],[0.28802,0.60088],[0.90553,0.46053],[1.3203,0.79678],[1.8041,0.63012],[1.477,0.13012]]}"#,
+    )?;
+    write(
+        "f.json",
+        r#"{"degree":2,"knots":[0.0,0.0,0.0,0.5,1.0,1.0,1.0],"control_points":[[1.0],[-0.5],[2.0],[0.25]]}"#,
+    )?;
+    write(
+        "g.json",
+        r#"{"degree":1,"knots":[0.0,0.0,0.3,1.0,1.0],"control_points":[[0.5],[1.5],[-1.0]]}"#,
+    )?;
+    write(
+        "points.json",
+        "[[0.0,0.0],[1.0,2.0],[2.5,2.0],[4.0,0.5],[5.0,1.5],[6.0,0.0],[7.5,-1.0]]",
+    )?;
+    write(
+        "points.txt",
+        "# x y\n0 0\n1 2\n2.5 2\n4 0.5\n5 1.5\n6 0\n7.5 -1\n",
+    )?;
+    let airfoil = std::fs::read_to_string(root.join("data/airfoils/clarkv.dat"))
+        .map_err(|e| format!("cannot read the airfoil: {e}"))?;
+    write("airfoil.dat", &airfoil)?;
+    run(
+        &["make", "circle", "--center", "[0,0]", "--radius", "1"],
+        "circle.json",
+    )?;
+    run(
+        &[
+            "make", "arc", "--center", "[0,0]", "--radius", "2", "--sweep", "135",
+        ],
+        "arc.json",
+    )?;
+    run(
+        &["make", "sphere", "--center", "[0,0,0]", "--radius", "1"],
+        "sphere.json",
+    )?;
+    run(
+        &[
+            "make", "torus", "--center", "[0,0,0]", "--major", "2", "--minor", "0.5",
+        ],
+        "torus.json",
+    )?;
+    run(&["make", "ruled", "cubic.json", "line.json"], "ruled.json")?;
+    Ok(())
+}
+
+/// Valid command lines: every subcommand on every kind of object it takes.
+fn templates(sub: &str) -> Vec<Vec<&'static str>> {
+    let v = |args: &[&'static str]| args.to_vec();
+    match sub {
+        "basis" => vec![
+            v(&[
+                "basis",
+                "--degree",
+                "3",
+                "--knots",
+                "[0,0,0,0,1,2,3,3,3,3]",
+                "--at",
+                "[0.5,1.5,3]",
+                "--derivatives",
+                "2",
+            ]),
+            v(&[
+                "basis",
+                "--degree",
+                "1",
+                "--knots",
+                "[0,0,1,1]",
+                "--at",
+                "[0.5]",
+            ]),
+        ],
+        "eval" => vec![
+            v(&[
+                "eval",
+                "cubic.json",
+                "--at",
+                "[0,0.5,1.5,3]",
+                "--derivatives",
+                "2",
+            ]),
+            v(&["eval", "line.json", "--at", "[0.5]", "--derivatives", "1"]),
+            v(&[
+                "eval",
+                "circle.json",
+                "--at",
+                "[0,0.3,1]",
+                "--derivatives",
+                "3",
+            ]),
+            v(&[
+                "eval",
+                "sphere.json",
+                "--at",
+                "[[0.5,0.5],[0,1]]",
+                "--derivatives",
+                "1",
+            ]),
+            v(&[
+                "eval",
+                "ruled.json",
+                "--at",
+                "[[0.5,0.5]]",
+                "--derivatives",
+                "2",
+            ]),
+        ],
+        "insert" => vec![
+            v(&["insert", "cubic.json", "--knot", "1.5", "--times", "2"]),
+            v(&["insert", "line.json", "--knot", "0.5", "--times", "1"]),
+            v(&["insert", "circle.json", "--knot", "0.3"]),
+            v(&["insert", "sphere.json", "--knot", "0.3", "--direction", "v"]),
+        ],
+        "refine" => vec![
+            v(&["refine", "cubic.json", "--knots", "[0.5,1.5,1.5,2.5]"]),
+            v(&["refine", "arc.json", "--knots", "[0.2,0.7]"]),
+            v(&[
+                "refine",
+                "torus.json",
+                "--knots",
+                "[0.1]",
+                "--direction",
+                "u",
+            ]),
+            v(&["refine", "line.json", "--knots", "[]"]),
+        ],
+        "remove" => vec![
+            v(&[
+                "remove",
+                "cubic.json",
+                "--knot",
+                "1",
+                "--times",
+                "1",
+                "--tolerance",
+                "1",
+            ]),
+            v(&["remove", "circle.json", "--knot", "0.25", "--times", "1"]),
+            v(&["remove", "sphere.json", "--knot", "0.5", "--direction", "u"]),
+        ],
+        "elevate" => vec![
+            v(&["elevate", "cubic.json", "--times", "2"]),
+            v(&["elevate", "line.json"]),
+            v(&["elevate", "circle.json", "--times", "1"]),
+            v(&["elevate", "sphere.json", "--times", "1", "--direction", "v"]),
+        ],
+        "split" => vec![
+            v(&["split", "cubic.json", "--at", "1.5"]),
+            v(&["split", "arc.json", "--at", "0.5"]),
+            v(&["split", "torus.json", "--at", "0.5", "--direction", "v"]),
+        ],
+        "bezier" => vec![
+            v(&["bezier", "cubic.json"]),
+            v(&["bezier", "circle.json"]),
+            v(&["bezier", "sphere.json"]),
+        ],
+        "derivative" => vec![
+            v(&["derivative", "cubic.json", "--order", "2"]),
+            v(&["derivative", "ruled.json", "--order", "1"]),
+            v(&["derivative", "f.json"]),
+        ],
+        "plot" => vec![
+            v(&[
+                "plot",
+                "cubic.json",
+                "-o",
+                "OUT.svg",
+                "--comb",
+                "--features",
+            ]),
+            v(&[
+                "plot",
+                "circle.json",
+                "line.json",
+                "-o",
+                "OUT.svg",
+                "--comb",
+            ]),
+        ],
+        "product" => vec![
+            v(&["product", "f.json", "g.json", "--jacobian"]),
+            v(&["product", "f.json", "f.json"]),
+        ],
+        "curvature" => vec![
+            v(&["curvature", "cubic.json", "--at", "[0,1.5,3]"]),
+            v(&["curvature", "circle.json", "--at", "[0,0.5,1]"]),
+        ],
+        "features" => vec![
+            v(&["features", "cubic.json"]),
+            v(&["features", "line.json"]),
+        ],
+        "interpolate" => vec![
+            v(&["interpolate", "points.json", "--degree", "3"]),
+            v(&[
+                "interpolate",
+                "points.txt",
+                "--degree",
+                "2",
+                "--parametrization",
+                "centripetal",
+                "--report",
+            ]),
+            v(&["interpolate", "points.json", "--degree", "3", "--closed"]),
+            v(&[
+                "interpolate",
+                "points.json",
+                "--degree",
+                "3",
+                "--start-derivative",
+                "[1,0]",
+                "--end-derivative",
+                "[0,1]",
+            ]),
+        ],
+        "natural" => vec![
+            v(&["natural", "--x", "[0,1,2.5,4,5]", "--y", "[0,1,0.5,2,1]"]),
+            v(&[
+                "natural",
+                "--x",
+                "[0,1,2,3,4,5]",
+                "--y",
+                "[[0,1],[1,0],[2,2],[3,1],[4,0],[5,1]]",
+                "--order",
+                "6",
+            ]),
+        ],
+        "approximate" => vec![
+            v(&[
+                "approximate",
+                "points.json",
+                "--degree",
+                "2",
+                "--control-points",
+                "5",
+            ]),
+            v(&[
+                "approximate",
+                "airfoil.dat",
+                "--degree",
+                "3",
+                "--control-points",
+                "12",
+                "--correct-parameters",
+                "5",
+                "--report",
+            ]),
+            v(&[
+                "approximate",
+                "points.txt",
+                "--degree",
+                "3",
+                "--control-points",
+                "5",
+                "--smoothing",
+                "0.1",
+                "--method",
+                "qr",
+                "--pin-ends",
+            ]),
+        ],
+        "smooth" => vec![v(&[
+            "smooth",
+            "airfoil.dat",
+            "--control-points",
+            "12",
+            "--curvature-extrema",
+            "1",
+        ])],
+        "make" => vec![
+            v(&["make", "circle", "--center", "[0,0]", "--radius", "1"]),
+            v(&[
+                "make",
+                "arc",
+                "--center",
+                "[0,0,0]",
+                "--radius",
+                "2",
+                "--sweep",
+                "200",
+                "--max-piece",
+                "60",
+            ]),
+            v(&[
+                "make", "conic", "--p0", "[0,0]", "--p1", "[1,1]", "--p2", "[2,0]", "--w1", "0.5",
+            ]),
+            v(&["make", "sphere", "--center", "[0,0,0]", "--radius", "2"]),
+            v(&[
+                "make", "torus", "--center", "[0,0,0]", "--major", "3", "--minor", "1",
+            ]),
+            v(&["make", "extrude", "cubic.json", "--vector", "[0,0]"]),
+            v(&["make", "revolve", "line.json", "--angle", "90"]),
+            v(&["make", "cone", "circle.json", "--apex", "[0,1]"]),
+            v(&["make", "ruled", "cubic.json", "line.json"]),
+        ],
+        "mesh" => vec![
+            v(&[
+                "mesh",
+                "sphere.json",
+                "-o",
+                "OUT.obj",
+                "--segments-u",
+                "8",
+                "--segments-v",
+                "8",
+            ]),
+            v(&["mesh", "torus.json", "-o", "OUT.off"]),
+            v(&["mesh", "ruled.json", "-o", "OUT.svg", "--segments-u", "4"]),
+        ],
+        _ => Vec::new(),
+    }
+}
+
+/// One case: its subcommand, its arguments, and the output file it writes (if any).
+struct Case {
+    sub: &'static str,
+    args: Vec<String>,
+    output: Option<String>,
+}
+
+/// Builds case `k`: a template of subcommand `k mod 19`, mutated one to three times.
+fn build_case(k: usize, seed: u64, dir: &Path) -> Result<Case, String> {
+    let sub = SUBCOMMANDS[k % SUBCOMMANDS.len()];
+    let mut rng = Rng::new(seed.wrapping_mul(1_000_003).wrapping_add(k as u64));
+    let templates = templates(sub);
+    let template = rng.pick(&templates).clone();
+    let mut args: Vec<String> = template.iter().map(|s| (*s).to_string()).collect();
+    let mut output = None;
+    for a in &mut args {
+        if let Some(ext) = a.strip_prefix("OUT") {
+            *a = format!("out_{k}{ext}");
+            output = Some(a.clone());
+        }
+    }
+    // The first case of each template runs unmutated (the tool must succeed on it).
+    let mutations = if k < SUBCOMMANDS.len() * 2 {
+        0
+    } else {
+        *rng.pick(&[1, 1, 1, 1, 1, 1, 2, 2, 2, 3])
+    };
+    for _ in 0..mutations {
+        mutate_case(&mut rng, &mut args, k, dir)?;
+    }
+    Ok(Case { sub, args, output })
+}
+
+fn mutate_case(rng: &mut Rng, args: &mut Vec<String>, k: usize, dir: &Path) -> Result<(), String> {
+    let files: Vec<usize> = (1..args.len())
+        .filter(|&i| {
+            let a = &args[i];
+            (a.ends_with(".json") || a.ends_with(".dat") || a.ends_with(".txt"))
+                && !a.starts_with("out_")
+                && dir.join(a).exists()
+        })
+        .collect();
+    let values: Vec<usize> = (2..args.len())
+        .filter(|&i| {
+            args[i - 1].starts_with("--")
+                && !args[i].starts_with("--")
+                && !args[i].starts_with("out_")
+        })
+        .collect();
+    match rng.below(20) {
+        0..=9 if !values.is_empty() => {
+            let i = *rng.pick(&values);
+            args[i] = mutate_arg(rng, &args[i]);
+        }
+        10..=18 if !files.is_empty() => {
+            let i = *rng.pick(&files);
+            let text = std::fs::read_to_string(dir.join(&args[i])).unwrap_or_default();
+            let mutated = match serde_json::from_str::<Value>(&text) {
+                Ok(mut value) if rng.chance(0.8) => {
+                    mutate_value(rng, &mut value);
+                    value.to_string()
+                }
+                _ => mutate_text(rng, &text),
+            };
+            let name = format!("case_{k}_{i}.json");
+            std::fs::write(dir.join(&name), mutated).map_err(|e| e.to_string())?;
+            args[i] = name;
+        }
+        19 if args.len() > 2 && rng.chance(0.5) => {
+            // Drop an argument (an option and its value, or a positional).
+            let i = 1 + rng.below(args.len() - 1);
+            if args[i].starts_with("--") && i + 1 < args.len() && !args[i + 1].starts_with("--") {
+                args.drain(i..=i + 1);
+            } else {
+                args.remove(i);
+            }
+        }
+        19 if !values.is_empty() && rng.chance(0.5) => {
+            // Repeat an option.
+            let i = *rng.pick(&values);
+            let (name, value) = (args[i - 1].clone(), args[i].clone());
+            args.push(name);
+            args.push(value);
+        }
+        _ => {
+            let extra = rng.pick(&[
+                "--derivatives",
+                "--times",
+                "--direction",
+                "--bogus",
+                "-",
+                "--segments-u",
+                "--order",
+            ]);
+            args.push((*extra).to_string());
+            args.push(rng.pick(crate::mutate::EXTREME_TEXT).to_string());
+        }
+    }
+    Ok(())
+}
+
+/// Runs one case under the memory limit and the timeout.
+fn run_case(binary: &Path, dir: &Path, case: &Case, o: &Options) -> (Outcome, Duration, String) {
+    let started = Instant::now();
+    let tag =
+        format!("{:?}", std::thread::current().id()).replace(|c: char| !c.is_alphanumeric(), "");
+    let stdout_path = dir.join(format!("stdout_{tag}"));
+    let stderr_path = dir.join(format!("stderr_{tag}"));
+    let spawn = || -> std::io::Result<std::process::Child> {
+        Command::new("bash")
+            .arg("-c")
+            .arg(format!(
+                "ulimit -v {}; exec \"$0\" \"$@\"",
+                o.memory_mb * 1024
+            ))
+            .arg(binary)
+            .args(&case.args)
+            .current_dir(dir)
+            .stdin(Stdio::null())
+            .stdout(std::fs::File::create(&stdout_path)?)
+            .stderr(std::fs::File::create(&stderr_path)?)
+            .env("RUST_BACKTRACE", "0")
+            .spawn()
+    };
+    let mut child = match spawn() {
+        Ok(c) => c,
+        Err(e) => {
+            return (
+                Outcome::OtherStatus,
+                Duration::ZERO,
+                format!("cannot run: {e}"),
+            );
+        }
+    };
+    let status = loop {
+        match child.try_wait() {
+            Ok(Some(status)) => break Some(status),
+            Ok(None) if started.elapsed() > o.timeout => {
+                let _ = child.kill();
+                let _ = child.wait();
+                break None;
+            }
+            Ok(None) => std::thread::sleep(Duration::from_millis(2)),
+            Err(_) => break None,
+        }
+    };
+    let elapsed = started.elapsed();
+    let stdout = std::fs::read(&stdout_path).unwrap_or_default();
+    let stderr =
+        String::from_utf8_lossy(&std::fs::read(&stderr_path).unwrap_or_default()).into_owned();
+    let Some(status) = status else {
+        return (Outcome::Timeout, elapsed, stderr);
+    };
+    if stderr.contains("panicked") {
+        return (Outcome::Panic, elapsed, stderr);
+    }
+    if let Some(signal) = status.signal() {
+        return (
+            Outcome::Abort,
+            elapsed,
+            format!("signal {signal}: {stderr}"),
+        );
+    }
+    match status.code() {
+        Some(0) => {
+            let mut texts = vec![String::from_utf8_lossy(&stdout).into_owned()];
+            if let Some(out) = &case.output {
+                if let Ok(bytes) = std::fs::read(dir.join(out)) {
+                    texts.push(String::from_utf8_lossy(&bytes).into_owned());
+                }
+                let _ = std::fs::remove_file(dir.join(out));
+            }
+            if texts.iter().any(|t| has_non_finite(t)) {
+                (
+                    Outcome::NonFinite,
+                    elapsed,
+                    texts.concat().chars().take(300).collect(),
+                )
+            } else {
+                (Outcome::Ok, elapsed, String::new())
+            }
+        }
+        Some(2) => {
+            if stderr.lines().count() == 1 && stdout.is_empty() {
+                (Outcome::CleanError, elapsed, stderr)
+            } else {
+                (Outcome::MultiLine, elapsed, stderr)
+            }
+        }
+        other => (
+            Outcome::OtherStatus,
+            elapsed,
+            format!("status {other:?}: {stderr}"),
+        ),
+    }
+}
+
+/// Whether a text holds a non-finite number: `NaN`, `inf` or a JSON `null`.
+fn has_non_finite(text: &str) -> bool {
+    let words = text.split(|c: char| !(c.is_ascii_alphanumeric() || c == '_'));
+    words.into_iter().any(|w| {
+        let w = w.to_ascii_lowercase();
+        w == "nan" || w == "inf" || w == "infinity" || w == "null"
+    })
+}
+
+pub(crate) fn run(root: &Path, args: &[String]) -> Result<(), String> {
+    let o = parse_options(args)?;
+    let status = Command::new(env!("CARGO"))
+        .args(["build", "--release", "--quiet", "-p", "spline-cli"])
+        .current_dir(root)
+        .status()
+        .map_err(|e| format!("cannot build the tool: {e}"))?;
+    if !status.success() {
+        return Err("cannot build the tool".into());
+    }
+    let binary = root.join("target/release/spline");
+    let dir = root.join("target/campaign");
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).map_err(|e| e.to_string())?;
+    make_seed_files(&binary, &dir, root)?;
+    let cases: Vec<Case> = (0..o.cases)
+        .map(|k| build_case(k, o.seed, &dir))
+        .collect::<Result<_, _>>()?;
+    let cases = Arc::new(cases);
+    let next = Arc::new(Mutex::new(0usize));
+    let results: Arc<Mutex<Vec<(usize, Outcome, Duration, String)>>> =
+        Arc::new(Mutex::new(Vec::new()));
+    let started = Instant::now();
+    std::thread::scope(|scope| {
+        for _ in 0..o.jobs.max(1) {
+            let (cases, next, results) =
+                (Arc::clone(&cases), Arc::clone(&next), Arc::clone(&results));
+            let (binary, dir, o) = (&binary, &dir, &o);
+            scope.spawn(move || {
+                loop {
+                    let k = {
+                        let mut n = next.lock().expect("lock");
+                        let k = *n;
+                        *n += 1;
+                        k
+                    };
+                    if k >= cases.len() {
+                        break;
+                    }
+                    let (outcome, time, detail) = run_case(binary, dir, &cases[k], o);
+                    results
+                        .lock()
+                        .expect("lock")
+                        .push((k, outcome, time, detail));
+                }
+            });
+        }
+    });
+    let mut results = Arc::try_unwrap(results)
+        .map_err(|_| "results still shared")?
+        .into_inner()
+        .map_err(|e| e.to_string())?;
+    results.sort_by_key(|r| r.0);
+    report(&cases, &results, &o, started.elapsed(), &dir)
+}
+
+fn report(
+    cases: &[Case],
+    results: &[(usize, Outcome, Duration, String)],
+    o: &Options,
+    elapsed: Duration,
+    dir: &Path,
+) -> Result<(), String> {
+    let mut table: BTreeMap<&str, [usize; 9]> = BTreeMap::new();
+    let mut failures = String::new();
+    let mut messages = String::new();
+    let mut slowest = Duration::ZERO;
+    for (k, outcome, time, detail) in results {
+        let case = &cases[*k];
+        let row = table.entry(case.sub).or_default();
+        row[0] += 1;
+        let column = match outcome {
+            Outcome::Ok => 1,
+            Outcome::CleanError => 2,
+            Outcome::Panic => 3,
+            Outcome::Abort => 4,
+            Outcome::Timeout => 5,
+            Outcome::NonFinite => 6,
+            Outcome::MultiLine => 7,
+            Outcome::OtherStatus => 8,
+        };
+        row[column] += 1;
+        slowest = slowest.max(*time);
+        if column == 2 {
+            let _ = writeln!(
+                messages,
+                "spline {}\n    {}",
+                shell_words(&case.args),
+                detail.trim()
+            );
+        }
+        if column >= 3 {
+            let _ = writeln!(
+                failures,
+                "{outcome:?} after {:.1} s: spline {}\n    {}",
+                time.as_secs_f64(),
+                shell_words(&case.args),
+                detail.trim().lines().next().unwrap_or("")
+            );
+        }
+    }
+    let mut text = String::new();
+    let _ = writeln!(
+        text,
+        "campaign: {} cases, seed {}, timeout {} s, memory limit {} MB, {:.0} s, slowest run {:.2} s",
+        cases.len(),
+        o.seed,
+        o.timeout.as_secs(),
+        o.memory_mb,
+        elapsed.as_secs_f64(),
+        slowest.as_secs_f64()
+    );
+    let _ = writeln!(
+        text,
+        "| subcommand | cases | exit 0 | exit 2 | panics | aborts | > {} s | non-finite | multi-line errors | other status |",
+        o.timeout.as_secs()
+    );
+    let _ = writeln!(text, "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|");
+    let mut total = [0usize; 9];
+    for sub in SUBCOMMANDS {
+        let row = table.get(sub).copied().unwrap_or_default();
+        for (t, r) in total.iter_mut().zip(row) {
+            *t += r;
+        }
+        let cells: Vec<String> = row.iter().map(ToString::to_string).collect();
+        let _ = writeln!(text, "| {sub} | {} |", cells.join(" | "));
+    }
+    let cells: Vec<String> = total.iter().map(ToString::to_string).collect();
+    let _ = writeln!(text, "| **total** | {} |", cells.join(" | "));
+    print!("{text}");
+    std::fs::write(dir.join("table.md"), &text).map_err(|e| e.to_string())?;
+    std::fs::write(dir.join("failures.txt"), &failures).map_err(|e| e.to_string())?;
+    std::fs::write(dir.join("errors.txt"), &messages).map_err(|e| e.to_string())?;
+    let failed: usize = total[3..].iter().sum();
+    if failed == 0 {
+        Ok(())
+    } else {
+        print!("{failures}");
+        Err(format!(
+            "{failed} failing cases (listed in {})",
+            dir.join("failures.txt").display()
+        ))
+    }
+}
+
+fn shell_words(args: &[String]) -> String {
+    args.iter()
+        .map(|a| {
+            if !a.is_empty()
+                && a.chars()
+                    .all(|c| c.is_ascii_alphanumeric() || "-_.,/:+".contains(c))
+            {
+                a.clone()
+            } else {
+                let shown: String = a.chars().take(120).collect();
+                format!("'{}'", shown.replace('\'', "'\\''"))
+            }
+        })
+        .collect::<Vec<_>>()
+        .join(" ")
+}
+
+/// The campaign's working directory (seed files, mutated files, outputs, the table).
+#[allow(dead_code)]
+pub(crate) fn workdir(root: &Path) -> PathBuf {
+    root.join("target/campaign")
+}
