@@ -4,6 +4,8 @@
 //! - `docs`: regenerate the SVG pictures in `docs/`.
 //! - `bench fit`, `bench eval`: criterion benchmarks of fitting and of curve evaluation against
 //!   scipy in the same run (a Python virtual environment with scipy is created under `target/`).
+//! - `fuzz [--cases N | --seconds S] [--seed S] [--target T]`: structured mutation fuzzing of
+//!   the readers and of every operation, in process (see `fuzz/README.md`).
 //! - `campaign [--cases N] [--seed S] [--jobs J] [--timeout S] [--memory-mb M]`: a mutation
 //!   campaign of the release binary over every subcommand (subprocesses, memory limit,
 //!   timeout), printing a table of panics, aborts, slow runs, non-finite outputs and
@@ -19,6 +21,7 @@ mod demo;
 mod docs_curves;
 mod docs_shape_functions;
 mod docs_surfaces;
+mod fuzz;
 mod mutate;
 
 use std::path::{Path, PathBuf};
@@ -72,6 +75,7 @@ fn main() -> ExitCode {
         Some("docs") => run_docs(&root),
         Some("demo") => demo::run(&root),
         Some("campaign") => campaign::run(&root, &args[1..]),
+        Some("fuzz") => fuzz::run(&root, &args[1..]),
         Some("bench") => match args.get(1).map(String::as_str) {
             Some("fit") => bench_fit::run(&root),
             Some("eval") => bench_eval::run(&root),

@@ -247,7 +247,8 @@ impl<T: Scalar> ProductMap<T> {
     /// The product of two splines on the prepared spaces.
     ///
     /// # Errors
-    /// [`ErrorKind::InvalidArgument`] if the knot vectors are not the prepared ones.
+    /// [`ErrorKind::InvalidArgument`] if the knot vectors are not the prepared ones;
+    /// [`ErrorKind::NonFinite`] when a coefficient is too large for the scalar type.
     pub fn product(&self, a: &BSpline<T, T>, b: &BSpline<T, T>) -> Result<BSpline<T, T>> {
         if a.knots() != self.left() || b.knots() != self.right() {
             return Err(Error::new(
@@ -255,10 +256,11 @@ impl<T: Scalar> ProductMap<T> {
                 "the factors are not on the knot vectors this product was prepared for",
             ));
         }
-        Ok(BSpline::new_unchecked(
-            self.target().clone(),
-            self.apply(a.control_points(), b.control_points())?,
-        ))
+        let coefficients = self.apply(a.control_points(), b.control_points())?;
+        if !coefficients.iter().all(|c| c.is_finite()) {
+            return Err(spline_core::overflow("a coefficient of the product"));
+        }
+        Ok(BSpline::new_unchecked(self.target().clone(), coefficients))
     }
 
     /// $\partial c / \partial a$ (depends on `b` only), `target × left` sparse.

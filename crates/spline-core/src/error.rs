@@ -187,3 +187,13 @@ impl fmt::Display for Short {
         }
     }
 }
+
+/// The error for a result that does not fit in the floating-point range although the input
+/// is finite (for example a derivative of a curve with huge coordinates on a tiny domain).
+#[must_use]
+pub fn overflow(what: impl fmt::Display) -> Error {
+    Error::new(
+        ErrorKind::NonFinite,
+        format!("{what} is too large for floating point"),
+    )
+}

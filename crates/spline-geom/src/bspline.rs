@@ -222,11 +222,12 @@ impl<T: Scalar, P: ControlPoint<T>> BSpline<T, P> {
     /// the degree are zero and cost only their writing. No heap allocation.
     ///
     /// # Errors
-    /// [`ErrorKind::NonFinite`] or [`ErrorKind::OutOfDomain`].
+    /// [`ErrorKind::NonFinite`] or [`ErrorKind::OutOfDomain`] for `u`;
+    /// [`ErrorKind::NonFinite`] when a derivative is too large for the scalar type.
     pub fn derivatives_into(&self, u: T, out: &mut [P]) -> Result<()> {
         let span = self.knots.find_span(u)?;
         self.derivatives_in_span(span, u, out);
-        Ok(())
+        check_finite_derivatives(out, u)
     }
 
     pub(crate) fn derivatives_in_span(&self, span: usize, u: T, out: &mut [P]) {
@@ -403,7 +404,8 @@ impl<T: Scalar, P: ControlPoint<T>> BSpline<T, P> {
     /// masses) and its knot vector stays valid.
     ///
     /// # Errors
-    /// [`ErrorKind::InvalidArgument`] if `order > p`.
+    /// [`ErrorKind::InvalidArgument`] if `order > p`; [`ErrorKind::NonFinite`] when a
+    /// coefficient is too large for the scalar type.
     pub fn derivative(&self, order: usize) -> Result<Self> {
         if order > self.degree() {
             return Err(Error::new(
@@ -444,6 +446,11 @@ impl<T: Scalar, P: ControlPoint<T>> BSpline<T, P> {
             points = new_points;
             p -= 1;
         }
+        if !points.iter().all(ControlPoint::all_finite) {
+            return Err(spline_core::overflow(format_args!(
+                "a control point of the derivative of order {order}"
+            )));
+        }
         Ok(Self::new_unchecked(
             KnotVector::new_unchecked(p, knots),
             points,
@@ -482,6 +489,20 @@ pub(crate) fn square_len(order: usize) -> Result<usize> {
                 format!("derivatives up to order {order} do not fit in memory"),
             )
         })
+}
+
+/// [`ErrorKind::NonFinite`] naming the first derivative that overflowed.
+pub(crate) fn check_finite_derivatives<T: Scalar, P: ControlPoint<T>>(
+    out: &[P],
+    u: T,
+) -> Result<()> {
+    match out.iter().position(|p| !p.all_finite()) {
+        None => Ok(()),
+        Some(k) => Err(spline_core::overflow(format_args!(
+            "the derivative of order {k} at u = {}",
+            spline_core::to_f64(u)
+        ))),
+    }
 }
 
 pub(crate) fn check_same_len(expected: usize, got: usize) -> Result<()> {

@@ -415,7 +415,15 @@ impl<T: Scalar, P: ControlPoint<T>> Surface<T, P> {
         crate::bspline::check_same_len(crate::bspline::square_len(order)?, out.len())?;
         let (su, sv) = self.find_spans(u, v)?;
         self.derivatives_in_spans(su, sv, u, v, order, out);
-        Ok(())
+        if out.iter().all(ControlPoint::all_finite) {
+            Ok(())
+        } else {
+            Err(spline_core::overflow(format_args!(
+                "a partial derivative at (u, v) = ({}, {})",
+                spline_core::to_f64(u),
+                spline_core::to_f64(v)
+            )))
+        }
     }
 
     pub(crate) fn derivatives_in_spans(
