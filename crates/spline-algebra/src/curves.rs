@@ -499,7 +499,17 @@ pub fn planar_features<T: Scalar>(
     accuracy: T,
 ) -> Result<PlanarFeatures<T>> {
     let algebra = PlanarInvariants::new(curve.knots())?;
-    let points = curve.control_points();
+    // The features do not change when the curve is scaled: the invariants (products of up to
+    // six coordinates of derivatives) are formed on control points divided by a power of two
+    // near the size of the control polygon's legs, so coordinates of 1e±150 neither overflow
+    // nor underflow.
+    let legs = curve
+        .control_points()
+        .windows(2)
+        .fold(0.0f64, |m, w| m.max(to_f64((w[1] - w[0]).amax())));
+    let scale: T = cast(spline_core::power_of_two_scale(legs));
+    let points: Vec<Vector2<T>> = curve.control_points().iter().map(|p| p / scale).collect();
+    let points = points.as_slice();
     let h1 = algebra.invariant_value(Invariant::H1, points, Form::Bernstein)?;
     if let Some(z) = zeros(&h1, accuracy)?.first() {
         return Err(Error::new(

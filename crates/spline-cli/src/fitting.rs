@@ -113,11 +113,17 @@ pub struct ApproximateArgs {
     report: bool,
 }
 
-fn read_padded(path: &str) -> Result<(Vec<Pt>, usize)> {
+/// Reads points and divides them by a power of two near their largest coordinate (an exact
+/// scaling): fitting is affinely invariant, and with coordinates near 1 neither distances nor
+/// squares overflow or underflow. Returns the scaled points, their dimension and the scale.
+fn read_padded(path: &str) -> Result<(Vec<Pt>, usize, f64)> {
     let rows = read_points(path)?;
     let dim = rows.first().map_or(0, Vec::len);
     let points = rows.iter().map(|r| pad(r)).collect::<Result<Vec<Pt>>>()?;
-    Ok((points, dim))
+    let largest = points.iter().fold(0.0f64, |m, p| m.max(p.amax()));
+    let scale = spline_core::power_of_two_scale(largest);
+    let points = points.iter().map(|p| p / scale).collect();
+    Ok((points, dim, scale))
 }
 
 fn parametrization(text: &str) -> Result<Parametrization<f64>> {
@@ -152,7 +158,7 @@ fn knot_choice(text: &str, degree: usize) -> Result<KnotChoice<f64>> {
     }
 }
 
-fn vector(option: &str, text: &str, dim: usize) -> Result<Pt> {
+fn vector(option: &str, text: &str, dim: usize, scale: f64) -> Result<Pt> {
     let v: Vec<f64> = parse_arg(option, text)?;
     if v.len() != dim {
         return Err(Error::new(
@@ -163,12 +169,19 @@ fn vector(option: &str, text: &str, dim: usize) -> Result<Pt> {
             ),
         ));
     }
-    pad(&v)
+    Ok(pad(&v)? / scale)
 }
 
-fn output(fit: &CurveFit<f64, Pt>, dim: usize, report: bool, extra: Option<Value>) -> Result<()> {
+/// Prints a fit made on points divided by `scale`, mapped back.
+fn output(
+    fit: &CurveFit<f64, Pt>,
+    dim: usize,
+    scale: f64,
+    report: bool,
+    extra: Option<Value>,
+) -> Result<()> {
     let record = Curve {
-        curve: fit.curve.clone(),
+        curve: fit.curve.map_control_points(|p| p * scale),
         dim,
     }
     .to_record();
@@ -178,9 +191,9 @@ fn output(fit: &CurveFit<f64, Pt>, dim: usize, report: bool, extra: Option<Value
     let mut value = json!({
         "curve": record,
         "params": fit.params,
-        "max_deviation": fit.deviation.max,
+        "max_deviation": fit.deviation.max * scale,
         "max_index": fit.deviation.max_index,
-        "rms": fit.deviation.rms,
+        "rms": fit.deviation.rms * scale,
     });
     if let Some(extra) = extra {
         value["correction"] = extra;
@@ -189,7 +202,7 @@ fn output(fit: &CurveFit<f64, Pt>, dim: usize, report: bool, extra: Option<Value
 }
 
 pub fn interpolate(args: &InterpolateArgs) -> Result<()> {
-    let (points, dim) = read_padded(&args.points)?;
+    let (points, dim, scale) = read_padded(&args.points)?;
     let parametrization = parametrization(&args.parametrization)?;
     if args.closed {
         if args.knots.is_some() || args.start_derivative.is_some() || args.end_derivative.is_some()
@@ -200,7 +213,7 @@ pub fn interpolate(args: &InterpolateArgs) -> Result<()> {
             ));
         }
         let fit = interpolate_closed(&points, args.degree, &parametrization)?;
-        return output(&fit, dim, args.report, None);
+        return output(&fit, dim, scale, args.report, None);
     }
     let options = InterpolationOptions {
         parametrization,
@@ -208,16 +221,16 @@ pub fn interpolate(args: &InterpolateArgs) -> Result<()> {
         start_derivative: args
             .start_derivative
             .as_deref()
-            .map(|t| vector("--start-derivative", t, dim))
+            .map(|t| vector("--start-derivative", t, dim, scale))
             .transpose()?,
         end_derivative: args
             .end_derivative
             .as_deref()
-            .map(|t| vector("--end-derivative", t, dim))
+            .map(|t| vector("--end-derivative", t, dim, scale))
             .transpose()?,
     };
     let fit = spline_fit::interpolate(&points, args.degree, &options)?;
-    output(&fit, dim, args.report, None)
+    output(&fit, dim, scale, args.report, None)
 }
 
 pub fn natural(args: &NaturalArgs) -> Result<()> {
@@ -271,7 +284,7 @@ fn fixes(text: &str, dim: usize) -> Result<Vec<(usize, usize, f64)>> {
 }
 
 pub fn approximate(args: &ApproximateArgs) -> Result<()> {
-    let (points, dim) = read_padded(&args.points)?;
+    let (points, dim, scale) = read_padded(&args.points)?;
     let mut params = parametrize(&points, &parametrization(&args.parametrization)?)?;
     let knots = match (&args.knots, args.control_points) {
         (Some(text), _) => KnotVector::new(args.degree, parse_arg("--knots", text)?)
@@ -287,7 +300,7 @@ pub fn approximate(args: &ApproximateArgs) -> Result<()> {
     if !args.parametrization.trim().starts_with('[') {
         remap(&mut params, knots.domain());
     }
-    solve(args, &points, &params, knots, dim)
+    solve(args, &points, &params, knots, (dim, scale))
 }
 
 /// Maps parameters normalised to [0, 1] onto the domain of given knots.
@@ -306,7 +319,7 @@ fn solve(
     points: &[Pt],
     params: &[f64],
     knots: KnotVector<f64>,
-    dim: usize,
+    (dim, scale): (usize, f64),
 ) -> Result<()> {
     let weights: Option<Vec<f64>> = args
         .weights
@@ -327,11 +340,11 @@ fn solve(
     }
     if let Some(text) = &args.fix {
         for (i, c, v) in fixes(text, dim)? {
-            problem = problem.fix_coordinate(i, c, v);
+            problem = problem.fix_coordinate(i, c, v / scale);
         }
     }
     match args.correct_parameters {
-        None => output(&problem.solve()?, dim, args.report, None),
+        None => output(&problem.solve()?, dim, scale, args.report, None),
         Some(iterations) => {
             if iterations > spline_fit::MAX_CORRECTION_ITERATIONS {
                 return Err(Error::new(
@@ -352,9 +365,9 @@ fn solve(
                 "iterations": report.iterations,
                 "converged": report.converged,
                 "angles": report.angles,
-                "errors": report.errors,
+                "errors": report.errors.iter().map(|e| e * scale * scale).collect::<Vec<_>>(),
             });
-            output(&fit, dim, args.report, Some(extra))
+            output(&fit, dim, scale, args.report, Some(extra))
         }
     }
 }

@@ -38,4 +38,4 @@ pub use knots::{
 };
 pub use point::{ControlPoint, lerp};
 pub use quadrature::gauss_legendre;
-pub use scalar::{Scalar, cast, from_count, to_f64};
+pub use scalar::{Scalar, cast, from_count, power_of_two_scale, to_f64};

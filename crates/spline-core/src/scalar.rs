@@ -45,3 +45,30 @@ pub fn from_count<T: Scalar>(n: usize) -> T {
     #[allow(clippy::cast_precision_loss)]
     cast(n as f64)
 }
+
+/// A power of four at most `magnitude` and above a sixteenth of it (1 for zero or
+/// non-finite magnitudes): dividing by it is exact in binary floating point and commutes
+/// with square roots, so it brings coordinates near 1 without changing a single digit of the
+/// results of scale-invariant computations (barring underflow).
+///
+/// ```
+/// assert_eq!(spline_core::power_of_two_scale(3.0), 1.0);
+/// assert_eq!(spline_core::power_of_two_scale(5.0), 4.0);
+/// assert_eq!(spline_core::power_of_two_scale(1e-300), 2f64.powi(-998));
+/// assert_eq!(spline_core::power_of_two_scale(0.0), 1.0);
+/// ```
+#[must_use]
+pub fn power_of_two_scale(magnitude: f64) -> f64 {
+    if !(magnitude > 0.0 && magnitude.is_finite()) {
+        return 1.0;
+    }
+    // The exponent of a finite positive double lies in −1074 … 1023.
+    #[allow(clippy::cast_possible_truncation)]
+    let mut exponent = magnitude.log2().floor() as i32;
+    // log2 may round up to the next integer just below a power of two.
+    if 2f64.powi(exponent) > magnitude {
+        exponent -= 1;
+    }
+    let even = exponent.clamp(-1022, 1022).div_euclid(2) * 2;
+    2f64.powi(even)
+}

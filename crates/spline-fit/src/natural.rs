@@ -74,43 +74,78 @@ pub fn natural_spline<T: Scalar, P: ControlPoint<T>>(
     check_points(y, 2.max(q), "a natural spline of this order")?;
     check_strict(x)?;
     let n = x.len() - 1;
-    let mut knots = Vec::with_capacity(n + 2 * p + 1);
-    knots.extend(std::iter::repeat_n(x[0], p + 1));
-    knots.extend_from_slice(&x[1..n]);
-    knots.extend(std::iter::repeat_n(x[n], p + 1));
-    let knots = KnotVector::new(p, knots)?;
+    let knots_on = |x: &[T]| -> Result<KnotVector<T>> {
+        let mut knots = Vec::with_capacity(n + 2 * p + 1);
+        knots.extend(std::iter::repeat_n(x[0], p + 1));
+        knots.extend_from_slice(&x[1..n]);
+        knots.extend(std::iter::repeat_n(x[n], p + 1));
+        KnotVector::new(p, knots)
+    };
+    let knots = knots_on(x)?;
+    // The system is solved on abscissae mapped onto [0, 1] and ordinates divided by their
+    // largest coordinate: the natural conditions (derivatives of orders q … 2q − 2 vanish at
+    // the ends) do not change under these maps, and the coefficients of the spline in x are
+    // those in t times the scale. So spacings of 1e-12 or 1e12 and ordinates near the range
+    // of floating point solve as well as unit ones.
+    let width = x[n] - x[0];
+    let t: Vec<T> = x
+        .iter()
+        .enumerate()
+        .map(|(j, &xj)| {
+            if j == n {
+                T::one()
+            } else {
+                (xj - x[0]) / width
+            }
+        })
+        .collect();
+    if !t.iter().all(|v| v.is_finite()) || t.windows(2).any(|w| !(w[0] < w[1])) {
+        return Err(Error::new(
+            ErrorKind::SingularSystem,
+            "the abscissae are too close together relative to their range to be told apart",
+        ));
+    }
+    let scale = y.iter().fold(T::zero(), |m, p| m.max(p.max_abs()));
+    let scale = if scale > T::zero() { scale } else { T::one() };
+    let unit = |p: &P| P::from_coords(|i| p.coord(i) / scale);
+    let normalised = knots_on(&t)?;
     let mut conditions = Vec::with_capacity(knots.num_basis());
     let mut targets = Vec::with_capacity(knots.num_basis());
     conditions.push(Condition {
-        param: x[0],
+        param: t[0],
         order: 0,
     });
-    targets.push(y[0]);
+    targets.push(unit(&y[0]));
     for k in q..=2 * q - 2 {
         conditions.push(Condition {
-            param: x[0],
+            param: t[0],
             order: k,
         });
         targets.push(P::origin());
     }
     for j in 1..n {
         conditions.push(Condition {
-            param: x[j],
+            param: t[j],
             order: 0,
         });
-        targets.push(y[j]);
+        targets.push(unit(&y[j]));
     }
     for k in (q..=2 * q - 2).rev() {
         conditions.push(Condition {
-            param: x[n],
+            param: t[n],
             order: k,
         });
         targets.push(P::origin());
     }
     conditions.push(Condition {
-        param: x[n],
+        param: t[n],
         order: 0,
     });
-    targets.push(y[n]);
-    hermite(&knots, &conditions, targets)
+    targets.push(unit(&y[n]));
+    let solved = hermite(&normalised, &conditions, targets)?;
+    let points: Vec<P> = solved.control_points().iter().map(|&c| c * scale).collect();
+    if !points.iter().all(ControlPoint::all_finite) {
+        return Err(spline_core::overflow("a coefficient of the natural spline"));
+    }
+    Ok(BSpline::new_unchecked(knots, points))
 }

@@ -93,9 +93,20 @@ fn spacings<T: Scalar, P: ControlPoint<T>>(
     let count = points.len();
     let pairs = if closed { count } else { count - 1 };
     let mut out = Vec::with_capacity(pairs);
-    for j in 0..pairs {
+    // Only ratios of distances matter: they are computed on differences divided by the
+    // largest coordinate of any difference, so that coordinates near 1e±300 neither overflow
+    // nor underflow when squared.
+    let difference = |j: usize| {
         let (a, b) = (points[j], points[(j + 1) % count]);
-        let d = (b - a).length();
+        // Halves first: b − a of finite points may overflow.
+        b * cast::<T>(0.5) - a * cast::<T>(0.5)
+    };
+    let largest = (0..pairs).fold(T::zero(), |m, j| m.max(difference(j).max_abs()));
+    // A power of four: the scaling is exact and commutes with the square roots.
+    let largest: T = cast(spline_core::power_of_two_scale(to_f64(largest)));
+    for j in 0..pairs {
+        let diff = difference(j);
+        let d = P::from_coords(|i| diff.coord(i) / largest).length();
         if !(d > T::zero()) {
             let next = (j + 1) % count;
             return Err(Error::new(

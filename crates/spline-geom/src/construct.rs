@@ -80,14 +80,14 @@ impl<T: Scalar, const D: usize> Frame<T, D> {
         check_vector(&origin, "the origin")?;
         check_vector(&x_direction, "the x direction")?;
         check_vector(&y_direction, "the y direction")?;
-        let xl = x_direction.norm();
+        let xl = safe_norm(&x_direction);
         if !(xl > T::zero()) {
             return Err(degenerate("the x direction of a frame must not be zero"));
         }
         let x_axis = x_direction / xl;
         let y = y_direction - x_axis * x_axis.dot(&y_direction);
-        let yl = y.norm();
-        if !(yl > T::default_epsilon().sqrt() * y_direction.norm()) {
+        let yl = safe_norm(&y);
+        if !(yl > T::default_epsilon().sqrt() * safe_norm(&y_direction)) {
             return Err(degenerate(
                 "the y direction of a frame must not be zero or parallel to the x direction",
             ));
@@ -146,7 +146,7 @@ impl<T: Scalar> Frame<T, 3> {
     pub fn with_normal(origin: Vector3<T>, normal: Vector3<T>) -> Result<Self> {
         check_vector(&origin, "the center")?;
         check_vector(&normal, "the normal")?;
-        let len = normal.norm();
+        let len = safe_norm(&normal);
         if !(len > T::zero()) {
             return Err(degenerate("the normal of a plane must not be zero"));
         }
@@ -171,7 +171,7 @@ fn perpendicular<T: Scalar>(n: &Vector3<T>) -> Vector3<T> {
     }
     let e = Vector3::<T>::ith(best, T::one());
     let x = e - n * n.dot(&e);
-    x / x.norm()
+    x / safe_norm(&x)
 }
 
 /// An axis of revolution: a point and a unit direction.
@@ -199,7 +199,7 @@ impl<T: Scalar> Axis<T> {
     pub fn new(point: Vector3<T>, direction: Vector3<T>) -> Result<Self> {
         check_vector(&point, "the axis point")?;
         check_vector(&direction, "the axis direction")?;
-        let len = direction.norm();
+        let len = safe_norm(&direction);
         if !(len > T::zero()) {
             return Err(degenerate("the direction of an axis must not be zero"));
         }
@@ -511,13 +511,13 @@ impl<T: Scalar, const D: usize> NurbsCurve<T, D> {
             return Err(degenerate("P1 must differ from the midpoint of P0P2"));
         }
         let t = (shoulder - m).dot(&axis) / len2;
-        let off = (shoulder - m - axis * t).norm();
+        let off = safe_norm(&(shoulder - m - axis * t));
         if !(t > T::zero() && t < T::one() && off <= T::default_epsilon().sqrt() * len2.sqrt()) {
             return Err(degenerate(
                 "the shoulder point must lie strictly between the midpoint of P0P2 and P1",
             ));
         }
-        Ok((shoulder - m).norm() / (p1 - shoulder).norm())
+        Ok(safe_norm(&(shoulder - m)) / safe_norm(&(p1 - shoulder)))
     }
 
     /// The conic arc through the shoulder point `S` (its point at `u = ½`), with the weight
@@ -559,14 +559,14 @@ impl<T: Scalar, const D: usize> NurbsCurve<T, D> {
         for (p, name) in [(&p0, "P0"), (&p1, "P1"), (&p2, "P2")] {
             check_vector(p, name)?;
         }
-        let (l0, l2) = ((p1 - p0).norm(), (p1 - p2).norm());
+        let (l0, l2) = (safe_norm(&(p1 - p0)), safe_norm(&(p1 - p2)));
         if !((l0 - l2).abs() <= T::default_epsilon().sqrt() * (l0 + l2)) {
             return Err(degenerate(
                 "a circular arc needs |P1P0| = |P1P2| (an isosceles control polygon)",
             ));
         }
         let (a, b) = (p1 - p0, p2 - p0);
-        let cos = a.dot(&b) / (a.norm() * b.norm());
+        let cos = a.dot(&b) / (safe_norm(&a) * safe_norm(&b));
         if !(cos > T::zero() && cos < T::one()) {
             return Err(degenerate("the control polygon of a circular arc is flat"));
         }
@@ -781,7 +781,7 @@ impl<T: Scalar, const D: usize> NurbsSurface<T, D> {
     /// [`ErrorKind::DegenerateGeometry`] for a zero offset; [`ErrorKind::NonFinite`].
     pub fn extrusion(curve: &NurbsCurve<T, D>, offset: SVector<T, D>) -> Result<Self> {
         check_vector(&offset, "the extrusion vector")?;
-        if !(offset.norm() > T::zero()) {
+        if !(safe_norm(&offset) > T::zero()) {
             return Err(degenerate("the extrusion vector must not be zero"));
         }
         let hom = curve.homogeneous();
@@ -867,7 +867,7 @@ impl<T: Scalar> NurbsSurface<T, 3> {
             let p = h.project();
             let o = axis.project(&p);
             let d = p - o;
-            let r = d.norm();
+            let r = safe_norm(&d);
             let (x, y) = if r > T::zero() {
                 let x = d / r;
                 (x, axis.direction().cross(&x))
@@ -954,5 +954,16 @@ impl<T: Scalar> NurbsSurface<T, 3> {
         let frame = Frame::new(center + x * major, x, -axis.direction())?;
         let profile = NurbsCurve::circle(&frame, minor, CircleConstruction::Square)?;
         Self::revolution(&profile, &axis, T::two_pi())
+    }
+}
+
+/// The Euclidean length computed on the vector divided by its largest coordinate, so that it
+/// neither overflows (coordinates above 1e154) nor underflows (below 1e-154).
+fn safe_norm<T: Scalar, const D: usize>(v: &nalgebra::SVector<T, D>) -> T {
+    let m = v.amax();
+    if m > T::zero() && m.is_finite() {
+        (v / m).norm() * m
+    } else {
+        v.norm()
     }
 }
