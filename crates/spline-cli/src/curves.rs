@@ -263,8 +263,8 @@ pub trait CurveOperations: Sized {
     fn elevate_degree(&self, times: usize) -> Result<Self>;
     /// Splits at `u` into two curves clamped there.
     fn split(&self, u: f64) -> Result<(Self, Self)>;
-    /// The Bézier segments, each a clamped curve on its span.
-    fn bezier_pieces(&self) -> Result<Vec<Self>>;
+    /// Hands the Bézier segments, each a clamped curve on its span, to `f` one by one.
+    fn for_each_bezier_piece(&self, f: &mut dyn FnMut(Self) -> Result<()>) -> Result<()>;
     /// The derivative curve of order `order`, where the kind of curve has one.
     fn derivative_curve(&self, order: usize) -> Result<Self>;
 }
@@ -290,11 +290,11 @@ impl CurveOperations for BSpline<f64, Pt> {
         BSpline::split(self, u)
     }
 
-    fn bezier_pieces(&self) -> Result<Vec<Self>> {
-        self.bezier_segments()
-            .into_iter()
-            .map(|b| b.to_bspline())
-            .collect()
+    fn for_each_bezier_piece(&self, f: &mut dyn FnMut(Self) -> Result<()>) -> Result<()> {
+        for b in self.bezier_segments() {
+            f(b.to_bspline()?)?;
+        }
+        Ok(())
     }
 
     fn derivative_curve(&self, order: usize) -> Result<Self> {
@@ -322,12 +322,11 @@ pub fn apply_operation<C: CurveOperations>(
             io::raw(&[one(left)?, one(right)?])
         }
         Operation::Bezier => {
-            // Each segment is encoded as soon as it is made: the output is held once, as text.
-            let pieces = c
-                .bezier_pieces()?
-                .into_iter()
-                .map(one)
-                .collect::<Result<Vec<_>>>()?;
+            let mut pieces = Vec::new();
+            c.for_each_bezier_piece(&mut |piece| {
+                pieces.push(one(piece)?);
+                Ok(())
+            })?;
             io::raw(&pieces)
         }
         Operation::Derivative { order } => one(c.derivative_curve(*order)?),
@@ -341,7 +340,36 @@ pub fn apply_to_curve(curve: &Curve, operation: &Operation) -> Result<Json> {
     })
 }
 
+/// Writes the Bézier segments of a curve as they are made: a large curve's segments are never
+/// held whole, neither as curves nor as text.
+pub fn stream_bezier<C: CurveOperations>(c: &C, one: impl Fn(C) -> Result<Json>) -> Result<()> {
+    io::write_stdout_stream(|write| {
+        write(b"[")?;
+        let mut first = true;
+        c.for_each_bezier_piece(&mut |piece| {
+            if !first {
+                write(b",")?;
+            }
+            first = false;
+            write(one(piece)?.get().as_bytes())
+        })?;
+        write(b"]")
+    })
+}
+
 fn apply(object: &str, operation: &Operation, direction: Option<Direction>) -> Result<()> {
+    if matches!(operation, Operation::Bezier) {
+        match io::read_object(object)? {
+            Object::Curve(curve) => {
+                return stream_bezier(&curve.curve, |b| io::raw(&curve.with(b).to_record()));
+            }
+            Object::Nurbs(nurbs) => return crate::surfaces::stream_nurbs_bezier(&nurbs),
+            Object::Surface(surface) => {
+                let value = crate::surfaces::apply_to_surface(&surface, operation, direction)?;
+                return io::write_stdout(value.get().as_bytes());
+            }
+        }
+    }
     let value = match io::read_object(object)? {
         Object::Curve(curve) => {
             if direction.is_some() {
@@ -365,7 +393,7 @@ fn apply(object: &str, operation: &Operation, direction: Option<Direction>) -> R
             crate::surfaces::apply_to_surface(&surface, operation, direction)?
         }
     };
-    io::print_json(&value)
+    io::write_stdout(value.get().as_bytes())
 }
 
 pub fn insert(args: &InsertArgs) -> Result<()> {

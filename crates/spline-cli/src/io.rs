@@ -203,23 +203,34 @@ pub fn check_stdout_open() -> Result<()> {
 /// # Errors
 /// [`ErrorKind::InvalidArgument`] when the output cannot be written.
 pub fn write_stdout(bytes: &[u8]) -> Result<()> {
-    let mut out = std::io::stdout().lock();
-    let written = out
-        .write_all(bytes)
-        .and_then(|()| out.write_all(b"\n"))
-        .and_then(|()| out.flush());
-    match written {
-        Ok(()) => Ok(()),
-        Err(e) => {
-            if e.kind() == std::io::ErrorKind::BrokenPipe {
-                OUTPUT_CLOSED.store(true, Ordering::Relaxed);
-            }
-            Err(Error::new(
-                ErrorKind::InvalidArgument,
-                format!("cannot write to standard output: {e}"),
-            ))
+    write_stdout_stream(|write| write(bytes))
+}
+
+/// Writes a line on standard output in pieces, as `produce` makes them (so that a large
+/// output is never held whole), with the error handling of [`write_stdout`]. An error of
+/// `produce` after some pieces were written leaves them written.
+///
+/// # Errors
+/// The errors of `produce`; [`ErrorKind::InvalidArgument`] when the output cannot be
+/// written.
+pub fn write_stdout_stream(
+    produce: impl FnOnce(&mut dyn FnMut(&[u8]) -> Result<()>) -> Result<()>,
+) -> Result<()> {
+    let stdout = std::io::stdout().lock();
+    let mut out = std::io::BufWriter::with_capacity(1 << 16, stdout);
+    let failed = |e: &std::io::Error| {
+        if e.kind() == std::io::ErrorKind::BrokenPipe {
+            OUTPUT_CLOSED.store(true, Ordering::Relaxed);
         }
-    }
+        Error::new(
+            ErrorKind::InvalidArgument,
+            format!("cannot write to standard output: {e}"),
+        )
+    };
+    produce(&mut |bytes: &[u8]| out.write_all(bytes).map_err(|e| failed(&e)))?;
+    out.write_all(b"\n")
+        .and_then(|()| out.flush())
+        .map_err(|e| failed(&e))
 }
 
 /// Writes a whole file opened earlier; a full disk is a one-line error that names the file.

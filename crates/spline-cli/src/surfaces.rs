@@ -238,8 +238,11 @@ impl CurveOperations for Nurbs {
         NurbsCurve::split(self, u)
     }
 
-    fn bezier_pieces(&self) -> Result<Vec<Self>> {
-        Ok(self.bezier_segments())
+    fn for_each_bezier_piece(&self, f: &mut dyn FnMut(Self) -> Result<()>) -> Result<()> {
+        for piece in self.bezier_segments() {
+            f(piece)?;
+        }
+        Ok(())
     }
 
     fn derivative_curve(&self, _order: usize) -> Result<Self> {
@@ -252,6 +255,13 @@ impl CurveOperations for Nurbs {
 /// A structural operation on a NURBS curve (in homogeneous space).
 pub fn apply_to_nurbs(nurbs: &NurbsObject, operation: &Operation) -> Result<Json> {
     apply_operation(&nurbs.curve, operation, |curve| {
+        io::raw(&nurbs_record(&curve, nurbs.dim))
+    })
+}
+
+/// Writes the Bézier segments of a NURBS curve as they are made.
+pub fn stream_nurbs_bezier(nurbs: &NurbsObject) -> Result<()> {
+    crate::curves::stream_bezier(&nurbs.curve, |curve| {
         io::raw(&nurbs_record(&curve, nurbs.dim))
     })
 }

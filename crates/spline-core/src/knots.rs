@@ -490,7 +490,7 @@ impl<T: Scalar> KnotVector<T> {
             return Err(Error::new(
                 ErrorKind::KnotMultiplicity,
                 format!(
-                    "cannot insert knot {} {times} times: a degree-{} spline allows a knot at most {} times and it is there {present} times (at most {} more)",
+                    "knot {} appears {present} time(s) and a degree-{} spline allows at most {}: it can be inserted at most {} more times, not {times}",
                     to_f64(u),
                     self.degree,
                     self.order(),
