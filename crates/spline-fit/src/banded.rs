@@ -86,8 +86,7 @@ impl<T: Scalar, P: ControlPoint<T>> Staircase<T, P> {
         let pivot = current[i - first];
         if !(pivot.abs() > self.tiny * scale) || !pivot.is_finite() {
             return Err(singular(format!(
-                "the interpolation matrix is singular or too ill-conditioned at row {i} (pivot {:e})",
-                spline_core::to_f64(pivot)
+                "the conditions do not determine the spline: condition {i} nearly repeats the ones before it (the system is singular or too ill-conditioned)"
             )));
         }
         let inverse = T::one() / pivot;
@@ -232,7 +231,7 @@ impl<T: Scalar> BandLu<T> {
             }
             if !(best_abs > tiny) || !best_abs.is_finite() {
                 return Err(singular(format!(
-                    "the linear system is singular or too ill-conditioned (no pivot in column {k} of {n})"
+                    "the conditions do not determine the spline: coefficient {k} of {n} is free or nearly so (the system is singular or too ill-conditioned)"
                 )));
             }
             self.pivots.push(best);

@@ -266,7 +266,8 @@ pub fn interpolate_with_knots<T: Scalar, P: ControlPoint<T>>(
             Err(KernelError::Singular(i, pivot)) => Err(Error::new(
                 ErrorKind::SingularSystem,
                 format!(
-                    "the interpolation matrix is singular or too ill-conditioned at row {i} (pivot {pivot:e})"
+                    "the data do not determine the interpolating spline: condition {i} nearly repeats the ones before it (the system is singular or too ill-conditioned; pivot {})",
+                    spline_core::Short(pivot)
                 ),
             )),
         };
