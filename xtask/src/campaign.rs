@@ -55,6 +55,9 @@ fn parse_options(args: &[String]) -> Result<Options, String> {
     Ok(o)
 }
 
+/// A case's index, outcome, duration and detail (the error message or the first output).
+type CaseResult = (usize, Outcome, Duration, String);
+
 /// How a run ended.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord)]
 enum Outcome {
@@ -651,8 +654,7 @@ pub(crate) fn run(root: &Path, args: &[String]) -> Result<(), String> {
         .collect::<Result<_, _>>()?;
     let cases = Arc::new(cases);
     let next = Arc::new(Mutex::new(0usize));
-    let results: Arc<Mutex<Vec<(usize, Outcome, Duration, String)>>> =
-        Arc::new(Mutex::new(Vec::new()));
+    let results: Arc<Mutex<Vec<CaseResult>>> = Arc::new(Mutex::new(Vec::new()));
     let started = Instant::now();
     std::thread::scope(|scope| {
         for _ in 0..o.jobs.max(1) {
@@ -689,7 +691,7 @@ pub(crate) fn run(root: &Path, args: &[String]) -> Result<(), String> {
 
 fn report(
     cases: &[Case],
-    results: &[(usize, Outcome, Duration, String)],
+    results: &[CaseResult],
     o: &Options,
     elapsed: Duration,
     dir: &Path,

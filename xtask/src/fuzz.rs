@@ -332,10 +332,10 @@ fn operation(
         9 => {
             let f = c.map_control_points(|p| p.x);
             let g = curve(rng).map_control_points(|p| p.y);
-            if let Ok(map) = spline::algebra::ProductMap::new(f.knots(), g.knots()) {
-                if let Ok(h) = map.product(&f, &g) {
-                    finite(h.control_points().iter().copied())?;
-                }
+            let product = spline::algebra::ProductMap::new(f.knots(), g.knots())
+                .and_then(|map| map.product(&f, &g));
+            if let Ok(h) = product {
+                finite(h.control_points().iter().copied())?;
             }
         }
         10 => {
@@ -356,7 +356,7 @@ fn operation(
         }
         11 => {
             let frame = spline::geom::Frame::planar(Vector2::new(0.0, 0.0));
-            let sweep = *rng.pick(&[6.283, 1.0, 0.0, -3.0, 1e-19]);
+            let sweep = *rng.pick(&[std::f64::consts::TAU, 1.0, 0.0, -3.0, 1e-19]);
             let piece = *rng.pick(&[1.5, 1e-19, 1e-6, 3.0, f64::NAN]);
             if let Ok(arc) = NurbsCurve::arc_with_max_piece(&frame, 1.0, 0.0, sweep, piece) {
                 finite(arc.weights())?;
@@ -491,7 +491,7 @@ pub(crate) fn run(root: &Path, args: &[String]) -> Result<(), String> {
             "--cases" => {
                 cases = value("--cases")?
                     .parse()
-                    .map_err(|e| format!("--cases: {e}"))?
+                    .map_err(|e| format!("--cases: {e}"))?;
             }
             "--seconds" => {
                 seconds = Some(
@@ -503,7 +503,7 @@ pub(crate) fn run(root: &Path, args: &[String]) -> Result<(), String> {
             "--seed" => {
                 seed = value("--seed")?
                     .parse()
-                    .map_err(|e| format!("--seed: {e}"))?
+                    .map_err(|e| format!("--seed: {e}"))?;
             }
             "--target" => {
                 let t = value("--target")?;

@@ -258,7 +258,7 @@ pub(crate) fn mutate_text(rng: &mut Rng, text: &str) -> String {
         3 => {
             bytes = (0..rng.below(200))
                 .map(|_| rng.next_u64().to_le_bytes()[0])
-                .collect()
+                .collect();
         }
         4 => bytes.clear(),
         _ => {
@@ -271,11 +271,12 @@ pub(crate) fn mutate_text(rng: &mut Rng, text: &str) -> String {
 
 /// A mutated command-line value: an extreme number, a mutated JSON value, or mutated text.
 pub(crate) fn mutate_arg(rng: &mut Rng, arg: &str) -> String {
-    if let Ok(mut value) = serde_json::from_str::<Value>(arg) {
-        if value.is_array() && rng.chance(0.7) {
+    match serde_json::from_str::<Value>(arg) {
+        Ok(mut value) if value.is_array() && rng.chance(0.7) => {
             mutate_value(rng, &mut value);
             return value.to_string();
         }
+        _ => {}
     }
     if rng.chance(0.75) {
         (*rng.pick(EXTREME_TEXT)).to_string()

@@ -257,7 +257,7 @@ impl<T: Scalar> ProductMap<T> {
             ));
         }
         let coefficients = self.apply(a.control_points(), b.control_points())?;
-        if !coefficients.iter().all(|c| c.is_finite()) {
+        if !coefficients.iter().all(|&c| c.is_finite()) {
             return Err(spline_core::overflow("a coefficient of the product"));
         }
         Ok(BSpline::new_unchecked(self.target().clone(), coefficients))

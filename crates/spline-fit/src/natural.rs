@@ -99,7 +99,7 @@ pub fn natural_spline<T: Scalar, P: ControlPoint<T>>(
             }
         })
         .collect();
-    if !t.iter().all(|v| v.is_finite()) || t.windows(2).any(|w| !(w[0] < w[1])) {
+    if !t.iter().all(|&v| v.is_finite()) || t.windows(2).any(|w| !(w[0] < w[1])) {
         return Err(Error::new(
             ErrorKind::SingularSystem,
             "the abscissae are too close together relative to their range to be told apart",

@@ -145,7 +145,7 @@ fn rational_curve_derivatives<T: Scalar, const D: usize>(
             v -= out[k - i] * (binom * hom[i].weight);
         }
         out[k] = v / w0;
-        if !out[k].iter().all(|x| x.is_finite()) {
+        if !out[k].iter().all(nalgebra::ComplexField::is_finite) {
             return Err(derivative_overflow(k));
         }
     }
@@ -203,7 +203,7 @@ fn rational_surface_derivatives<T: Scalar, const D: usize>(
                 v -= mixed * bki;
             }
             out[k * w + l] = v / w00;
-            if !out[k * w + l].iter().all(|x| x.is_finite()) {
+            if !out[k * w + l].iter().all(nalgebra::ComplexField::is_finite) {
                 return Err(derivative_overflow(k + l));
             }
         }
