@@ -387,16 +387,17 @@ pub fn plot_nurbs(svg: &mut SvgPlot, nurbs: &NurbsObject, comb: bool) -> Result<
     if comb {
         let (a, b) = planar.domain();
         let samples = 200;
-        let teeth: Vec<(Vector2<f64>, Vector2<f64>)> = (0..=samples)
+        let teeth: Vec<(Vector2<f64>, Vector2<f64>, f64)> = (0..=samples)
             .filter_map(|j| {
                 let u = a + (b - a) * f64::from(j) / f64::from(samples);
                 let p = planar.eval(u).ok()?;
                 let n = planar.unit_normal(u).ok()?;
                 let k = planar.signed_curvature(u).ok()?;
-                Some((p, n * k))
+                Some((p, n, k))
             })
             .collect();
-        let max = teeth.iter().fold(0.0f64, |m, (_, v)| m.max(v.norm()));
+        // |n κ| = |κ|: the curvature itself, not a norm that would underflow for tiny κ.
+        let max = teeth.iter().fold(0.0f64, |m, (_, _, k)| m.max(k.abs()));
         if max > 0.0 {
             let (lo, hi) = polygon.iter().fold(
                 (
@@ -405,8 +406,13 @@ pub fn plot_nurbs(svg: &mut SvgPlot, nurbs: &NurbsObject, comb: bool) -> Result<
                 ),
                 |(lo, hi), p| (lo.inf(p), hi.sup(p)),
             );
-            let scale = 0.2 * (hi - lo).norm().max(1e-300) / max;
-            let segments: Vec<_> = teeth.iter().map(|(p, v)| (*p, p - v * scale)).collect();
+            // A tooth of length 0.2 · size · |κ| / max|κ|, formed without overflow.
+            let size = (hi * 0.5 - lo * 0.5).amax() * 2.0;
+            let segments: Vec<_> = teeth
+                .iter()
+                .map(|(p, n, k)| (*p, p - n * ((k / max) * (0.2 * size))))
+                .filter(|(_, q)| q.x.is_finite() && q.y.is_finite())
+                .collect();
             let ends: Vec<_> = segments.iter().map(|s| s.1).collect();
             svg.add_segments(&segments, "comb");
             svg.add_polyline(&ends, "comb");

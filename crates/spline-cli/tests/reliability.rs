@@ -674,3 +674,35 @@ fn singular_systems_are_explained_in_plain_words() {
     let value: Value = Value::String(message);
     assert!(value.as_str().is_some());
 }
+
+#[test]
+fn pictures_do_not_depend_on_the_scale() {
+    // The parabola and a rational arc drawn with combs and features: the same picture at
+    // every scale (coordinates are mapped to the page relative to their extent).
+    let draw = |scale: f64| {
+        let arc = temp_file(
+            "arc.json",
+            &format!(
+                r#"{{"degree":2,"knots":[0,0,0,1,1,1],"control_points":[[{a:e},0],[{a:e},{a:e}],[0,{a:e}]],"weights":[1,2,1]}}"#,
+                a = scale
+            ),
+        );
+        let svg = temp_file("p.svg", "");
+        let run = spline(&[
+            "plot",
+            &parabola(scale),
+            &arc,
+            "-o",
+            &svg,
+            "--comb",
+            "--features",
+        ]);
+        assert_eq!(run.status, 0, "{}", run.stderr);
+        std::fs::read_to_string(&svg).unwrap()
+    };
+    let unit = draw(1.0);
+    assert!(unit.contains(r#"class="comb""#));
+    for scale in [1e300, 1e-300, 0.25, 1024.0] {
+        assert_eq!(draw(scale), unit, "scale {scale}");
+    }
+}

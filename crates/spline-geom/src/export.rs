@@ -170,18 +170,23 @@ impl SvgPlot {
                 curve.unit_normal(u),
                 curve.signed_curvature(u),
             ) {
-                teeth.push((p, n * k));
+                teeth.push((p, n, k));
             }
         }
-        let max = teeth.iter().fold(0.0f64, |m, (_, v)| m.max(v.norm()));
+        // |n κ| = |κ|: the curvature itself, not a norm that would underflow for tiny κ.
+        let max = teeth.iter().fold(0.0f64, |m, (_, _, k)| m.max(k.abs()));
         if max == 0.0 || teeth.is_empty() {
             return;
         }
         let (lo, hi) = bounds(curve.control_points());
-        let size = (hi - lo).norm().max(1e-300);
-        let scale = 0.2 * size / max;
+        // A tooth of length 0.2 · size · |κ| / max|κ|, formed without overflow.
+        let size = (hi * 0.5 - lo * 0.5).amax() * 2.0;
         // Teeth point away from the centre of curvature.
-        let segments: Vec<_> = teeth.iter().map(|(p, v)| (*p, p - v * scale)).collect();
+        let segments: Vec<_> = teeth
+            .iter()
+            .map(|(p, n, k)| (*p, p - n * ((k / max) * (0.2 * size))))
+            .filter(|(_, q)| q.x.is_finite() && q.y.is_finite())
+            .collect();
         let ends: Vec<_> = segments.iter().map(|s| s.1).collect();
         self.add_segments(&segments, "comb");
         self.add_polyline(&ends, "comb");
@@ -209,20 +214,29 @@ impl SvgPlot {
         } else {
             bounds(&all)
         };
-        let extent = (hi - lo).map(|x| x.max(1e-12));
+        // Half extents (no overflow for coordinates near ±1e308) and a scale relative to
+        // them, so that pictures of curves of size 1e-300 or 1e300 look like those of size 1.
+        let half = hi * 0.5 - lo * 0.5;
+        let span = half.x.max(half.y * 0.25);
+        let span = if span > 0.0 && span.is_finite() {
+            span
+        } else {
+            1.0
+        };
         let margin = 20.0;
-        let scale = (self.width - 2.0 * margin) / extent.x.max(extent.y * 0.25);
+        let scale = (self.width - 2.0 * margin) / span;
         let top = if self.title.is_some() {
             margin + 24.0
         } else {
             margin
         };
-        let height = (extent.y * scale + margin + top).max(80.0);
+        let height = ((half.y / span) * (self.width - 2.0 * margin) + margin + top).max(80.0);
         let map = |p: &Vector2<f64>| {
-            let x = margin + (p.x - lo.x) * scale;
-            let y = height - margin - (p.y - lo.y) * scale;
+            let x = margin + (p.x * 0.5 - lo.x * 0.5) * scale;
+            let y = height - margin - (p.y * 0.5 - lo.y * 0.5) * scale;
             format!("{x:.2},{y:.2}")
         };
+        let finite = |p: &&Vector2<f64>| p.x.is_finite() && p.y.is_finite();
         let mut out = String::new();
         let _ = writeln!(
             out,
@@ -250,7 +264,7 @@ impl SvgPlot {
         for e in &self.elements {
             match e {
                 Element::Polyline { points, class } => {
-                    let pts: Vec<String> = points.iter().map(map).collect();
+                    let pts: Vec<String> = points.iter().filter(finite).map(map).collect();
                     let _ = writeln!(
                         out,
                         r#"<polyline class="{class}" points="{}"/>"#,
@@ -263,7 +277,7 @@ impl SvgPlot {
                     } else {
                         4.5
                     };
-                    for p in points {
+                    for p in points.iter().filter(finite) {
                         let xy = map(p);
                         let (x, y) = xy.split_once(',').expect("x,y");
                         let _ = writeln!(
@@ -274,7 +288,7 @@ impl SvgPlot {
                 }
                 Element::Segments { segments, class } => {
                     let mut d = String::new();
-                    for (a, b) in segments {
+                    for (a, b) in segments.iter().filter(|(a, b)| finite(&a) && finite(&b)) {
                         let _ = write!(d, "M{}L{}", map(a), map(b));
                     }
                     let _ = writeln!(out, r#"<path class="{class}" d="{d}"/>"#);
