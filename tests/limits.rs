@@ -165,6 +165,19 @@ fn fitting_is_scale_invariant() {
 }
 
 #[test]
+fn tiny_steps_next_to_huge_ones_are_not_coincidences() {
+    // Chord lengths 1 and 1e300 − 1: the middle parameter is 1e-300, not 0.
+    let points = [
+        Vector2::new(0.0, 0.0),
+        Vector2::new(1.0, 0.0),
+        Vector2::new(1e300, 0.0),
+    ];
+    let u: Vec<f64> =
+        spline::fit::parametrize(&points, &spline::fit::Parametrization::Chordal).unwrap();
+    assert!(((u[1] - 1e-300) / 1e-300).abs() < 1e-12, "{u:?}");
+}
+
+#[test]
 fn natural_splines_accept_any_spacing() {
     let y = [0.0, 1.0, 0.5, 2.0, 1.0];
     let unit = spline::fit::natural_spline(&[0.0, 1.0, 2.0, 3.0, 4.0], &y, 6).unwrap();

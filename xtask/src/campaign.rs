@@ -486,6 +486,13 @@ fn mutate_case(rng: &mut Rng, args: &mut Vec<String>, k: usize, dir: &Path) -> R
             let i = *rng.pick(&files);
             let text = std::fs::read_to_string(dir.join(&args[i])).unwrap_or_default();
             let mutated = match serde_json::from_str::<Value>(&text) {
+                // Valid objects at extreme scales reach the numerics, not only the reader.
+                Ok(mut value) if rng.chance(0.4) => {
+                    let factor =
+                        *rng.pick(&[1e150, 1e-150, 1e80, 1e-100, 1e300, 1e-300, 1e154, 1e-200]);
+                    crate::mutate::scale_numbers(&mut value, factor);
+                    value.to_string()
+                }
                 Ok(mut value) if rng.chance(0.8) => {
                     mutate_value(rng, &mut value);
                     value.to_string()

@@ -278,7 +278,10 @@ pub(crate) fn mutate_arg(rng: &mut Rng, arg: &str) -> String {
         }
         _ => {}
     }
-    if rng.chance(0.75) {
+    if arg.parse::<f64>().is_ok() && rng.chance(0.6) {
+        // A number stays a number: counts and values at the edges.
+        (*rng.pick(&EXTREME_TEXT[..26])).to_string()
+    } else if rng.chance(0.75) {
         (*rng.pick(EXTREME_TEXT)).to_string()
     } else {
         // A command-line value is at most 128 KiB (MAX_ARG_STRLEN).

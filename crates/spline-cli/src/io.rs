@@ -271,7 +271,8 @@ impl serde_json::ser::Formatter for FiniteOnly {
     }
 }
 
-const NON_FINITE: &str = "the computation produced non-finite numbers; refusing to print them";
+const NON_FINITE: &str =
+    "the result holds numbers beyond the range of floating point (±1.8e308); nothing printed";
 
 /// Encodes a value as one line of JSON; refuses non-finite numbers.
 ///

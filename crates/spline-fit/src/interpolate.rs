@@ -395,10 +395,10 @@ pub(crate) fn schoenberg_whitney_interpolation<T: Scalar>(
     let k = knots.knots();
     let p = knots.degree();
     let mut message = format!(
-        "Schoenberg–Whitney conditions fail: basis function N_{i} (support [{}, {}]) vanishes at parameter {i} ({})",
+        "the knots do not suit the data (Schoenberg–Whitney conditions fail): data parameter {i} ({}) lies outside the support [{}, {}] of basis function {i}",
+        to_f64(params[i]),
         to_f64(k[i]),
-        to_f64(k[i + p + 1]),
-        to_f64(params[i])
+        to_f64(k[i + p + 1])
     );
     if let Some((a, b)) = empty_span(knots, params) {
         message.push_str(&format!(

@@ -106,7 +106,14 @@ fn spacings<T: Scalar, P: ControlPoint<T>>(
     let largest: T = cast(spline_core::power_of_two_scale(to_f64(largest)));
     for j in 0..pairs {
         let diff = difference(j);
-        let d = P::from_coords(|i| diff.coord(i) / largest).length();
+        // Each length on its own scale first, so that a distance 1e-300 times the largest
+        // is neither squared to zero nor taken for a coincidence.
+        let own = diff.max_abs();
+        let d = if own > T::zero() {
+            (own / largest) * P::from_coords(|i| diff.coord(i) / own).length()
+        } else {
+            T::zero()
+        };
         if !(d > T::zero()) {
             let next = (j + 1) % count;
             return Err(Error::new(
