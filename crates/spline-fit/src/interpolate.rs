@@ -395,7 +395,7 @@ pub(crate) fn schoenberg_whitney_interpolation<T: Scalar>(
     let k = knots.knots();
     let p = knots.degree();
     let mut message = format!(
-        "the knots do not suit the data (Schoenberg–Whitney conditions fail): data parameter {i} ({}) lies outside the support [{}, {}] of basis function {i}",
+        "the knots do not suit the data (Schoenberg–Whitney conditions fail): data parameter {i} ({}) lies outside the support [{}, {}] of basis function N_{i}",
         to_f64(params[i]),
         to_f64(k[i]),
         to_f64(k[i + p + 1])
