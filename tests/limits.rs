@@ -235,3 +235,85 @@ fn large_spheres_have_finite_meshes() {
         );
     }
 }
+
+/// Found by `cargo xtask fuzz` (operations case 0x10000063250): a surface collapsed to one
+/// point put its mesh cells at `i64::MAX`, and looking at the neighbour cell overflowed.
+#[test]
+fn a_surface_collapsed_to_a_point_has_a_mesh() {
+    use spline::geom::Surface;
+    let ku = KnotVector::new(0, vec![0.0, 1.0]).unwrap();
+    let kv = KnotVector::bezier(1, 0.0, 1.0).unwrap();
+    let p = Vector3::new(6.275_481_539_090_808e79, 7.285_165_608_120_564e79, 0.0);
+    let s = Surface::from_net(ku, kv, vec![vec![p, p]]).unwrap();
+    let mesh = s.tessellate(3, 2).unwrap();
+    assert_eq!(mesh.vertices.len(), 1);
+    assert!(mesh.triangles.is_empty());
+}
+
+#[test]
+fn degree_zero_surfaces_take_absurd_counts() {
+    use spline::geom::Surface;
+    let ku = KnotVector::new(0, vec![0.0, 1.0]).unwrap();
+    let kv = KnotVector::bezier(1, 0.0, 1.0).unwrap();
+    let s = Surface::from_net(
+        ku,
+        kv,
+        vec![vec![
+            Vector3::new(1.0, 2.0, 0.0),
+            Vector3::new(1.0, 2.0, 1.0),
+        ]],
+    )
+    .unwrap();
+    for n in ABSURD.into_iter().chain([0, 1, 2, 1000, 1001]) {
+        let _ = s.derivatives(1.0, 0.5, n);
+        for m in [0, 1, 2, 1000, 1001, usize::MAX] {
+            let _ = s.tessellate(n, m);
+        }
+    }
+}
+
+/// Found by `cargo xtask fuzz` (operations case 0xf5000007cfc2): elevating a NURBS curve
+/// whose weights span 600 orders of magnitude made a weight leave the range of floating point
+/// (a debug assertion, and undefined points in release builds). Now: positive finite weights,
+/// or an `InvalidWeight` error.
+#[test]
+fn weights_that_leave_the_range_are_an_error() {
+    let knots = KnotVector::new(
+        5,
+        vec![
+            -2.0, -2.0, -2.0, -2.0, -2.0, -2.0, -1.3, -1.3, -1.3, -0.6, 5.0, 5.0, 5.0, 5.0, 5.0,
+            5.0,
+        ],
+    )
+    .unwrap();
+    let points = [
+        (0.584_564_149_505_611_8, 0.269_047_655_355_222_35),
+        (0.324_126_350_058_802_1, 0.446_212_907_402_325_33),
+        (0.895_256_530_188_131_8, 0.941_150_212_758_212_4),
+        (0.076_976_864_072_404_9, 0.896_335_813_287_530_2),
+        (0.876_777_052_572_013_3, 0.707_735_555_205_347_8),
+        (0.674_213_683_811_411_1, 0.034_425_094_519_878_63),
+        (0.113_401_170_826_119_34, 0.333_544_603_118_668_6),
+        (0.465_652_026_483_341_6, 0.213_695_720_394_528_44),
+        (0.655_520_542_152_885_4, 0.201_742_102_698_170_6),
+        (0.623_188_927_541_590_4, 0.930_874_767_981_53),
+    ];
+    let weights = vec![1.0, 1e-300, 1.0, 1e-300, 1e300, 2.0, 2.0, 0.5, 1e-300, 1.0];
+    let c = NurbsCurve::new(
+        knots,
+        points.iter().map(|&(x, y)| Vector2::new(x, y)).collect(),
+        weights,
+    )
+    .unwrap();
+    let mut errors = 0;
+    for times in 1..=27 {
+        match c.elevate_degree(times) {
+            Ok(r) => assert!(r.weights().iter().all(|w: &f64| *w > 0.0 && w.is_finite())),
+            Err(e) => {
+                assert_eq!(e.kind(), ErrorKind::InvalidWeight, "{e}");
+                errors += 1;
+            }
+        }
+    }
+    assert!(errors > 0);
+}

@@ -28,6 +28,11 @@ use std::panic::{AssertUnwindSafe, catch_unwind};
 use std::path::{Path, PathBuf};
 use std::time::{Duration, Instant};
 
+thread_local! {
+    /// What the `operations` target is doing, for the report of a panic.
+    static CURRENT: std::cell::RefCell<String> = const { std::cell::RefCell::new(String::new()) };
+}
+
 /// The fuzz targets.
 pub(crate) const TARGETS: &[&str] = &["exchange", "points", "operations"];
 
@@ -77,6 +82,7 @@ pub(crate) fn run_case(
         }
         _ => String::new(),
     };
+    CURRENT.with(|current| current.borrow_mut().clear());
     let outcome = catch_unwind(AssertUnwindSafe(|| match target {
         "exchange" => exchange(&input),
         "points" => points(&input),
@@ -91,7 +97,8 @@ pub(crate) fn run_case(
                 .cloned()
                 .or_else(|| payload.downcast_ref::<&str>().map(|s| (*s).to_string()))
                 .unwrap_or_else(|| "panic".into());
-            Err((format!("panicked: {message}"), input))
+            let doing = CURRENT.with(|current| current.borrow().clone());
+            Err((format!("panicked: {message} ({doing})"), input))
         }
     }
 }
@@ -243,6 +250,12 @@ fn operations(rng: &mut Rng) -> Result<(), String> {
     let (a, b) = c.domain();
     let u = param(rng, (a, b));
     let op = rng.below(16);
+    CURRENT.with(|current| {
+        *current.borrow_mut() = format!(
+            "operation {op} at u = {u} on {}",
+            serde_json::json!(spline::geom::exchange::CurveRecord::from_bspline(&c))
+        );
+    });
     operation(rng, op, &c, u).map_err(|e| {
         format!(
             "operation {op} at u = {u} on {}: {e}",
@@ -317,6 +330,11 @@ fn operation(
             let w: Vec<f64> = (0..c.control_points().len())
                 .map(|_| *rng.pick(&[1.0, 0.5, 1e-300, 1e300, 2.0]))
                 .collect();
+            CURRENT.with(|current| {
+                current
+                    .borrow_mut()
+                    .push_str(&format!(" with weights {w:?}"))
+            });
             if let Ok(n) = NurbsCurve::new(c.knots().clone(), c.control_points().to_vec(), w) {
                 if let Ok(d) = n.derivatives(u, count(rng).min(2000)) {
                     finite(d.iter().flat_map(|p| p.iter().copied()))?;
@@ -499,6 +517,17 @@ pub(crate) fn run(root: &Path, args: &[String]) -> Result<(), String> {
                         .parse::<u64>()
                         .map_err(|e| format!("--seconds: {e}"))?,
                 );
+            }
+            "--replay" => {
+                // Re-runs one case (seed as printed, 0x…) with the panic message and backtrace
+                // shown: `cargo xtask fuzz --target operations --replay 0x…`.
+                let text = value("--replay")?;
+                let seed = u64::from_str_radix(text.trim_start_matches("0x"), 16)
+                    .map_err(|e| format!("--replay: {e}"))?;
+                let target = *targets.first().ok_or("--replay needs a --target")?;
+                let corpus = corpus(root, target);
+                return run_case(target, seed, &corpus)
+                    .map_err(|(message, _)| format!("{target} case {seed:#x}: {message}"));
             }
             "--seed" => {
                 seed = value("--seed")?

@@ -239,7 +239,7 @@ impl CurveOperations for Nurbs {
     }
 
     fn for_each_bezier_piece(&self, f: &mut dyn FnMut(Self) -> Result<()>) -> Result<()> {
-        for piece in self.bezier_segments() {
+        for piece in self.bezier_segments()? {
             f(piece)?;
         }
         Ok(())
@@ -347,7 +347,7 @@ pub fn apply_to_surface(
                 .collect::<Vec<_>>()
         ),
         (ToolSurface::Rational(s), Operation::Bezier) => json!(
-            s.bezier_patches()
+            s.bezier_patches()?
                 .into_iter()
                 .map(|row| row
                     .into_iter()

@@ -116,7 +116,12 @@ impl TriangleMesh {
                 for dx in -1..=1 {
                     for dy in -1..=1 {
                         for dz in -1..=1 {
-                            if let Some(list) = cells.get(&[c.x + dx, c.y + dy, c.z + dz]) {
+                            let cell = [
+                                c.x.saturating_add(dx),
+                                c.y.saturating_add(dy),
+                                c.z.saturating_add(dz),
+                            ];
+                            if let Some(list) = cells.get(&cell) {
                                 if let Some(&k) = list
                                     .iter()
                                     .find(|&&k| (vertices[k] - p).amax() <= tolerance)

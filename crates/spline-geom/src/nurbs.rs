@@ -152,6 +152,23 @@ fn rational_curve_derivatives<T: Scalar, const D: usize>(
     Ok(())
 }
 
+/// [`ErrorKind::InvalidWeight`] when a weight of a computed NURBS object is not positive and
+/// finite, or a point is not finite (weights spanning too many orders of magnitude).
+fn check_result_weights<T: Scalar, const D: usize>(points: &[Homogeneous<T, D>]) -> Result<()> {
+    if points.iter().all(|h| {
+        h.weight > T::zero()
+            && h.weight.is_finite()
+            && h.point.iter().all(nalgebra::ComplexField::is_finite)
+    }) {
+        Ok(())
+    } else {
+        Err(Error::new(
+            ErrorKind::InvalidWeight,
+            "a weight of the result is zero or too large for floating point: the weights span too many orders of magnitude",
+        ))
+    }
+}
+
 fn derivative_overflow(order: usize) -> Error {
     Error::new(
         ErrorKind::NonFinite,
@@ -331,6 +348,14 @@ impl<T: Scalar, const D: usize> NurbsCurve<T, D> {
     pub(crate) fn new_unchecked(curve: BSpline<T, Homogeneous<T, D>>) -> Self {
         debug_assert!(curve.control_points().iter().all(|h| h.weight > T::zero()));
         Self { curve }
+    }
+
+    /// The result of a structural operation in homogeneous space: positive weights in theory
+    /// (positive combinations of positive weights), but weights spanning hundreds of orders of
+    /// magnitude can underflow to zero.
+    fn checked(curve: BSpline<T, Homogeneous<T, D>>) -> Result<Self> {
+        check_result_weights(curve.control_points())?;
+        Ok(Self { curve })
     }
 
     /// The homogeneous B-spline curve (6.4) whose projection this curve is.
@@ -530,7 +555,7 @@ impl<T: Scalar, const D: usize> NurbsCurve<T, D> {
     /// # Errors
     /// As [`BSpline::insert_knot`].
     pub fn insert_knot(&self, u: T, times: usize) -> Result<Self> {
-        Ok(Self::new_unchecked(self.curve.insert_knot(u, times)?))
+        Self::checked(self.curve.insert_knot(u, times)?)
     }
 
     /// Inserts many knots at once (knot refinement), in homogeneous space.
@@ -538,7 +563,7 @@ impl<T: Scalar, const D: usize> NurbsCurve<T, D> {
     /// # Errors
     /// As [`BSpline::refine`].
     pub fn refine(&self, knots: &[T]) -> Result<Self> {
-        Ok(Self::new_unchecked(self.curve.refine(knots)?))
+        Self::checked(self.curve.refine(knots)?)
     }
 
     /// Removes the interior knot `u` `times` times if the curve moves by at most `tolerance`
@@ -562,7 +587,7 @@ impl<T: Scalar, const D: usize> NurbsCurve<T, D> {
             (u, times),
             tolerance,
         )?;
-        Ok(Self::new_unchecked(removed))
+        Self::checked(removed)
     }
 
     /// [`NurbsCurve::remove_knot_within`] with a tolerance relative to the size of the
@@ -580,7 +605,7 @@ impl<T: Scalar, const D: usize> NurbsCurve<T, D> {
     /// # Errors
     /// As [`BSpline::elevate_degree`].
     pub fn elevate_degree(&self, times: usize) -> Result<Self> {
-        Ok(Self::new_unchecked(self.curve.elevate_degree(times)?))
+        Self::checked(self.curve.elevate_degree(times)?)
     }
 
     /// Splits at `u` into two curves clamped at `u`.
@@ -589,7 +614,7 @@ impl<T: Scalar, const D: usize> NurbsCurve<T, D> {
     /// As [`BSpline::split`].
     pub fn split(&self, u: T) -> Result<(Self, Self)> {
         let (a, b) = self.curve.split(u)?;
-        Ok((Self::new_unchecked(a), Self::new_unchecked(b)))
+        Ok((Self::checked(a)?, Self::checked(b)?))
     }
 
     /// The same curve with clamped knots.
@@ -614,12 +639,15 @@ impl<T: Scalar, const D: usize> NurbsCurve<T, D> {
 
     /// The rational Bézier segments, one per non-empty knot span, each a clamped NURBS curve
     /// on its span.
-    #[must_use]
-    pub fn bezier_segments(&self) -> Vec<Self> {
+    ///
+    /// # Errors
+    /// [`ErrorKind::InvalidWeight`] when a weight underflows to zero (weights spanning
+    /// hundreds of orders of magnitude).
+    pub fn bezier_segments(&self) -> Result<Vec<Self>> {
         self.curve
             .bezier_segments()
             .into_iter()
-            .map(|b| Self::new_unchecked(bezier_as_bspline(&b)))
+            .map(|b| Self::checked(bezier_as_bspline(&b)))
             .collect()
     }
 }
@@ -734,6 +762,12 @@ impl<T: Scalar, const D: usize> NurbsSurface<T, D> {
                 .all(|h| h.weight > T::zero())
         );
         Self { surface }
+    }
+
+    /// See [`NurbsCurve::checked`].
+    fn checked(surface: Surface<T, Homogeneous<T, D>>) -> Result<Self> {
+        check_result_weights(surface.control_points())?;
+        Ok(Self { surface })
     }
 
     /// The homogeneous surface whose projection this surface is.
@@ -921,9 +955,7 @@ impl<T: Scalar, const D: usize> NurbsSurface<T, D> {
     /// # Errors
     /// As [`Surface::insert_knot`].
     pub fn insert_knot(&self, direction: Direction, t: T, times: usize) -> Result<Self> {
-        Ok(Self::new_unchecked(
-            self.surface.insert_knot(direction, t, times)?,
-        ))
+        Self::checked(self.surface.insert_knot(direction, t, times)?)
     }
 
     /// Inserts many knots in `direction`, in homogeneous space.
@@ -931,7 +963,7 @@ impl<T: Scalar, const D: usize> NurbsSurface<T, D> {
     /// # Errors
     /// As [`Surface::refine`].
     pub fn refine(&self, direction: Direction, knots: &[T]) -> Result<Self> {
-        Ok(Self::new_unchecked(self.surface.refine(direction, knots)?))
+        Self::checked(self.surface.refine(direction, knots)?)
     }
 
     /// Removes the interior knot `t` of `direction` `times` times if the surface moves by at
@@ -960,7 +992,7 @@ impl<T: Scalar, const D: usize> NurbsSurface<T, D> {
             tolerance,
         )
         .map_err(|e| e.context(format_args!("direction {direction}")))?;
-        Ok(Self::new_unchecked(removed))
+        Self::checked(removed)
     }
 
     /// [`NurbsSurface::remove_knot_within`] with a tolerance relative to the size of the
@@ -984,9 +1016,7 @@ impl<T: Scalar, const D: usize> NurbsSurface<T, D> {
     /// # Errors
     /// As [`Surface::elevate_degree`].
     pub fn elevate_degree(&self, direction: Direction, times: usize) -> Result<Self> {
-        Ok(Self::new_unchecked(
-            self.surface.elevate_degree(direction, times)?,
-        ))
+        Self::checked(self.surface.elevate_degree(direction, times)?)
     }
 
     /// Splits at `t` in `direction` into two surfaces clamped at `t`.
@@ -995,7 +1025,7 @@ impl<T: Scalar, const D: usize> NurbsSurface<T, D> {
     /// As [`Surface::split`].
     pub fn split(&self, direction: Direction, t: T) -> Result<(Self, Self)> {
         let (a, b) = self.surface.split(direction, t)?;
-        Ok((Self::new_unchecked(a), Self::new_unchecked(b)))
+        Ok((Self::checked(a)?, Self::checked(b)?))
     }
 
     /// The same surface with clamped knots in both directions.
@@ -1028,12 +1058,14 @@ impl<T: Scalar, const D: usize> NurbsSurface<T, D> {
 
     /// The rational Bézier patches, `[a][b]` over the `a`-th non-empty span in `u` and the
     /// `b`-th in `v`.
-    #[must_use]
-    pub fn bezier_patches(&self) -> Vec<Vec<Self>> {
+    ///
+    /// # Errors
+    /// As [`NurbsCurve::bezier_segments`].
+    pub fn bezier_patches(&self) -> Result<Vec<Vec<Self>>> {
         self.surface
             .bezier_patches()
             .into_iter()
-            .map(|row| row.into_iter().map(Self::new_unchecked).collect())
+            .map(|row| row.into_iter().map(Self::checked).collect())
             .collect()
     }
 }

@@ -892,7 +892,7 @@ fn structural_operations_keep_a_sphere_on_the_sphere() {
         s.elevate_degree(Direction::V, 1).unwrap(),
         s.elevate_degree(Direction::U, 2).unwrap(),
         s.split(Direction::U, 0.4).unwrap().1,
-        s.bezier_patches()[1][2].clone(),
+        s.bezier_patches().unwrap()[1][2].clone(),
     ];
     let mut rng = Rng(6);
     for o in &ops {

@@ -223,7 +223,7 @@ proptest! {
                 prop_assert!((rev.eval(a + b - x).unwrap() - c.eval(x).unwrap()).norm() < 1e-11);
             }
         }
-        for seg in c.bezier_segments() {
+        for seg in c.bezier_segments().unwrap() {
             let (s0, s1) = seg.domain();
             prop_assert_eq!(seg.len(), c.degree() + 1);
             for i in 0..=8 {
@@ -265,7 +265,7 @@ proptest! {
                 }
             }
         }
-        for (a_idx, row) in s.bezier_patches().iter().enumerate() {
+        for (a_idx, row) in s.bezier_patches().unwrap().iter().enumerate() {
             for patch in row {
                 let ((u0, u1), (v0, v1)) = patch.domain();
                 let (u, v) = ((u0 + u1) / 2.0, (v0 + v1) / 2.0);
