@@ -333,7 +333,7 @@ fn operation(
             CURRENT.with(|current| {
                 current
                     .borrow_mut()
-                    .push_str(&format!(" with weights {w:?}"))
+                    .push_str(&format!(" with weights {w:?}"));
             });
             if let Ok(n) = NurbsCurve::new(c.knots().clone(), c.control_points().to_vec(), w) {
                 if let Ok(d) = n.derivatives(u, count(rng).min(2000)) {
