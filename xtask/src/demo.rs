@@ -20,7 +20,7 @@ use spline::fit::{
 use spline::geom::Curve2;
 use spline::geom::exchange::parse_points;
 use spline::geom::export::SvgPlot;
-use spline::shape::{EraserOptions, erase_curvature_extrema};
+use spline::shape::{SmoothingOptions, smooth};
 use std::path::Path;
 
 const AIRFOIL: &str = "clarkv";
@@ -74,24 +74,20 @@ pub(crate) fn run(root: &Path) -> Result<(), String> {
     );
 
     // The eraser: one curvature maximum, at the nose.
-    let smoothed = erase_curvature_extrema(&points, &EraserOptions::new(CONTROL_POINTS, 1))
-        .map_err(|e| e.to_string())?;
-    let nose = smoothed
-        .curve
-        .eval(smoothed.extremum_params[0])
-        .map_err(|e| e.to_string())?;
+    let smoothed =
+        smooth(&points, &SmoothingOptions::new(CONTROL_POINTS)).map_err(|e| e.to_string())?;
+    let nose = smoothed.extrema[0].point;
     println!(
-        "smoothed (selective eraser, thesis ch. 6): max deviation {:.2} mm at data point {}, rms {:.2} mm; {} curvature extremum at u = {:.4} (x = {:.4}, y = {:.4}), {} inflection(s); {} barrier steps, {} Newton steps",
-        smoothed.max_deviation * 1e3,
-        smoothed.max_deviation_index,
-        smoothed.rms_deviation * 1e3,
-        smoothed.curvature_extrema.len(),
-        smoothed.extremum_params[0],
+        "smoothed (selective eraser, thesis ch. 6): max deviation {:.2} mm at data point {} (curve to data {:.2} mm), rms {:.2} mm; {} curvature extremum at u = {:.4} (x = {:.4}, y = {:.4}), {} inflection(s)",
+        smoothed.deviation.to_curve.max * 1e3,
+        smoothed.deviation.to_curve.max_index,
+        smoothed.deviation.to_data * 1e3,
+        smoothed.deviation.to_curve.rms * 1e3,
+        smoothed.extrema.len(),
+        smoothed.extrema[0].param,
         nose.x,
         nose.y,
         smoothed.inflections.len(),
-        smoothed.solver.outer_iterations,
-        smoothed.solver.newton_iterations,
     );
     println!("smoothed curve (exchange format):");
     println!(

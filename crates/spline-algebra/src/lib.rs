@@ -58,6 +58,7 @@ mod curves;
 mod maps;
 mod product;
 mod roots;
+mod segment_curvature;
 mod sparse;
 mod tensor;
 
@@ -73,6 +74,7 @@ pub use product::{
     linear_combination, product, product_knots, product_with_jacobians, scale, square, sum, wedge,
 };
 pub use roots::{Zero, sign_changes, zeros};
+pub use segment_curvature::{SegmentCurvature, SegmentWorkspace};
 pub use tensor::{
     Partial, QuadraticFunction, TensorMap, TensorProductMap, hessian_determinant, partial,
     partials, ridge_polynomials, tensor_linear_combination, tensor_product,

@@ -3,10 +3,10 @@
 use crate::io;
 use clap::Args;
 use nalgebra::Vector2;
-use serde_json::json;
+use serde_json::{Value, json};
 use spline_core::{Error, ErrorKind, Result};
 use spline_geom::exchange::CurveRecord;
-use spline_shape::{EraserOptions, erase_curvature_extrema};
+use spline_shape::{Extremum, Objective, SmoothedCurve, SmoothingOptions, smooth as erase};
 
 #[derive(Args)]
 pub struct SmoothArgs {
@@ -18,17 +18,29 @@ pub struct SmoothArgs {
     /// Degree of the curve (at least 3).
     #[arg(long, default_value_t = 3)]
     degree: usize,
-    /// Number of curvature extrema the curve may have.
+    /// Number of curvature extrema the curve may have (alternating maximum, minimum, …,
+    /// placed automatically); --extremum gives them one by one instead.
     #[arg(long)]
-    curvature_extrema: usize,
-    /// Where the extrema sit, as a JSON array of chord-length parameters in (0, 1); by default
-    /// the strongest extrema of the least-squares fit.
-    #[arg(long)]
-    extremum_at: Option<String>,
-    /// Whether the curvature increases on the first piece (default: as in the least-squares
-    /// fit).
-    #[arg(long)]
-    increasing_first: Option<bool>,
+    curvature_extrema: Option<usize>,
+    /// An allowed extremum: max, min, max@U or min@U (U in (0, 1)); repeat in the order of
+    /// the data.
+    #[arg(long = "extremum", value_name = "KIND[@U]")]
+    extrema: Vec<String>,
+    /// What is minimised: the largest deviation (default) or the sum of squares.
+    #[arg(long, default_value = "max")]
+    objective: String,
+    /// Rounds of constrained solve and parameter correction, at most.
+    #[arg(long, default_value_t = 40)]
+    rounds: usize,
+    /// Exponent β of the knot density |C′| (κ L + c)^β (0: knots uniform in arc length).
+    #[arg(long, default_value_t = 0.5)]
+    knot_exponent: f64,
+    /// Floor c of the knot density.
+    #[arg(long, default_value_t = 0.6)]
+    knot_floor: f64,
+    /// Stop after this many rounds without improvement.
+    #[arg(long, default_value_t = 6)]
+    patience: usize,
 }
 
 pub fn smooth(args: &SmoothArgs) -> Result<()> {
@@ -46,21 +58,62 @@ pub fn smooth(args: &SmoothArgs) -> Result<()> {
             )),
         })
         .collect::<Result<Vec<_>>>()?;
-    let mut options = EraserOptions::new(args.control_points, args.curvature_extrema);
+    let mut options = SmoothingOptions::new(args.control_points);
     options.degree = args.degree;
-    options.increasing_first = args.increasing_first;
-    if let Some(text) = &args.extremum_at {
-        options.extremum_params = Some(io::parse_arg("--extremum-at", text)?);
+    options.max_rounds = args.rounds;
+    options.knot_exponent = args.knot_exponent;
+    options.knot_floor = args.knot_floor;
+    options.patience = args.patience;
+    options.objective = match args.objective.as_str() {
+        "max" => Objective::MaxDeviation,
+        "lsq" | "least-squares" => Objective::LeastSquares,
+        other => {
+            return Err(Error::new(
+                ErrorKind::InvalidArgument,
+                format!("--objective: unknown choice {other:?} (max or least-squares)"),
+            ));
+        }
+    };
+    if !args.extrema.is_empty() {
+        options.extrema = args
+            .extrema
+            .iter()
+            .map(|t| t.parse::<Extremum>())
+            .collect::<Result<_>>()?;
+    } else if let Some(k) = args.curvature_extrema {
+        options.extrema = (0..k)
+            .map(|i| {
+                if i % 2 == 0 {
+                    Extremum::maximum()
+                } else {
+                    Extremum::minimum()
+                }
+            })
+            .collect();
     }
-    let result = erase_curvature_extrema(&points, &options)?;
-    io::print_json(&json!({
+    let result = erase(&points, &options)?;
+    io::print_json(&report(&result))
+}
+
+fn report(result: &SmoothedCurve) -> Value {
+    json!({
         "curve": CurveRecord::from_bspline(&result.curve),
-        "max_deviation": result.max_deviation,
-        "max_deviation_index": result.max_deviation_index,
-        "rms_deviation": result.rms_deviation,
-        "curvature_extrema": result.curvature_extrema,
+        "max_deviation": result.deviation.to_curve.max,
+        "max_deviation_index": result.deviation.to_curve.max_index,
+        "max_deviation_to_data": result.deviation.to_data,
+        "rms": result.deviation.to_curve.rms,
+        "curvature_extrema": result.extrema.iter().map(|e| e.param).collect::<Vec<_>>(),
+        "extrema": result.extrema.iter().map(|e| json!({
+            "u": e.param,
+            "point": [e.point.x, e.point.y],
+            "kind": e.kind.to_string(),
+        })).collect::<Vec<_>>(),
         "inflections": result.inflections,
-        "extremum_params": result.extremum_params,
-        "least_squares_curvature_extrema": result.least_squares_extrema,
-    }))
+        "control_points": result.curve.control_points().len(),
+        "refinements": result.refinements,
+        "rounds": result.rounds,
+        "start_extrema": result.start_extrema,
+        "conditions": result.conditions,
+        "newton_steps": result.newton_steps,
+    })
 }

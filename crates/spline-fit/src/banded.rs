@@ -335,6 +335,13 @@ impl<T: Scalar> BandCholesky<T> {
         self.bw
     }
 
+    /// The entry $A_{ij}$ for `j ≤ i` within the band (before factoring).
+    #[inline]
+    pub(crate) fn lower(&self, i: usize, j: usize) -> T {
+        debug_assert!(j <= i && i - j <= self.bw);
+        self.data[i * (self.bw + 1) + (i - j)]
+    }
+
     /// Adds `value` to $A_{ij}$ for `j ≤ i` (the lower triangle).
     #[inline]
     pub(crate) fn add_lower(&mut self, i: usize, j: usize, value: T) {

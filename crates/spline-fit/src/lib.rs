@@ -38,6 +38,8 @@
 mod banded;
 mod bezier;
 mod correction;
+mod feature_knots;
+mod hausdorff;
 mod interpolate;
 mod lsq;
 mod natural;
@@ -51,14 +53,16 @@ pub use correction::{
     CorrectionOptions, CorrectionReport, MAX_CORRECTION_ITERATIONS, correct_parameters,
     correct_parameters_bezier,
 };
+pub use feature_knots::{curvature_knots, curvature_knots_with};
+pub use hausdorff::{TwoSidedDeviation, two_sided_deviation};
 pub use interpolate::{
     InterpolationOptions, interpolate, interpolate_closed, interpolate_function,
     interpolate_with_knots,
 };
-pub use lsq::{LeastSquares, LsqMethod, approximate};
+pub use lsq::{LeastSquares, LsqMethod, NormalEquations, approximate};
 pub use natural::{natural_cubic, natural_spline};
 pub use params::{KnotChoice, Parametrization, nurbs_book_knots, parametrize, parametrize_closed};
-pub use project::{Projection, closest_point};
+pub use project::{Projection, closest_point, project_ordered};
 pub use report::{CurveFit, Deviation, deviation};
 pub use surface::{
     SurfaceFit, approximate_surface_grid, approximate_surface_scattered, interpolate_surface,

@@ -317,8 +317,87 @@ impl<'a, T: Scalar, P: ControlPoint<T>> LeastSquares<'a, T, P> {
         Ok(())
     }
 
+    /// The normal equations $A^T W^2 A\, c = A^T W^2 Q$ of the problem (with the smoothing
+    /// term), assembled but not solved: the quadratic objective
+    /// $f_0(c) = \tfrac12 \sum_k w_k^2 \lVert C(\bar u_k) - Q_k \rVert^2 + \tfrac\lambda2 \int \lVert C'' \rVert^2$
+    /// for methods that minimise it under other constraints (the selective eraser).
+    ///
+    /// # Errors
+    /// As [`LeastSquares::solve`], except the Schoenberg–Whitney and singular-system errors
+    /// (nothing is factored: [`NormalEquations::solve`] reports them);
+    /// [`ErrorKind::InvalidArgument`] if control points or coordinates are fixed or the ends
+    /// pinned (the normal equations are those of the free problem).
+    pub fn normal_equations(&self) -> Result<NormalEquations<T, P>> {
+        self.validate()?;
+        if self.pin_ends || !self.fixed_points.is_empty() || !self.fixed_coords.is_empty() {
+            return Err(Error::new(
+                ErrorKind::InvalidArgument,
+                "normal equations are available for problems without fixed control points",
+            ));
+        }
+        let n = self.knots.num_basis();
+        let free = vec![true; n];
+        let values = vec![P::origin(); n];
+        // Assembled, not solved: the Schoenberg–Whitney conditions are the solver's concern.
+        let plain = Self {
+            method: LsqMethod::NormalEquations,
+            check_sw: false,
+            ..self.clone()
+        };
+        let (matrix, rhs) = match plain.assemble_group(&free, &values)? {
+            (Sink::Normal(matrix, rhs), _) => (matrix, rhs),
+            (Sink::Qr(_), _) => unreachable!("normal equations requested"),
+        };
+        let half: T = cast(0.5);
+        let constant = self
+            .points
+            .iter()
+            .enumerate()
+            .map(|(k, q)| {
+                let w = self.weights.map_or_else(T::one, |w| w[k]);
+                w * w * q.length_squared()
+            })
+            .fold(T::zero(), |a, b| a + b)
+            * half;
+        Ok(NormalEquations {
+            knots: self.knots.clone(),
+            matrix,
+            rhs,
+            constant,
+        })
+    }
+
     /// Solves for the control points flagged in `free`, the others taking `values`.
     fn solve_group(&self, free: &[bool], values: &[P]) -> Result<Vec<P>> {
+        let n = self.knots.num_basis();
+        if !free.iter().any(|&f| f) {
+            return Ok(values.to_vec());
+        }
+        let (sink, column) = self.assemble_group(free, values)?;
+        let names: Vec<usize> = (0..n).filter(|&i| free[i]).collect();
+        let what = |c: usize| format!("control point {}", names[c]);
+        let solution = match sink {
+            Sink::Normal(mut matrix, mut rhs) => {
+                matrix.factor(&what)?;
+                matrix.solve(&mut rhs);
+                rhs
+            }
+            Sink::Qr(qr) => qr.solve(&what)?,
+        };
+        Ok((0..n)
+            .map(|i| {
+                if free[i] {
+                    solution[column[i]]
+                } else {
+                    values[i]
+                }
+            })
+            .collect())
+    }
+
+    /// Accumulates the system for the control points flagged in `free` (the others taking
+    /// `values`), with the compressed column of each free control point.
+    fn assemble_group(&self, free: &[bool], values: &[P]) -> Result<(Sink<T, P>, Vec<usize>)> {
         let knots = &self.knots;
         let n = knots.num_basis();
         let p = knots.degree();
@@ -333,10 +412,11 @@ impl<'a, T: Scalar, P: ControlPoint<T>> LeastSquares<'a, T, P> {
                 unknowns += 1;
             }
         }
-        let names: Vec<usize> = (0..n).filter(|&i| free[i]).collect();
-        let what = |c: usize| format!("control point {}", names[c]);
         if unknowns == 0 {
-            return Ok(values.to_vec());
+            return Err(Error::new(
+                ErrorKind::InvalidArgument,
+                "every control point is fixed: nothing to fit",
+            ));
         }
         let mut sink = match self.method {
             LsqMethod::NormalEquations => Sink::Normal(
@@ -456,23 +536,7 @@ impl<'a, T: Scalar, P: ControlPoint<T>> LeastSquares<'a, T, P> {
                 }
             }
         }
-        let solution = match sink {
-            Sink::Normal(mut matrix, mut rhs) => {
-                matrix.factor(&what)?;
-                matrix.solve(&mut rhs);
-                rhs
-            }
-            Sink::Qr(qr) => qr.solve(&what)?,
-        };
-        Ok((0..n)
-            .map(|i| {
-                if free[i] {
-                    solution[column[i]]
-                } else {
-                    values[i]
-                }
-            })
-            .collect())
+        Ok((sink, column))
     }
 
     fn sw_error(&self, i: usize) -> Error {
@@ -502,6 +566,107 @@ impl<'a, T: Scalar, P: ControlPoint<T>> LeastSquares<'a, T, P> {
             }
         }
         Error::new(ErrorKind::SchoenbergWhitney, message)
+    }
+}
+
+/// The assembled normal equations of a least-squares problem
+/// ([`LeastSquares::normal_equations`]): the banded Gram matrix $G = A^T W^2 A$ (plus the
+/// smoothing term), the right-hand side $r = A^T W^2 Q$ and the constant
+/// $\tfrac12 \sum_k w_k^2 \lVert Q_k \rVert^2$, so that the objective is
+/// $f_0(c) = \tfrac12 c^T G c - r^T c + \text{constant}$ (coordinate by coordinate).
+#[derive(Clone, Debug)]
+pub struct NormalEquations<T, P> {
+    knots: KnotVector<T>,
+    matrix: BandCholesky<T>,
+    rhs: Vec<P>,
+    constant: T,
+}
+
+impl<T: Scalar, P: ControlPoint<T>> NormalEquations<T, P> {
+    /// The knot vector of the fit.
+    #[must_use]
+    pub fn knots(&self) -> &KnotVector<T> {
+        &self.knots
+    }
+
+    /// The number of control points `n` (the size of `G`).
+    #[must_use]
+    pub fn len(&self) -> usize {
+        self.rhs.len()
+    }
+
+    /// Whether there are no unknowns (never, for a valid knot vector).
+    #[must_use]
+    pub fn is_empty(&self) -> bool {
+        self.rhs.is_empty()
+    }
+
+    /// The half-bandwidth of `G` (the degree).
+    #[must_use]
+    pub fn bandwidth(&self) -> usize {
+        self.matrix.bandwidth()
+    }
+
+    /// The entry $G_{ij}$ (zero outside the band).
+    ///
+    /// # Panics
+    /// If `i` or `j` is not below [`Self::len`].
+    #[must_use]
+    pub fn gram(&self, i: usize, j: usize) -> T {
+        let n = self.len();
+        assert!(i < n && j < n, "index ({i}, {j}) outside a {n} × {n} matrix");
+        let (i, j) = if j <= i { (i, j) } else { (j, i) };
+        if i - j > self.bandwidth() {
+            T::zero()
+        } else {
+            self.matrix.lower(i, j)
+        }
+    }
+
+    /// The right-hand side $r = A^T W^2 Q$.
+    #[must_use]
+    pub fn rhs(&self) -> &[P] {
+        &self.rhs
+    }
+
+    /// The constant $\tfrac12 \sum_k w_k^2 \lVert Q_k \rVert^2$.
+    #[must_use]
+    pub fn constant(&self) -> T {
+        self.constant
+    }
+
+    /// The objective $\tfrac12 c^T G c - r^T c + \text{constant}$ at the control points
+    /// `control` (not negative up to rounding).
+    ///
+    /// # Panics
+    /// If `control` does not have [`Self::len`] points.
+    #[must_use]
+    pub fn objective(&self, control: &[P]) -> T {
+        assert_eq!(control.len(), self.len(), "one control point per unknown");
+        let half: T = cast(0.5);
+        let mut quadratic = T::zero();
+        let mut linear = T::zero();
+        let bw = self.bandwidth();
+        for i in 0..self.len() {
+            quadratic += control[i].dot(&control[i]) * self.matrix.lower(i, i) * half;
+            for j in i.saturating_sub(bw)..i {
+                quadratic += control[i].dot(&control[j]) * self.matrix.lower(i, j);
+            }
+            linear += self.rhs[i].dot(&control[i]);
+        }
+        quadratic - linear + self.constant
+    }
+
+    /// The unconstrained minimiser (the least-squares control points).
+    ///
+    /// # Errors
+    /// [`ErrorKind::SingularSystem`] when the data do not determine every control point.
+    pub fn solve(&self) -> Result<Vec<P>> {
+        let mut matrix = self.matrix.clone();
+        matrix.factor(&|i| format!("control point {i}"))?;
+        let mut x = self.rhs.clone();
+        matrix.solve(&mut x);
+        Ok(x)
     }
 }
 

@@ -143,6 +143,65 @@ pub fn closest_point<T: Scalar, P: ControlPoint<T>>(
     Ok(best)
 }
 
+/// Foot points of ordered data on a curve, from given parameters: for each point in turn, a
+/// safeguarded Newton iteration on $\langle C(u) - Q_k, C'(u) \rangle$ started at its
+/// parameter and kept between the new parameter of the previous point and the old one of
+/// the next, so that the parameters stay in order and each distance never grows. The step of
+/// parameter correction that moves each data point's parameter to its (local) closest point;
+/// [`closest_point`] is the global search.
+///
+/// ```
+/// use nalgebra::Vector2;
+/// use spline_fit::project_ordered;
+/// use spline_geom::BSpline;
+/// let line = BSpline::from_knots(
+///     1, vec![0.0, 0.0, 1.0, 1.0], vec![Vector2::new(0.0, 0.0), Vector2::new(2.0, 0.0)])?;
+/// let points = [Vector2::new(0.2, 1.0), Vector2::new(1.0, -1.0), Vector2::new(1.9, 0.5)];
+/// let params = project_ordered(&line, &points, &[0.0, 0.5, 1.0])?;
+/// assert!((params[0] - 0.1).abs() < 1e-12 && (params[2] - 0.95).abs() < 1e-12);
+/// # Ok::<(), spline_core::Error>(())
+/// ```
+///
+/// # Errors
+/// [`ErrorKind::InvalidLength`] unless there is one parameter per point;
+/// [`ErrorKind::UnsortedKnots`] for decreasing parameters; [`ErrorKind::OutOfDomain`] for
+/// parameters outside the curve's domain; [`ErrorKind::NonFinite`] for points that are not
+/// finite.
+pub fn project_ordered<T: Scalar, P: ControlPoint<T>>(
+    curve: &BSpline<T, P>,
+    points: &[P],
+    params: &[T],
+) -> Result<Vec<T>> {
+    if points.len() != params.len() {
+        return Err(Error::new(
+            ErrorKind::InvalidLength,
+            format!("{} parameters for {} points", params.len(), points.len()),
+        ));
+    }
+    spline_core::check_params(params)?;
+    for (k, &u) in params.iter().enumerate() {
+        curve
+            .knots()
+            .check_param(u)
+            .map_err(|e| e.context(format_args!("data point {k}")))?;
+    }
+    if let Some(k) = points.iter().position(|q| !q.all_finite()) {
+        return Err(Error::new(
+            ErrorKind::NonFinite,
+            format!("data point {k} is not finite"),
+        ));
+    }
+    let (a, b) = curve.domain();
+    let mut out = params.to_vec();
+    for k in 0..points.len() {
+        let lo = if k == 0 { a } else { out[k - 1] };
+        let hi = if k + 1 == points.len() { b } else { params[k + 1] };
+        let start = out[k].max(lo).min(hi);
+        out[k] = newton_from(curve, &points[k], start, lo, hi)?.0;
+    }
+    Ok(out)
+}
+
 /// Safeguarded Newton iteration for the closest point on `[lo, hi]`.
 fn newton<T: Scalar, P: ControlPoint<T>>(
     curve: &BSpline<T, P>,
@@ -164,9 +223,25 @@ fn newton<T: Scalar, P: ControlPoint<T>>(
         if fc < f {
             t = cand;
             f = fc;
-            ders = d;
         }
     }
+    newton_from(curve, target, t, lo, hi)
+}
+
+/// Safeguarded Newton iteration for the closest point on `[lo, hi]` from `t`.
+fn newton_from<T: Scalar, P: ControlPoint<T>>(
+    curve: &BSpline<T, P>,
+    target: &P,
+    start: T,
+    lo: T,
+    hi: T,
+) -> Result<(T, P)> {
+    let half: T = cast(0.5);
+    let mut ders = [P::origin(); 3];
+    let dist2 = |ders: &[P; 3]| (ders[0] - *target).length_squared();
+    let mut t = start;
+    curve.derivatives_into(t, &mut ders)?;
+    let mut f = dist2(&ders);
     let width = hi - lo;
     let eps = T::default_epsilon();
     let slack = T::one() + eps * cast::<T>(8.0);

@@ -8,7 +8,7 @@
 //! shifted by a multiple of the identity until its Cholesky factorisation succeeds.
 //! A phase-I problem finds a strictly feasible start when the given one is not.
 
-use nalgebra::DVector;
+use nalgebra::{DMatrix, DVector};
 use nalgebra_sparse::factorization::CscCholesky;
 use nalgebra_sparse::{CooMatrix, CscMatrix, CsrMatrix};
 use spline_core::{Error, ErrorKind, Result};
@@ -35,6 +35,17 @@ pub trait BarrierProblem {
         x: &DVector<f64>,
         weights: &DVector<f64>,
     ) -> Option<CsrMatrix<f64>>;
+    /// Adds $\sum_i w_i \nabla^2 f_i(x)$ to the dense matrix `out` and returns `true`, for
+    /// problems that assemble their Hessian blocks faster that way; the default returns
+    /// `false` and the solver uses [`BarrierProblem::weighted_constraint_hessian`].
+    fn add_weighted_constraint_hessian(
+        &self,
+        _x: &DVector<f64>,
+        _weights: &DVector<f64>,
+        _out: &mut DMatrix<f64>,
+    ) -> bool {
+        false
+    }
 }
 
 /// Settings of [`minimize`].
@@ -203,7 +214,7 @@ type StopRule<'a> = &'a dyn Fn(&DVector<f64>) -> bool;
 
 /// Newton's method on the barrier objective for fixed `t`; returns the number of steps.
 /// `stop` ends the centring early once an iterate satisfies it.
-fn centre(
+pub(crate) fn centre(
     problem: &impl BarrierProblem,
     x: &mut DVector<f64>,
     t: f64,
@@ -211,6 +222,9 @@ fn centre(
     stop: Option<StopRule<'_>>,
 ) -> Result<usize> {
     let n = problem.dimension();
+    if n <= DENSE_LIMIT {
+        return centre_trust_region(problem, x, t, options, stop);
+    }
     for step in 0..options.max_newton_iterations {
         let c = problem.constraints(x);
         let jac = problem.constraint_jacobian(x);
@@ -223,36 +237,28 @@ fn centre(
                 "the barrier gradient is not finite",
             ));
         }
-        // Hessian: t ∇²f0 + Σ ∇f_i ∇f_iᵀ / f_i² + Σ ∇²f_i / (−f_i).
-        let mut coo = CooMatrix::new(n, n);
+        // Hessian: t ∇²f0 + Σ ∇f_i ∇f_iᵀ / f_i² + Σ ∇²f_i / (−f_i). With the curvature of
+        // the constraints when that keeps the Newton matrix positive definite; otherwise the
+        // Gauss–Newton matrix t∇²f0 + Σ ∇f_i∇f_iᵀ/f_i² (positive semi-definite) with a small
+        // shift — the standard remedy for non-convex constraints.
+        let mut system = NewtonSystem::new(n);
         for (i, j, v) in problem.objective_hessian(x).triplet_iter() {
-            coo.push(i, j, t * v);
+            system.add(i, j, t * v);
         }
         for (row, &w) in jac.row_iter().zip(inv.iter()) {
-            let (cols, vals) = (row.col_indices(), row.values());
-            for (a, &ca) in cols.iter().enumerate() {
-                for (b, &cb) in cols.iter().enumerate() {
-                    coo.push(ca, cb, vals[a] * vals[b] * w * w);
+            system.add_outer(row.col_indices(), row.values(), w * w);
+        }
+        let curvature = problem.weighted_constraint_hessian(x, &inv);
+        let direction = match curvature {
+            Some(h) => {
+                let full = system.with(&h);
+                match full.solve_definite(&gradient) {
+                    Some(d) => d,
+                    None if std::env::var_os("SPLINE_FULLSHIFT").is_some() => full.solve_shifted(&gradient)?,
+                    None => system.solve_shifted(&gradient)?,
                 }
             }
-        }
-        // With the curvature of the constraints when that keeps the Newton matrix positive
-        // definite; otherwise the Gauss–Newton matrix t∇²f0 + Σ ∇f_i∇f_iᵀ/f_i² (positive
-        // semi-definite) with a small shift — the standard remedy for non-convex constraints.
-        let mut full = coo.clone();
-        let mut has_curvature = false;
-        if let Some(h) = problem.weighted_constraint_hessian(x, &inv) {
-            for (i, j, v) in h.triplet_iter() {
-                full.push(i, j, *v);
-            }
-            has_curvature = true;
-        }
-        let direction = match has_curvature
-            .then(|| solve_definite(&full, &gradient))
-            .flatten()
-        {
-            Some(d) => d,
-            None => solve_shifted(&coo, &gradient)?,
+            None => system.solve_shifted(&gradient)?,
         };
         let decrement = -gradient.dot(&direction);
         let f = barrier_value(problem, x, t)
@@ -268,6 +274,9 @@ fn centre(
             let candidate = &*x + &direction * s;
             if let Some(fc) = barrier_value(problem, &candidate, t) {
                 if fc <= f + options.armijo * s * slope {
+                    if std::env::var_os("SPLINE_TRACE").is_some() {
+                        eprintln!("  t {t:.2e} step {step} dec {decrement:.3e} f {f:.6e} s {s:.2e}");
+                    }
                     *x = candidate;
                     if stop.is_some_and(|stop| stop(x)) {
                         return Ok(step + 1);
@@ -291,51 +300,311 @@ fn centre(
     ))
 }
 
-/// Solves `H d = −g` if `H` is positive definite.
-fn solve_definite(hessian: &CooMatrix<f64>, gradient: &DVector<f64>) -> Option<DVector<f64>> {
-    let factor = CscCholesky::factor(&CscMatrix::from(hessian)).ok()?;
-    let d = factor.solve(&(-gradient));
-    let d = DVector::from_column_slice(d.as_slice());
-    d.iter().all(|v| v.is_finite()).then_some(d)
-}
-
-/// Solves `H d = −g`, adding `δ I` with growing `δ` while `H` is not positive definite.
-fn solve_shifted(hessian: &CooMatrix<f64>, gradient: &DVector<f64>) -> Result<DVector<f64>> {
-    let n = gradient.len();
-    let base = CscMatrix::from(hessian);
-    let scale = (0..n)
-        .map(|i| base.get_entry(i, i).map_or(0.0, |e| e.into_value().abs()))
-        .fold(0.0, f64::max)
-        .max(1e-300);
-    let mut shift = 0.0;
-    for _ in 0..40 {
-        let matrix = if shift == 0.0 {
-            base.clone()
-        } else {
-            let mut coo = hessian.clone();
-            for i in 0..n {
-                coo.push(i, i, shift);
-            }
-            CscMatrix::from(&coo)
-        };
-        if let Ok(factor) = CscCholesky::factor(&matrix) {
-            let rhs = -gradient;
-            let d = factor.solve(&rhs);
-            let d = DVector::from_column_slice(d.as_slice());
-            if d.iter().all(|v| v.is_finite()) {
-                return Ok(d);
+/// Newton's method with a trust region on the barrier objective for fixed `t` (dense
+/// matrices): the model uses the exact Hessian, constraint curvature included, so that steps
+/// along curved (non-convex) constraints are predicted well; the trust region is an ellipsoid
+/// in the local metric $M = t\nabla^2 f_0 + \sum_i \nabla f_i \nabla f_i^T / f_i^2$ (the
+/// Dikin ellipsoid of radius 1 is feasible for linear constraints), and the subproblem
+/// $\min_d g^T d + \tfrac12 d^T H d$, $\lVert d \rVert_M \le \Delta$ is solved exactly by an
+/// eigendecomposition of $L^{-1} H L^{-T}$ ($M = L L^T$). Steps that leave the domain or
+/// whose actual decrease is poor shrink the region. Returns the number of accepted steps.
+fn centre_trust_region(
+    problem: &impl BarrierProblem,
+    x: &mut DVector<f64>,
+    t: f64,
+    options: &BarrierOptions,
+    stop: Option<StopRule<'_>>,
+) -> Result<usize> {
+    let n = problem.dimension();
+    let mut radius = 1.0;
+    let mut accepted = 0;
+    let mut f = barrier_value(problem, x, t)
+        .ok_or_else(|| Error::new(ErrorKind::NonFinite, "iterate left the barrier domain"))?;
+    for _ in 0..options.max_newton_iterations {
+        let c = problem.constraints(x);
+        let jac = problem.constraint_jacobian(x);
+        let inv = c.map(|ci| 1.0 / -ci);
+        let gradient = problem.objective_gradient(x) * t + jac.transpose() * &inv;
+        if gradient.iter().any(|g| !g.is_finite()) {
+            return Err(Error::new(
+                ErrorKind::NonFinite,
+                "the barrier gradient is not finite",
+            ));
+        }
+        let mut metric = DMatrix::zeros(n, n);
+        for (i, j, v) in problem.objective_hessian(x).triplet_iter() {
+            metric[(i, j)] += t * v;
+        }
+        for (row, &w) in jac.row_iter().zip(inv.iter()) {
+            let (cols, vals) = (row.col_indices(), row.values());
+            for (&ca, &va) in cols.iter().zip(vals) {
+                let wa = w * w * va;
+                for (&cb, &vb) in cols.iter().zip(vals) {
+                    metric[(ca, cb)] += wa * vb;
+                }
             }
         }
-        shift = if shift == 0.0 {
-            1e-10 * scale
-        } else {
-            shift * 10.0
+        let mut hessian = metric.clone();
+        if !problem.add_weighted_constraint_hessian(x, &inv, &mut hessian) {
+            if let Some(h) = problem.weighted_constraint_hessian(x, &inv) {
+                for (i, j, v) in h.triplet_iter() {
+                    hessian[(i, j)] += v;
+                }
+            }
+        }
+        let Some(factor) = positive_definite_factor(&metric) else {
+            return Err(Error::new(
+                ErrorKind::SingularSystem,
+                "the local metric of the barrier could not be made positive definite",
+            ));
         };
+        // Decrement in the local metric: gᵀ M⁻¹ g.
+        let scaled_gradient = factor.l().solve_lower_triangular(&gradient).unwrap_or_else(|| gradient.clone());
+        let decrement = scaled_gradient.norm_squared();
+        if decrement / 2.0 <= options.newton_tolerance * (1.0 + f.abs()) {
+            return Ok(accepted);
+        }
+        // H̃ = L⁻¹ H L⁻ᵀ.
+        let l = factor.l();
+        let left = l.solve_lower_triangular(&hessian).unwrap_or_else(|| hessian.clone());
+        let scaled = l
+            .solve_lower_triangular(&left.transpose())
+            .unwrap_or_else(|| left.clone());
+        let scaled = (&scaled + scaled.transpose()) * 0.5;
+        let eigen = scaled.symmetric_eigen();
+        let mut improved = false;
+        for _ in 0..60 {
+            let (y, predicted) = trust_region_step(&eigen, &scaled_gradient, radius);
+            if !(predicted > 0.0) {
+                return Ok(accepted);
+            }
+            let d = l.transpose().solve_upper_triangular(&y).unwrap_or(y.clone());
+            let candidate = &*x + &d;
+            let actual = barrier_value(problem, &candidate, t).map(|fc| f - fc);
+            let ratio = actual.map_or(-1.0, |a| a / predicted);
+            let on_boundary = y.norm() > 0.99 * radius;
+            if ratio < 0.25 {
+                radius *= 0.25;
+            } else if ratio > 0.75 && on_boundary {
+                radius = (2.0 * radius).min(1e6);
+            }
+            if std::env::var_os("SPLINE_TRACE").is_some() {
+                eprintln!("  tr t {t:.2e} dec {decrement:.3e} pred {predicted:.3e} ratio {ratio:.3} radius {radius:.2e} |y| {:.2e}", y.norm());
+            }
+            if ratio > 1e-4 {
+                *x = candidate;
+                f -= actual.unwrap_or(0.0);
+                accepted += 1;
+                improved = true;
+                break;
+            }
+            if radius < 1e-14 {
+                // As central as rounding allows.
+                return Ok(accepted);
+            }
+        }
+        if !improved {
+            return Ok(accepted);
+        }
+        if stop.is_some_and(|stop| stop(x)) {
+            return Ok(accepted);
+        }
     }
     Err(Error::new(
-        ErrorKind::SingularSystem,
-        "the Newton matrix could not be made positive definite",
+        ErrorKind::NoConvergence,
+        format!(
+            "Newton's method did not converge in {} steps (t = {t:.3e})",
+            options.max_newton_iterations
+        ),
     ))
+}
+
+/// The Cholesky factor of `m`, shifted by a small multiple of its largest diagonal entry if
+/// needed.
+fn positive_definite_factor(m: &DMatrix<f64>) -> Option<nalgebra::Cholesky<f64, nalgebra::Dyn>> {
+    let n = m.nrows();
+    let scale = (0..n).map(|i| m[(i, i)].abs()).fold(0.0, f64::max).max(1e-300);
+    let mut shift = 0.0;
+    for _ in 0..20 {
+        let mut shifted = m.clone();
+        for i in 0..n {
+            shifted[(i, i)] += shift;
+        }
+        if let Some(f) = shifted.cholesky() {
+            return Some(f);
+        }
+        shift = if shift == 0.0 { 1e-12 * scale } else { shift * 100.0 };
+    }
+    None
+}
+
+/// The exact solution of $\min_y \gamma^T y + \tfrac12 y^T \tilde H y$,
+/// $\lVert y \rVert \le \Delta$, from the eigendecomposition of `H̃` (Moré–Sorensen by the
+/// secular equation, with the hard case), and the predicted decrease.
+fn trust_region_step(
+    eigen: &nalgebra::SymmetricEigen<f64, nalgebra::Dyn>,
+    gradient: &DVector<f64>,
+    radius: f64,
+) -> (DVector<f64>, f64) {
+    let q = &eigen.eigenvectors;
+    let lambda = &eigen.eigenvalues;
+    let gamma = q.transpose() * gradient;
+    let n = lambda.len();
+    let lmin = lambda.iter().copied().fold(f64::INFINITY, f64::min);
+    let norm_at = |mu: f64| -> f64 {
+        gamma
+            .iter()
+            .zip(lambda.iter())
+            .map(|(g, l)| (g / (l + mu)).powi(2))
+            .sum::<f64>()
+            .sqrt()
+    };
+    let mu = if lmin > 0.0 && norm_at(0.0) <= radius {
+        0.0
+    } else {
+        // ‖y(μ)‖ decreases in μ > −λ_min: bisection on a bracket, then Newton on 1/‖y‖.
+        let mut lo = (-lmin).max(0.0);
+        let scale = lambda.iter().fold(0.0f64, |m, l| m.max(l.abs())) + gradient.norm() / radius;
+        let mut hi = lo + scale.max(1e-300);
+        while norm_at(hi) > radius {
+            hi = lo + 2.0 * (hi - lo);
+        }
+        if norm_at(lo * (1.0 + 1e-15) + 1e-300) < radius {
+            // Hard case: the minimal-eigenvalue direction is (nearly) orthogonal to γ.
+            lo
+        } else {
+            for _ in 0..200 {
+                let mid = 0.5 * (lo + hi);
+                if norm_at(mid) > radius {
+                    lo = mid;
+                } else {
+                    hi = mid;
+                }
+                if hi - lo <= 1e-12 * hi {
+                    break;
+                }
+            }
+            hi
+        }
+    };
+    let mut y = DVector::zeros(n);
+    for k in 0..n {
+        let denom = lambda[k] + mu;
+        if denom.abs() > 0.0 {
+            y -= q.column(k) * (gamma[k] / denom);
+        }
+    }
+    if mu > 0.0 && y.norm() < radius * (1.0 - 1e-8) {
+        // Hard case: complete along the eigenvector of the smallest eigenvalue.
+        let k = (0..n)
+            .min_by(|&a, &b| lambda[a].total_cmp(&lambda[b]))
+            .expect("non-empty");
+        let v = q.column(k);
+        let yy = y.norm_squared();
+        let yv = y.dot(&v);
+        let tau = -yv + (yv * yv + radius * radius - yy).max(0.0).sqrt();
+        y += v * tau;
+    }
+    let hy = q * DVector::from_iterator(n, (0..n).map(|k| lambda[k] * q.column(k).dot(&y)));
+    let predicted = -(gradient.dot(&y) + 0.5 * y.dot(&hy));
+    (y, predicted)
+}
+
+/// The Newton matrix of one step: dense for small problems (the eraser's curves, the
+/// functions of thesis ch. 5), sparse (COO, then a sparse Cholesky factorisation) above
+/// [`DENSE_LIMIT`] unknowns.
+#[derive(Clone)]
+enum NewtonSystem {
+    Dense(DMatrix<f64>),
+    Sparse(CooMatrix<f64>),
+}
+
+/// Problems with at most this many unknowns use dense matrices.
+const DENSE_LIMIT: usize = 400;
+
+impl NewtonSystem {
+    fn new(n: usize) -> Self {
+        if n <= DENSE_LIMIT {
+            Self::Dense(DMatrix::zeros(n, n))
+        } else {
+            Self::Sparse(CooMatrix::new(n, n))
+        }
+    }
+
+    fn add(&mut self, i: usize, j: usize, v: f64) {
+        match self {
+            Self::Dense(m) => m[(i, j)] += v,
+            Self::Sparse(m) => m.push(i, j, v),
+        }
+    }
+
+    /// Adds `w · a aᵀ` for a sparse vector `a`.
+    fn add_outer(&mut self, cols: &[usize], vals: &[f64], w: f64) {
+        for (&ca, &va) in cols.iter().zip(vals) {
+            let wa = w * va;
+            for (&cb, &vb) in cols.iter().zip(vals) {
+                self.add(ca, cb, wa * vb);
+            }
+        }
+    }
+
+    /// This matrix plus `h`.
+    fn with(&self, h: &CsrMatrix<f64>) -> Self {
+        let mut out = self.clone();
+        for (i, j, v) in h.triplet_iter() {
+            out.add(i, j, *v);
+        }
+        out
+    }
+
+    /// Solves `H d = −g` if `H` is positive definite.
+    fn solve_definite(&self, gradient: &DVector<f64>) -> Option<DVector<f64>> {
+        let d = match self {
+            Self::Dense(m) => m.clone().cholesky()?.solve(&(-gradient)),
+            Self::Sparse(m) => {
+                let factor = CscCholesky::factor(&CscMatrix::from(m)).ok()?;
+                let d = factor.solve(&(-gradient));
+                DVector::from_column_slice(d.as_slice())
+            }
+        };
+        d.iter().all(|v| v.is_finite()).then_some(d)
+    }
+
+    /// Solves `H d = −g`, adding `δ I` with growing `δ` while `H` is not positive definite.
+    fn solve_shifted(&self, gradient: &DVector<f64>) -> Result<DVector<f64>> {
+        let n = gradient.len();
+        let scale = match self {
+            Self::Dense(m) => (0..n).map(|i| m[(i, i)].abs()).fold(0.0, f64::max),
+            Self::Sparse(m) => {
+                let csc = CscMatrix::from(m);
+                (0..n)
+                    .map(|i| csc.get_entry(i, i).map_or(0.0, |e| e.into_value().abs()))
+                    .fold(0.0, f64::max)
+            }
+        }
+        .max(1e-300);
+        let mut shift = 0.0;
+        for _ in 0..40 {
+            let mut shifted = self.clone();
+            if shift > 0.0 {
+                for i in 0..n {
+                    shifted.add(i, i, shift);
+                }
+            }
+            if let Some(d) = shifted.solve_definite(gradient) {
+                return Ok(d);
+            }
+            shift = if shift == 0.0 {
+                1e-10 * scale
+            } else {
+                shift * 10.0
+            };
+        }
+        Err(Error::new(
+            ErrorKind::SingularSystem,
+            "the Newton matrix could not be made positive definite",
+        ))
+    }
 }
 
 /// Phase I: a strictly feasible point near `x0`, found by minimising `s` subject to

@@ -29,5 +29,8 @@ pub use constrained::{
     ConstraintCheck, FunctionApproximation, FunctionConstraint, FunctionFit, MAX_SIGN_PATTERNS,
 };
 pub use constrained_surface::{Region, SurfaceApproximation, SurfaceConstraint, SurfaceFit};
-pub use eraser::{EraserOptions, SmoothedCurve, erase_curvature_extrema};
+pub use eraser::{
+    CurvatureExtremum, Extremum, ExtremumKind, Objective, SampledExtremum, SmoothedCurve,
+    SmoothingOptions, sampled_curvature_extrema, smooth,
+};
 pub use problem::{ApproximationProblem, Sign};

@@ -1,17 +1,17 @@
-//! The selective eraser of curvature extrema on an airfoil and on synthetic data, checked by
-//! dense sampling of the curvature (independently of the constraint algebra).
+//! The selective eraser of curvature extrema on airfoils and on synthetic data, checked by
+//! dense sampling of the curvature (independently of the constraint algebra) and by
+//! closest-point distances.
 
 use nalgebra::Vector2;
 use spline_core::ErrorKind;
 use spline_geom::Curve2;
 use spline_geom::exchange::parse_points;
-use spline_shape::{EraserOptions, erase_curvature_extrema};
+use spline_shape::{
+    Extremum, ExtremumKind, Objective, SmoothingOptions, sampled_curvature_extrema, smooth,
+};
 
-fn airfoil(name: &str) -> Vec<Vector2<f64>> {
-    let path = format!(
-        "{}/../../data/airfoils/{name}.dat",
-        env!("CARGO_MANIFEST_DIR")
-    );
+fn airfoil(path: &str) -> Vec<Vector2<f64>> {
+    let path = format!("{}/../../data/airfoils/{path}.dat", env!("CARGO_MANIFEST_DIR"));
     let text = std::fs::read_to_string(&path).unwrap();
     parse_points(&text)
         .unwrap()
@@ -20,61 +20,54 @@ fn airfoil(name: &str) -> Vec<Vector2<f64>> {
         .collect()
 }
 
-/// Parameters where the sampled curvature turns from increasing to decreasing or back,
-/// ignoring changes below `noise` (relative to the largest |κ|).
-fn sampled_extrema(curve: &Curve2, samples: usize, noise: f64) -> Vec<f64> {
-    let (a, b) = curve.domain();
-    let us: Vec<f64> = (0..=samples)
-        .map(|i| a + (b - a) * i as f64 / samples as f64)
-        .collect();
-    let kappa: Vec<f64> = us
-        .iter()
-        .map(|&u| curve.signed_curvature(u).unwrap())
-        .collect();
-    let scale = kappa.iter().fold(0.0f64, |m, k| m.max(k.abs()));
-    let mut extrema = Vec::new();
-    let mut direction = 0i8;
-    let mut anchor = kappa[0];
-    for (i, &k) in kappa.iter().enumerate().skip(1) {
-        let delta = k - anchor;
-        if delta.abs() <= noise * scale {
-            continue;
-        }
-        let d = if delta > 0.0 { 1 } else { -1 };
-        if direction != 0 && d != direction {
-            extrema.push(us[i - 1]);
-        }
-        direction = d;
-        anchor = k;
-    }
-    extrema
+/// Turning points of the sampled oriented curvature (one-sided limits at knots included).
+fn sampled(curve: &Curve2<f64>, orientation: f64) -> Vec<(f64, bool)> {
+    sampled_curvature_extrema(curve, orientation, 400, 1e-9)
+        .unwrap()
+        .into_iter()
+        .map(|e| (e.param, e.maximum))
+        .collect()
 }
 
 #[test]
 fn an_airfoil_keeps_one_curvature_maximum_at_the_nose() {
     let points = airfoil("clarkv");
-    let result = erase_curvature_extrema(&points, &EraserOptions::new(20, 1)).unwrap();
-    // The unconstrained fit wiggles; the result has exactly the allowed extremum.
-    assert!(
-        result.least_squares_extrema.len() > 3,
-        "{:?}",
-        result.least_squares_extrema
-    );
-    assert_eq!(result.curvature_extrema.len(), 1);
-    let nose = result.extremum_params[0];
-    assert!((result.curvature_extrema[0] - nose).abs() < 1e-9);
-    // The extremum is the nose: the point of smallest x.
-    let tip = result.curve.eval(nose).unwrap();
-    assert!(tip.x < 0.01, "{tip}");
+    let result = smooth(&points, &SmoothingOptions::new(20)).unwrap();
+    // The least-squares start wiggles; the result has exactly the allowed extremum.
+    assert!(result.start_extrema > 3, "{}", result.start_extrema);
+    assert_eq!(result.extrema.len(), 1, "{:?}", result.extrema);
+    let nose = result.extrema[0];
+    assert_eq!(nose.kind, ExtremumKind::Maximum);
+    // The extremum is the nose: near the point of smallest x.
+    assert!(nose.point.x < 0.01, "{}", nose.point);
     // Dense sampling agrees: one maximum of the curvature, there.
-    let sampled = sampled_extrema(&result.curve, 20_000, 1e-9);
-    assert_eq!(sampled.len(), 1, "{sampled:?}");
-    assert!((sampled[0] - nose).abs() < 1e-3);
-    assert!(result.curve.signed_curvature(nose).unwrap() > 0.0);
-    // Close to the data (chord 1): a few millimetres at most, like the thesis's Table 6.1.
-    assert!(result.max_deviation < 5e-3, "{}", result.max_deviation);
-    assert!(result.rms_deviation < 1e-3, "{}", result.rms_deviation);
-    assert!(result.solver.max_constraint < 0.0);
+    let turns = sampled(&result.curve, result.orientation);
+    assert_eq!(turns.len(), 1, "{turns:?}");
+    assert!(turns[0].1 && (turns[0].0 - nose.param).abs() < 1e-2, "{turns:?}");
+    // Close to the data both ways (chord 1): a fraction of a millimetre to a few.
+    assert!(result.deviation.to_curve.max < 2e-3, "{:?}", result.deviation.to_curve.max);
+    assert!(result.deviation.to_data < 4e-3, "{}", result.deviation.to_data);
+}
+
+#[test]
+fn table_6_1_airfoils_beat_the_thesis() {
+    // Thesis Table 6.1: control points and maximum deviation (chord 1 m) with one curvature
+    // maximum at the nose.
+    for (name, control, thesis) in [
+        ("a18sm", 17, 0.8e-3),
+        ("ch10sm", 22, 0.7e-3),
+    ] {
+        let points = airfoil(&format!("table61/{name}"));
+        let result = smooth(&points, &SmoothingOptions::new(control)).unwrap();
+        let turns = sampled(&result.curve, result.orientation);
+        assert_eq!(turns.len(), 1, "{name}: {turns:?}");
+        assert!(
+            result.deviation.to_curve.max <= thesis,
+            "{name}: {} mm against the thesis's {} mm",
+            result.deviation.to_curve.max * 1e3,
+            thesis * 1e3
+        );
+    }
 }
 
 #[test]
@@ -89,52 +82,71 @@ fn a_noisy_half_ellipse_gets_its_single_extremum_back() {
             Vector2::new(2.0 * t.cos(), t.sin() + noise)
         })
         .collect();
-    let mut options = EraserOptions::new(12, 1);
-    options.extremum_params = Some(vec![0.5]);
-    options.increasing_first = Some(false);
-    let result = erase_curvature_extrema(&points, &options).unwrap();
-    assert_eq!(result.curvature_extrema, vec![0.5]);
-    assert_eq!(sampled_extrema(&result.curve, 20_000, 1e-9).len(), 1);
-    assert!(result.max_deviation < 3e-3, "{}", result.max_deviation);
+    let mut options = SmoothingOptions::new(12);
+    options.extrema = vec![Extremum {
+        kind: ExtremumKind::Minimum,
+        at: Some(0.5),
+    }];
+    let result = smooth(&points, &options).unwrap();
+    assert_eq!(result.extrema.len(), 1);
+    assert!((result.extrema[0].param - 0.5).abs() < 1e-9);
+    assert_eq!(result.extrema[0].kind, ExtremumKind::Minimum);
+    assert_eq!(sampled(&result.curve, result.orientation).len(), 1);
+    assert!(result.deviation.to_curve.max < 3e-3, "{}", result.deviation.to_curve.max);
+}
+
+#[test]
+fn least_squares_objective_and_higher_degrees_work() {
+    let points = airfoil("clarkv");
+    for (degree, objective) in [(3, Objective::LeastSquares), (4, Objective::MaxDeviation)] {
+        let mut options = SmoothingOptions::new(20);
+        options.degree = degree;
+        options.objective = objective;
+        let result = smooth(&points, &options).unwrap();
+        assert_eq!(result.curve.degree(), degree);
+        assert_eq!(sampled(&result.curve, result.orientation).len(), 1);
+        assert!(result.deviation.to_curve.max < 5e-3, "{degree}");
+    }
+}
+
+#[test]
+fn the_answer_does_not_depend_on_units() {
+    let points = airfoil("clarkv");
+    let a = smooth(&points, &SmoothingOptions::new(16)).unwrap();
+    let scaled: Vec<Vector2<f64>> = points.iter().map(|p| p * 1000.0 + Vector2::new(5e3, -7e3)).collect();
+    let b = smooth(&scaled, &SmoothingOptions::new(16)).unwrap();
+    let rel = (b.deviation.to_curve.max / 1000.0 - a.deviation.to_curve.max).abs();
+    assert!(rel < 1e-6 * (1.0 + a.deviation.to_curve.max), "{rel}");
 }
 
 #[test]
 fn bad_requests_are_errors() {
     let points = airfoil("clarkv");
-    let mut options = EraserOptions::new(20, 1);
+    let mut options = SmoothingOptions::new(20);
     options.degree = 2;
+    assert_eq!(smooth(&points, &options).unwrap_err().kind(), ErrorKind::InvalidArgument);
+    let mut options = SmoothingOptions::new(6);
+    options.extrema = vec![Extremum::maximum(), Extremum::minimum(), Extremum::maximum()];
+    assert_eq!(smooth(&points, &options).unwrap_err().kind(), ErrorKind::InvalidArgument);
+    let mut options = SmoothingOptions::new(20);
+    options.extrema = vec![Extremum {
+        kind: ExtremumKind::Maximum,
+        at: Some(1.5),
+    }];
+    assert_eq!(smooth(&points, &options).unwrap_err().kind(), ErrorKind::InvalidArgument);
+    options.extrema = vec![Extremum::maximum(), Extremum::maximum()];
+    let err = smooth(&points, &options).unwrap_err();
+    assert!(err.to_string().contains("alternate"), "{err}");
     assert_eq!(
-        erase_curvature_extrema(&points, &options)
-            .unwrap_err()
-            .kind(),
-        ErrorKind::InvalidArgument
-    );
-    let options = EraserOptions::new(6, 4);
-    assert_eq!(
-        erase_curvature_extrema(&points, &options)
-            .unwrap_err()
-            .kind(),
-        ErrorKind::InvalidArgument
-    );
-    let mut options = EraserOptions::new(20, 1);
-    options.extremum_params = Some(vec![1.5]);
-    assert_eq!(
-        erase_curvature_extrema(&points, &options)
-            .unwrap_err()
-            .kind(),
-        ErrorKind::InvalidArgument
-    );
-    options.extremum_params = Some(vec![0.2, 0.4]);
-    assert_eq!(
-        erase_curvature_extrema(&points, &options)
-            .unwrap_err()
-            .kind(),
-        ErrorKind::InvalidArgument
-    );
-    assert_eq!(
-        erase_curvature_extrema(&points[..3], &EraserOptions::new(20, 1))
-            .unwrap_err()
-            .kind(),
+        smooth(&points[..3], &SmoothingOptions::new(20)).unwrap_err().kind(),
         ErrorKind::TooFewPoints
     );
+    let mut with_nan = points.clone();
+    with_nan[5].y = f64::NAN;
+    assert_eq!(
+        smooth(&with_nan, &SmoothingOptions::new(20)).unwrap_err().kind(),
+        ErrorKind::NonFinite
+    );
+    assert!("maximum@x".parse::<Extremum>().is_err());
+    assert!("top".parse::<Extremum>().is_err());
 }

@@ -1,0 +1,926 @@
+//! The eraser's optimisation problem on the true point-to-curve distances.
+//!
+//! Variables: the interleaved control-point coordinates `x = [x_1, y_1, …, x_n, y_n]` and,
+//! for the minimax objective, a bound `z` on the squared distances (in units of its start
+//! value). The squared distance of data point `Q_j` to the curve is
+//! $d_j^2(x) = \min_u \lVert C(u; x) - Q_j \rVert^2$, evaluated at the foot point `u_j(x)`
+//! found by a safeguarded Newton iteration from the previous one (variable projection: the
+//! parameters are not unknowns of the problem, they follow `x`). Its gradient is that of
+//! $\varphi(x, u) = \lVert C(u; x) - Q_j \rVert^2$ at `u_j` (envelope theorem) and its
+//! Hessian the Schur complement $\varphi_{xx} - \varphi_{xu}\varphi_{ux}/\varphi_{uu}$.
+//! The first and last data points keep the parameters of the curve's ends.
+//!
+//! Constraints: `d_j² < z` (minimax), and the sign conditions on the Bernstein coefficients
+//! of `g` on the pieces of every segment (refined where active), shifted by `τ σ_i` during
+//! the homotopy that starts from the least-squares fit (at `τ = 1` it is strictly feasible)
+//! and ends at `τ = 0`.
+
+use crate::barrier::BarrierProblem;
+use crate::eraser::Objective;
+use nalgebra::{DMatrix, DVector, Vector2};
+use nalgebra_sparse::{CooMatrix, CsrMatrix};
+use spline_algebra::{SegmentCurvature, SegmentWorkspace};
+use spline_core::{KnotVector, Result};
+use std::cell::RefCell;
+
+/// A sub-interval `[lo, hi] ⊂ [0, 1]` of a segment (local parameter), on which the Bernstein
+/// coefficients of `g` (from de Casteljau subdivision) must all have the sign of its piece.
+#[derive(Clone, Debug)]
+struct Piece {
+    segment: usize,
+    lo: f64,
+    hi: f64,
+    /// `+1` where the curvature must increase (`g > 0`), `−1` where it must decrease.
+    sign: f64,
+    /// Coefficients on `[lo, hi]` = `subdivision · coefficients on [0, 1]`, `(q+1) × (q+1)`
+    /// row-major.
+    subdivision: Vec<f64>,
+    /// Positive scale of each condition (its magnitude at the start, floored).
+    scale: Vec<f64>,
+    /// Homotopy shift of each condition: `σ_i ≥ 0`.
+    shift: Vec<f64>,
+}
+
+/// Coefficients of a Bernstein polynomial of degree `q` on `[lo, hi] ⊂ [0, 1]` as a matrix
+/// applied to its coefficients on `[0, 1]` (de Casteljau on unit vectors).
+fn subdivision_matrix(q: usize, lo: f64, hi: f64) -> Vec<f64> {
+    let size = q + 1;
+    let mut out = vec![0.0; size * size];
+    for k in 0..size {
+        let mut c = vec![0.0; size];
+        c[k] = 1.0;
+        if hi < 1.0 {
+            c = left_part(&c, hi);
+        }
+        if lo > 0.0 {
+            c = right_part(&c, lo / hi);
+        }
+        for (r, v) in c.iter().enumerate() {
+            out[r * size + k] = *v;
+        }
+    }
+    out
+}
+
+/// Bernstein coefficients on `[0, s]`.
+fn left_part(c: &[f64], s: f64) -> Vec<f64> {
+    let mut work = c.to_vec();
+    let mut out = Vec::with_capacity(c.len());
+    out.push(work[0]);
+    for r in 1..c.len() {
+        for i in 0..c.len() - r {
+            work[i] = (1.0 - s) * work[i] + s * work[i + 1];
+        }
+        out.push(work[0]);
+    }
+    out
+}
+
+/// Bernstein coefficients on `[s, 1]`.
+fn right_part(c: &[f64], s: f64) -> Vec<f64> {
+    let mut work = c.to_vec();
+    let n = c.len();
+    let mut out = vec![0.0; n];
+    out[n - 1] = work[n - 1];
+    for r in 1..n {
+        for i in 0..n - r {
+            work[i] = (1.0 - s) * work[i] + s * work[i + 1];
+        }
+        out[n - 1 - r] = work[n - 1 - r];
+    }
+    out
+}
+
+/// One data point's squared distance at the current curve.
+#[derive(Clone, Debug)]
+struct Foot {
+    /// `d² = ‖C(u) − Q‖²`.
+    squared: f64,
+    /// First control point acting at `u`.
+    first: usize,
+    /// `∂d²/∂x` on the `2(p+1)` local variables.
+    gradient: Vec<f64>,
+    /// `∂²d²/∂x²` on the local variables, row-major.
+    hessian: Vec<f64>,
+    /// The foot-point parameter.
+    param: f64,
+}
+
+/// The squared distances of the data to curves of one knot vector. Foot points are found
+/// from anchor parameters that change only when the driver commits a new curve, so that the
+/// distances are a deterministic function of the control points during a Newton iteration.
+struct Distances {
+    knots: KnotVector<f64>,
+    points: Vec<Vector2<f64>>,
+    params: RefCell<Vec<f64>>,
+    /// Whether foot points follow the curve (variable projection) or stay at the anchors
+    /// (the fixed parameters of classic least squares).
+    project: bool,
+}
+
+impl Distances {
+    /// The foot point of data point `j` near its cached parameter, with the derivatives of
+    /// its squared distance when `derivatives`.
+    fn foot(&self, control: &[Vector2<f64>], j: usize, derivatives: bool) -> Foot {
+        let p = self.knots.degree();
+        let width = p + 1;
+        let q = self.points[j];
+        let last = self.points.len() - 1;
+        let fixed = j == 0 || j == last || !self.project;
+        let mut u = if j == 0 {
+            0.0
+        } else if j == last {
+            1.0
+        } else {
+            self.params.borrow()[j]
+        };
+        let fixed = fixed || j == 0 || j == last;
+        let mut basis = [0.0; 3 * spline_core::MAX_ORDER];
+        let eval = |u: f64, basis: &mut [f64]| -> (usize, [Vector2<f64>; 3]) {
+            let span = self.knots.span_in_domain(u);
+            self.knots.basis_derivatives(span, u, 2, &mut basis[..3 * width]);
+            let mut d = [Vector2::zeros(); 3];
+            for (k, dk) in d.iter_mut().enumerate() {
+                for a in 0..width {
+                    *dk += control[span - p + a] * basis[k * width + a];
+                }
+            }
+            (span, d)
+        };
+        let (mut span, mut d) = eval(u, &mut basis);
+        if !fixed {
+            let mut dist2 = (d[0] - q).norm_squared();
+            for _ in 0..30 {
+                let r = d[0] - q;
+                let psi = r.dot(&d[1]);
+                let dpsi = d[1].norm_squared() + r.dot(&d[2]);
+                let mut step = if dpsi > 0.0 {
+                    -psi / dpsi
+                } else {
+                    -psi.signum() * 0.01
+                };
+                let mut moved = false;
+                for _ in 0..30 {
+                    let candidate = (u + step).clamp(0.0, 1.0);
+                    if candidate == u {
+                        break;
+                    }
+                    let (s2, d2) = eval(candidate, &mut basis);
+                    let c2 = (d2[0] - q).norm_squared();
+                    if c2 <= dist2 {
+                        moved = (candidate - u).abs() > 1e-15;
+                        u = candidate;
+                        span = s2;
+                        d = d2;
+                        dist2 = c2;
+                        break;
+                    }
+                    step *= 0.5;
+                }
+                if !moved {
+                    break;
+                }
+            }
+        }
+        let r = d[0] - q;
+        let squared = r.norm_squared();
+        let first = span - p;
+        let n = 2 * width;
+        let mut gradient = Vec::new();
+        let mut hessian = Vec::new();
+        if derivatives {
+            // Basis values at u (the evaluation left them in `basis`).
+            self.knots.basis_derivatives(span, u, 2, &mut basis[..3 * width]);
+            let value = &basis[..width];
+            let slope = &basis[width..2 * width];
+            gradient = vec![0.0; n];
+            hessian = vec![0.0; n * n];
+            for a in 0..width {
+                gradient[2 * a] = 2.0 * value[a] * r.x;
+                gradient[2 * a + 1] = 2.0 * value[a] * r.y;
+                for b in 0..width {
+                    let v = 2.0 * value[a] * value[b];
+                    hessian[(2 * a) * n + 2 * b] = v;
+                    hessian[(2 * a + 1) * n + 2 * b + 1] = v;
+                }
+            }
+            let interior = !fixed && u > 0.0 && u < 1.0;
+            let phi_uu = 2.0 * (d[1].norm_squared() + r.dot(&d[2]));
+            if interior && phi_uu > 0.0 {
+                // φ_xu = 2 (N′ r + N c′) per local variable.
+                let mut cross = vec![0.0; n];
+                for a in 0..width {
+                    cross[2 * a] = 2.0 * (slope[a] * r.x + value[a] * d[1].x);
+                    cross[2 * a + 1] = 2.0 * (slope[a] * r.y + value[a] * d[1].y);
+                }
+                for i in 0..n {
+                    for k in 0..n {
+                        hessian[i * n + k] -= cross[i] * cross[k] / phi_uu;
+                    }
+                }
+            }
+        }
+        Foot {
+            squared,
+            first,
+            gradient,
+            hessian,
+            param: u,
+        }
+    }
+}
+
+/// Scratch memory of the segment kernel.
+struct Scratch {
+    workspace: SegmentWorkspace<f64>,
+    values: Vec<f64>,
+    jacobian: Vec<f64>,
+}
+
+/// `min z` (or `min Σ d_j²`) over the control points subject to the distance bounds and the
+/// sign conditions on `g`.
+pub(crate) struct EraserProblem {
+    kernel: SegmentCurvature<f64>,
+    pieces: Vec<Piece>,
+    distances: Distances,
+    objective: Objective,
+    /// Number of control points.
+    n: usize,
+    /// Squared distances are divided by this (the largest at the start).
+    unit: f64,
+    /// Weight of the mean squared distance added to `z` in the minimax objective.
+    mean_weight: f64,
+    /// Homotopy parameter: the sign conditions are relaxed by `τ σ_i`.
+    tau: f64,
+    /// Phase I: `τ` is the last variable, the objective `τ + pull · F`, and `τ > −1`.
+    relaxed: bool,
+    pull: f64,
+    first_sign: f64,
+    extrema: Vec<f64>,
+    /// The feet of the last control points evaluated (with derivatives or not).
+    feet: RefCell<FeetCache>,
+    /// Curve points between the foot points of consecutive data points, each kept in a
+    /// disk around the middle of their chord: no loop or excursion between the data.
+    excursions: Vec<Excursion>,
+    scratch: RefCell<Scratch>,
+}
+
+/// The foot points of one set of control points.
+#[derive(Default)]
+struct FeetCache {
+    control: Vec<f64>,
+    derivatives: bool,
+    feet: Vec<Foot>,
+}
+
+/// `‖C(u) − centre‖² < radius²`.
+#[derive(Clone, Debug)]
+struct Excursion {
+    param: f64,
+    centre: Vector2<f64>,
+    radius2: f64,
+}
+
+impl EraserProblem {
+    /// The problem for `points` (at their foot-point parameters `params`) on `knots`, with
+    /// the allowed extrema at the knots `extrema` and the curvature increasing on the first
+    /// piece when `first_sign > 0`.
+    pub(crate) fn new(
+        knots: &KnotVector<f64>,
+        points: &[Vector2<f64>],
+        params: &[f64],
+        objective: Objective,
+        extrema: Vec<f64>,
+        first_sign: f64,
+    ) -> Result<Self> {
+        let kernel = SegmentCurvature::new(knots)?;
+        let q1 = kernel.coefficients_per_segment();
+        let scratch = Scratch {
+            workspace: kernel.workspace(),
+            values: vec![0.0; q1],
+            jacobian: vec![0.0; q1 * kernel.local_variables()],
+        };
+        let mut problem = Self {
+            pieces: Vec::new(),
+            kernel,
+            distances: Distances {
+                knots: knots.clone(),
+                points: points.to_vec(),
+                params: RefCell::new(params.to_vec()),
+                project: true,
+            },
+            objective,
+            n: knots.num_basis(),
+            unit: 1.0,
+            mean_weight: 1e-2,
+            tau: 0.0,
+            relaxed: false,
+            pull: 1.0,
+            first_sign,
+            extrema,
+            excursions: Vec::new(),
+            feet: RefCell::new(FeetCache::default()),
+            scratch: RefCell::new(scratch),
+        };
+        problem.pieces = (0..problem.kernel.num_segments())
+            .map(|s| problem.piece(s, 0.0, 1.0))
+            .collect();
+        Ok(problem)
+    }
+
+    fn piece(&self, segment: usize, lo: f64, hi: f64) -> Piece {
+        let (a, b) = self.kernel.interval(segment);
+        let mid = a + (b - a) * 0.5 * (lo + hi);
+        let crossed = self.extrema.iter().filter(|&&e| e <= mid).count();
+        let sign = if crossed % 2 == 0 {
+            self.first_sign
+        } else {
+            -self.first_sign
+        };
+        let q = self.kernel.coefficients_per_segment() - 1;
+        Piece {
+            segment,
+            lo,
+            hi,
+            sign,
+            subdivision: subdivision_matrix(q, lo, hi),
+            scale: vec![1.0; q + 1],
+            shift: vec![0.0; q + 1],
+        }
+    }
+
+    /// Phase I on or off: with `relaxed`, `τ` becomes the last variable and the objective
+    /// `τ + pull · F` (the fit `F` keeps the curve near the data while `τ` goes down).
+    pub(crate) fn set_relaxed(&mut self, relaxed: bool, pull: f64) {
+        self.relaxed = relaxed;
+        self.pull = pull;
+    }
+
+    /// The weight of the fit in phase I.
+    pub(crate) fn pull(&self) -> f64 {
+        self.pull
+    }
+
+    /// The index of `τ` among the variables (phase I).
+    pub(crate) fn tau_index(&self) -> usize {
+        2 * self.n + usize::from(self.minimax())
+    }
+
+    /// The current `τ`: the variable in phase I, the parameter otherwise.
+    fn tau_at(&self, x: &DVector<f64>) -> f64 {
+        if self.relaxed {
+            x[self.tau_index()]
+        } else {
+            self.tau
+        }
+    }
+
+    /// Whether the problem has the variable `z`.
+    fn minimax(&self) -> bool {
+        self.objective == Objective::MaxDeviation
+    }
+
+    /// Number of distance constraints.
+    fn num_distance_constraints(&self) -> usize {
+        if self.minimax() {
+            self.distances.points.len()
+        } else {
+            0
+        }
+    }
+
+    /// The variables for control points `control` and the bound `z` (ignored for least
+    /// squares).
+    pub(crate) fn variables(&self, control: &[Vector2<f64>], z: f64) -> DVector<f64> {
+        let mut x = DVector::zeros(self.dimension());
+        for (i, c) in control.iter().enumerate() {
+            x[2 * i] = c.x;
+            x[2 * i + 1] = c.y;
+        }
+        if self.minimax() {
+            x[2 * self.n] = z;
+        }
+        if self.relaxed {
+            x[self.tau_index()] = self.tau;
+        }
+        x
+    }
+
+    /// The control points of `x`.
+    pub(crate) fn control_points(&self, x: &DVector<f64>) -> Vec<Vector2<f64>> {
+        (0..self.n)
+            .map(|i| Vector2::new(x[2 * i], x[2 * i + 1]))
+            .collect()
+    }
+
+    /// Sets the excursion bounds from the anchors and the curve of `x`: the curve point halfway
+    /// (in parameter) between the foot points of data points `j` and `j + 1` stays within
+    /// `‖Q_{j+1} − Q_j‖/2 + allowance` of the middle of their chord (and within 1.1 times
+    /// its current distance, so that `x` stays strictly feasible).
+    pub(crate) fn set_excursions(&mut self, x: &DVector<f64>, allowance: f64) {
+        let control = self.control_points(x);
+        let params = self.distances.params.borrow().clone();
+        let points = &self.distances.points;
+        let knots = &self.distances.knots;
+        let p = knots.degree();
+        let mut basis = [0.0; spline_core::MAX_ORDER];
+        self.excursions = (0..points.len() - 1)
+            .filter_map(|j| {
+                let (a, b) = (params[j], params[j + 1]);
+                if !(b > a) {
+                    return None;
+                }
+                let u = 0.5 * (a + b);
+                let span = knots.span_in_domain(u);
+                knots.basis_values(span, u, &mut basis[..=p]);
+                let c: Vector2<f64> = (0..=p).map(|k| control[span - p + k] * basis[k]).sum();
+                let centre = (points[j] + points[j + 1]) * 0.5;
+                let half = 0.5 * (points[j + 1] - points[j]).norm();
+                let radius = (half + allowance).max(1.1 * (c - centre).norm());
+                Some(Excursion {
+                    param: u,
+                    centre,
+                    radius2: radius * radius,
+                })
+            })
+            .collect();
+    }
+
+    /// Foot points follow the curve (`true`) or stay at their anchors (`false`).
+    pub(crate) fn set_projection(&mut self, project: bool) {
+        self.distances.project = project;
+        *self.feet.borrow_mut() = FeetCache::default();
+    }
+
+    /// The anchors of the foot points.
+    pub(crate) fn anchors(&self) -> Vec<f64> {
+        self.distances.params.borrow().clone()
+    }
+
+    /// The curve point at `u`.
+    fn curve_point(&self, control: &[Vector2<f64>], u: f64) -> Vector2<f64> {
+        let knots = &self.distances.knots;
+        let p = knots.degree();
+        let mut basis = [0.0; spline_core::MAX_ORDER];
+        let span = knots.span_in_domain(u);
+        knots.basis_values(span, u, &mut basis[..=p]);
+        (0..=p).map(|k| control[span - p + k] * basis[k]).sum()
+    }
+
+    /// Sets the anchors of the foot points.
+    pub(crate) fn set_anchors(&self, params: &[f64]) {
+        *self.distances.params.borrow_mut() = params.to_vec();
+        *self.feet.borrow_mut() = FeetCache::default();
+    }
+
+    /// Moves the anchors of the foot points to the foot points of the curve of `x`.
+    pub(crate) fn commit(&self, x: &DVector<f64>) {
+        let params: Vec<f64> = self.feet(x, false).feet.iter().map(|f| f.param).collect();
+        *self.distances.params.borrow_mut() = params;
+        // The anchors moved: evaluations start afresh.
+        *self.feet.borrow_mut() = FeetCache::default();
+    }
+
+    /// The feet of the data on the curve of `x`, computed once per set of control points.
+    fn feet(&self, x: &DVector<f64>, derivatives: bool) -> std::cell::Ref<'_, FeetCache> {
+        let key = &x.as_slice()[..2 * self.n];
+        let fresh = {
+            let cache = self.feet.borrow();
+            cache.control.as_slice() == key && (cache.derivatives || !derivatives)
+        };
+        if !fresh {
+            let control = self.control_points(x);
+            let feet = (0..self.distances.points.len())
+                .map(|j| self.distances.foot(&control, j, derivatives))
+                .collect();
+            *self.feet.borrow_mut() = FeetCache {
+                control: key.to_vec(),
+                derivatives,
+                feet,
+            };
+        }
+        self.feet.borrow()
+    }
+
+    /// The squared distances of the data at `x`.
+    pub(crate) fn squared_distances(&self, x: &DVector<f64>) -> Vec<f64> {
+        self.feet(x, false).feet.iter().map(|f| f.squared).collect()
+    }
+
+    /// The unit of squared distances.
+    pub(crate) fn unit(&self) -> f64 {
+        self.unit
+    }
+
+    /// Sets the unit of squared distances (the objective is then about 1 at the start).
+    pub(crate) fn set_unit(&mut self, unit: f64) {
+        self.unit = unit.max(f64::MIN_POSITIVE);
+    }
+
+    /// The number of pieces (segments and their refinements).
+    pub(crate) fn num_pieces(&self) -> usize {
+        self.pieces.len()
+    }
+
+    /// The number of sign conditions on `g`.
+    pub(crate) fn num_conditions(&self) -> usize {
+        self.pieces.len() * self.kernel.coefficients_per_segment()
+    }
+
+    /// `sign · (S g)` of every piece at `x` (positive when satisfied), unscaled.
+    fn signed_coefficients(&self, x: &DVector<f64>) -> Vec<Vec<f64>> {
+        let q1 = self.kernel.coefficients_per_segment();
+        let control = self.control_points(x);
+        let mut scratch = self.scratch.borrow_mut();
+        let Scratch {
+            workspace, values, ..
+        } = &mut *scratch;
+        let mut per_segment = Vec::with_capacity(self.kernel.num_segments());
+        for s in 0..self.kernel.num_segments() {
+            self.kernel.segment(s, &control, workspace, values, None, None);
+            per_segment.push(values.clone());
+        }
+        self.pieces
+            .iter()
+            .map(|piece| {
+                let g = &per_segment[piece.segment];
+                (0..q1)
+                    .map(|r| {
+                        let row = &piece.subdivision[r * q1..(r + 1) * q1];
+                        piece.sign * row.iter().zip(g).map(|(a, b)| a * b).sum::<f64>()
+                    })
+                    .collect()
+            })
+            .collect()
+    }
+
+    /// Scales every condition by its magnitude at `x` (floored at `1e-3` of the largest):
+    /// a positive factor per condition leaves the feasible set alone, and puts the nose of an
+    /// airfoil and its flat parts on one footing.
+    pub(crate) fn rescale(&mut self, x: &DVector<f64>) {
+        let coefficients = self.signed_coefficients(x);
+        let largest = coefficients
+            .iter()
+            .flatten()
+            .fold(0.0f64, |m, v| m.max(v.abs()));
+        let floor = (1e-3 * largest).max(f64::MIN_POSITIVE);
+        for (piece, c) in self.pieces.iter_mut().zip(&coefficients) {
+            for (s, v) in piece.scale.iter_mut().zip(c) {
+                *s = v.abs().max(floor);
+            }
+        }
+    }
+
+    /// Starts the homotopy at `x`: shifts `σ_i = max(0, −v_i(x)) + margin` so that `x` is
+    /// strictly feasible at `τ = 1` (`v_i` the scaled signed coefficients). Returns whether
+    /// any condition was violated.
+    pub(crate) fn start_homotopy(&mut self, x: &DVector<f64>, margin: f64, uniform: bool) -> bool {
+        let coefficients = self.signed_coefficients(x);
+        let mut violated = false;
+        let worst = self
+            .pieces
+            .iter()
+            .zip(&coefficients)
+            .flat_map(|(piece, c)| c.iter().zip(&piece.scale).map(|(v, s)| -v / s))
+            .fold(0.0f64, f64::max);
+        for (piece, c) in self.pieces.iter_mut().zip(&coefficients) {
+            for ((shift, v), s) in piece.shift.iter_mut().zip(c).zip(&piece.scale) {
+                let scaled = v / s;
+                violated |= scaled <= 0.0;
+                *shift = if uniform { worst + margin } else { (-scaled).max(0.0) + margin };
+            }
+        }
+        self.tau = 1.0;
+        violated
+    }
+
+    /// Sets the homotopy parameter (outside phase I).
+    pub(crate) fn set_tau(&mut self, tau: f64) {
+        self.tau = tau.max(0.0);
+    }
+
+    /// Splits every piece whose smallest signed coefficient at `x` is below `relative` times
+    /// its largest (an active condition, more conservative there than `g ≥ 0`) in two, unless
+    /// it is shorter than `min_length` of its segment. Returns how many were split.
+    /// Feasibility is kept: subdivision takes convex combinations of the coefficients. Only
+    /// at `τ = 0`.
+    pub(crate) fn refine_active(
+        &mut self,
+        x: &DVector<f64>,
+        relative: f64,
+        min_length: f64,
+    ) -> usize {
+        debug_assert!(self.tau == 0.0, "refinement after the homotopy");
+        let coefficients = self.signed_coefficients(x);
+        let largest_all = coefficients
+            .iter()
+            .flatten()
+            .fold(0.0f64, |m, v| m.max(v.abs()));
+        let mut next = Vec::with_capacity(self.pieces.len());
+        let mut split = 0;
+        for (piece, c) in self.pieces.iter().zip(&coefficients) {
+            let largest = c.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+            let smallest = c.iter().copied().fold(f64::INFINITY, f64::min);
+            if smallest < relative * largest
+                && largest > 1e-12 * largest_all
+                && piece.hi - piece.lo > 2.0 * min_length
+            {
+                let mid = 0.5 * (piece.lo + piece.hi);
+                for (lo, hi) in [(piece.lo, mid), (mid, piece.hi)] {
+                    let mut child = self.piece(piece.segment, lo, hi);
+                    child.scale = piece.scale.clone();
+                    next.push(child);
+                }
+                split += 1;
+            } else {
+                next.push(piece.clone());
+            }
+        }
+        self.pieces = next;
+        split
+    }
+
+    /// Adds the Hessian blocks of the objective and the distance constraints, weighted, into
+    /// `out` (dense, variables in order).
+    fn add_distance_hessians(
+        &self,
+        x: &DVector<f64>,
+        objective_weight: f64,
+        constraint_weights: Option<&DVector<f64>>,
+        out: &mut DMatrix<f64>,
+    ) {
+        let feet = self.feet(x, true);
+        let m = self.distances.points.len();
+        let per_point_objective = match self.objective {
+            Objective::MaxDeviation => self.mean_weight / (m as f64 * self.unit),
+            Objective::LeastSquares => 1.0 / (m as f64 * self.unit),
+        };
+        for j in 0..m {
+            let mut w = objective_weight * per_point_objective;
+            if let Some(cw) = constraint_weights {
+                w += cw[j] / self.unit;
+            }
+            if w == 0.0 {
+                continue;
+            }
+            let foot = &feet.feet[j];
+            let nl = foot.gradient.len();
+            let base = 2 * foot.first;
+            for a in 0..nl {
+                for b in 0..nl {
+                    out[(base + a, base + b)] += w * foot.hessian[a * nl + b];
+                }
+            }
+        }
+    }
+}
+
+impl BarrierProblem for EraserProblem {
+    fn dimension(&self) -> usize {
+        2 * self.n + usize::from(self.minimax()) + usize::from(self.relaxed)
+    }
+
+    fn num_constraints(&self) -> usize {
+        self.num_distance_constraints()
+            + self.excursions.len()
+            + self.num_conditions()
+            + usize::from(self.relaxed)
+    }
+
+    fn objective(&self, x: &DVector<f64>) -> f64 {
+        let d2 = self.squared_distances(x);
+        let mean = d2.iter().sum::<f64>() / (d2.len() as f64 * self.unit);
+        let fit = match self.objective {
+            Objective::MaxDeviation => x[2 * self.n] + self.mean_weight * mean,
+            Objective::LeastSquares => mean,
+        };
+        if self.relaxed {
+            x[self.tau_index()] + self.pull * fit
+        } else {
+            fit
+        }
+    }
+
+    fn objective_gradient(&self, x: &DVector<f64>) -> DVector<f64> {
+        let feet = self.feet(x, true);
+        let m = self.distances.points.len();
+        let weight = match self.objective {
+            Objective::MaxDeviation => self.mean_weight,
+            Objective::LeastSquares => 1.0,
+        } / (m as f64 * self.unit);
+        let mut g = DVector::zeros(self.dimension());
+        for foot in &feet.feet {
+            for (a, v) in foot.gradient.iter().enumerate() {
+                g[2 * foot.first + a] += weight * v;
+            }
+        }
+        if self.minimax() {
+            g[2 * self.n] = 1.0;
+        }
+        if self.relaxed {
+            g *= self.pull;
+            g[self.tau_index()] = 1.0;
+        }
+        g
+    }
+
+    fn objective_hessian(&self, x: &DVector<f64>) -> CsrMatrix<f64> {
+        let mut dense = DMatrix::zeros(self.dimension(), self.dimension());
+        let weight = if self.relaxed { self.pull } else { 1.0 };
+        self.add_distance_hessians(x, weight, None, &mut dense);
+        let mut coo = CooMatrix::new(self.dimension(), self.dimension());
+        for j in 0..dense.ncols() {
+            for i in 0..dense.nrows() {
+                if dense[(i, j)] != 0.0 {
+                    coo.push(i, j, dense[(i, j)]);
+                }
+            }
+        }
+        CsrMatrix::from(&coo)
+    }
+
+    fn constraints(&self, x: &DVector<f64>) -> DVector<f64> {
+        let mut out = Vec::with_capacity(self.num_constraints());
+        if self.minimax() {
+            let z = x[2 * self.n];
+            out.extend(self.squared_distances(x).iter().map(|d2| d2 / self.unit - z));
+        }
+        let control = self.control_points(x);
+        for e in &self.excursions {
+            let c = self.curve_point(&control, e.param);
+            out.push((c - e.centre).norm_squared() / e.radius2 - 1.0);
+        }
+        let coefficients = self.signed_coefficients(x);
+        let tau = self.tau_at(x);
+        for (piece, c) in self.pieces.iter().zip(&coefficients) {
+            for ((v, s), shift) in c.iter().zip(&piece.scale).zip(&piece.shift) {
+                out.push(-v / s - tau * shift);
+            }
+        }
+        if self.relaxed {
+            out.push(-tau - 1.0);
+        }
+        DVector::from_vec(out)
+    }
+
+    fn constraint_jacobian(&self, x: &DVector<f64>) -> CsrMatrix<f64> {
+        let q1 = self.kernel.coefficients_per_segment();
+        let nl = self.kernel.local_variables();
+        let control = self.control_points(x);
+        let rows = self.num_constraints();
+        let mut offsets = Vec::with_capacity(rows + 1);
+        let mut cols = Vec::with_capacity(rows * (nl + 1));
+        let mut vals = Vec::with_capacity(rows * (nl + 1));
+        offsets.push(0);
+        if self.minimax() {
+            let feet = self.feet(x, true);
+            for foot in &feet.feet {
+                for (a, v) in foot.gradient.iter().enumerate() {
+                    cols.push(2 * foot.first + a);
+                    vals.push(v / self.unit);
+                }
+                cols.push(2 * self.n);
+                vals.push(-1.0);
+                offsets.push(cols.len());
+            }
+        }
+        let p = self.distances.knots.degree();
+        let mut basis = [0.0; spline_core::MAX_ORDER];
+        for e in &self.excursions {
+            let span = self.distances.knots.span_in_domain(e.param);
+            self.distances
+                .knots
+                .basis_values(span, e.param, &mut basis[..=p]);
+            let c: Vector2<f64> = (0..=p).map(|k| control[span - p + k] * basis[k]).sum();
+            let r = (c - e.centre) * (2.0 / e.radius2);
+            for k in 0..=p {
+                cols.push(2 * (span - p + k));
+                vals.push(basis[k] * r.x);
+                cols.push(2 * (span - p + k) + 1);
+                vals.push(basis[k] * r.y);
+            }
+            offsets.push(cols.len());
+        }
+        let mut scratch = self.scratch.borrow_mut();
+        let Scratch {
+            workspace,
+            values,
+            jacobian,
+        } = &mut *scratch;
+        let mut per_segment: Vec<Vec<f64>> = Vec::with_capacity(self.kernel.num_segments());
+        for s in 0..self.kernel.num_segments() {
+            self.kernel
+                .segment(s, &control, workspace, values, Some(jacobian), None);
+            per_segment.push(jacobian.clone());
+        }
+        for piece in &self.pieces {
+            let first = 2 * self.kernel.first_point(piece.segment);
+            let jac = &per_segment[piece.segment];
+            for r in 0..q1 {
+                let sub = &piece.subdivision[r * q1..(r + 1) * q1];
+                let factor = -piece.sign / piece.scale[r];
+                for c in 0..nl {
+                    let mut acc = 0.0;
+                    for (k, &s) in sub.iter().enumerate() {
+                        acc += s * jac[k * nl + c];
+                    }
+                    cols.push(first + c);
+                    vals.push(factor * acc);
+                }
+                if self.relaxed {
+                    cols.push(self.tau_index());
+                    vals.push(-piece.shift[r]);
+                }
+                offsets.push(cols.len());
+            }
+        }
+        if self.relaxed {
+            cols.push(self.tau_index());
+            vals.push(-1.0);
+            offsets.push(cols.len());
+        }
+        CsrMatrix::try_from_csr_data(rows, self.dimension(), offsets, cols, vals)
+            .expect("rows of increasing columns")
+    }
+
+    fn weighted_constraint_hessian(
+        &self,
+        x: &DVector<f64>,
+        weights: &DVector<f64>,
+    ) -> Option<CsrMatrix<f64>> {
+        let mut dense = DMatrix::zeros(self.dimension(), self.dimension());
+        self.add_weighted_constraint_hessian(x, weights, &mut dense);
+        let mut coo = CooMatrix::new(self.dimension(), self.dimension());
+        for j in 0..dense.ncols() {
+            for i in 0..dense.nrows() {
+                if dense[(i, j)] != 0.0 {
+                    coo.push(i, j, dense[(i, j)]);
+                }
+            }
+        }
+        Some(CsrMatrix::from(&coo))
+    }
+
+    fn add_weighted_constraint_hessian(
+        &self,
+        x: &DVector<f64>,
+        weights: &DVector<f64>,
+        out: &mut DMatrix<f64>,
+    ) -> bool {
+        let md = self.num_distance_constraints();
+        if md > 0 {
+            let w = weights.rows(0, md).into_owned();
+            self.add_distance_hessians(x, 0.0, Some(&w), out);
+        }
+        let p = self.distances.knots.degree();
+        let mut basis = [0.0; spline_core::MAX_ORDER];
+        for (k, e) in self.excursions.iter().enumerate() {
+            let w = weights[md + k] * 2.0 / e.radius2;
+            let span = self.distances.knots.span_in_domain(e.param);
+            self.distances
+                .knots
+                .basis_values(span, e.param, &mut basis[..=p]);
+            for a in 0..=p {
+                for b in 0..=p {
+                    let v = w * basis[a] * basis[b];
+                    let (i, j) = (2 * (span - p + a), 2 * (span - p + b));
+                    out[(i, j)] += v;
+                    out[(i + 1, j + 1)] += v;
+                }
+            }
+        }
+        let md = md + self.excursions.len();
+        let q1 = self.kernel.coefficients_per_segment();
+        let nl = self.kernel.local_variables();
+        let mut omega = vec![vec![0.0; q1]; self.kernel.num_segments()];
+        for (p, piece) in self.pieces.iter().enumerate() {
+            for r in 0..q1 {
+                let w = weights[md + p * q1 + r] * (-piece.sign / piece.scale[r]);
+                if w == 0.0 {
+                    continue;
+                }
+                for (k, o) in omega[piece.segment].iter_mut().enumerate() {
+                    *o += w * piece.subdivision[r * q1 + k];
+                }
+            }
+        }
+        let control = self.control_points(x);
+        let mut scratch = self.scratch.borrow_mut();
+        let Scratch {
+            workspace, values, ..
+        } = &mut *scratch;
+        let mut block = vec![0.0; nl * nl];
+        for (s, w) in omega.iter().enumerate() {
+            block.iter_mut().for_each(|b| *b = 0.0);
+            self.kernel
+                .segment(s, &control, workspace, values, None, Some((w, &mut block)));
+            let first = 2 * self.kernel.first_point(s);
+            for a in 0..nl {
+                for b in 0..nl {
+                    out[(first + a, first + b)] += block[a * nl + b];
+                }
+            }
+        }
+        true
+    }
+}
