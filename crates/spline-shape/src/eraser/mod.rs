@@ -384,7 +384,7 @@ pub fn smooth(points: &[Vector2<f64>], options: &SmoothingOptions) -> Result<Smo
             .iter()
             .all(|&c| c < 0.0);
         if !feasible {
-            let z = x[2 * level_knots.num_basis()];
+            let z = x.get(2 * level_knots.num_basis()).copied().unwrap_or(0.0);
             match solver.phase_one(&mut problem, &control, z) {
                 Some(found) => x = found,
                 // Too coarse to hold the allowed shape: start again one level finer.
@@ -400,19 +400,8 @@ pub fn smooth(points: &[Vector2<f64>], options: &SmoothingOptions) -> Result<Smo
         let max_refinements = if finest { options.max_refinements } else { 0 };
         refinements = solver.phase_two(&mut problem, &mut x, gap, max_refinements)?;
         let curve = BSpline::new(level_knots.clone(), problem.control_points(&x))?;
-        let curve_dbg = curve.clone();
         params = problem.anchors();
         current = Some(curve);
-        if std::env::var_os("SPLINE_DEBUG").is_some() {
-            let d2 = problem.squared_distances(&x);
-            let worst = d2.iter().copied().fold(0.0, f64::max);
-            let big = problem.control_points(&x).iter().fold(0.0f64, |m, c| m.max(c.norm()));
-            let c = problem.constraints(&x);
-            let cmax = c.iter().copied().fold(f64::NEG_INFINITY, f64::max);
-            eprintln!("unit {:.3e} params {:?}", problem.unit(), &problem.anchors()[..5]);
-            eprintln!("curve at 0.3: {:?}, knots {:?}", curve_dbg.eval(0.3), level_knots.knots());
-            eprintln!("level {level}: {} control points, z {:.4e} worst d2/unit {:.4e} largest cp {big:.3e} max constraint {cmax:.3e}", level_knots.num_basis(), x[2 * level_knots.num_basis()], worst / problem.unit());
-        }
         last_problem = Some(problem);
     }
     let problem = last_problem.ok_or_else(not_found)?;
