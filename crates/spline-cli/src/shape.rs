@@ -1,84 +1,104 @@
-//! Shape subcommands: smooth (the selective eraser of curvature extrema).
+//! Shape subcommands: smooth (the selective eraser of curvature extrema), one airfoil or a
+//! whole directory of them.
 
 use crate::io;
 use clap::Args;
+use indicatif::{ProgressBar, ProgressStyle};
 use nalgebra::Vector2;
+use rayon::prelude::*;
 use serde_json::{Value, json};
 use spline_core::{Error, ErrorKind, Result};
+use spline_geom::airfoil::parse_airfoil;
 use spline_geom::exchange::CurveRecord;
-use spline_shape::{Extremum, Objective, SmoothedCurve, SmoothingOptions, smooth as erase};
+use spline_shape::{
+    Extremum, Objective, SmoothedCurve, SmoothingOptions, smooth as erase, smooth_to_tolerance,
+};
+use std::io::IsTerminal;
+use std::path::{Path, PathBuf};
+use std::time::Instant;
 
 #[derive(Args)]
 pub struct SmoothArgs {
-    /// Planar points: a JSON array of [x, y], or a text file (e.g. a UIUC airfoil .dat file).
-    points: String,
+    /// Planar points: airfoil coordinate files (Selig or Lednicer .dat), JSON arrays of
+    /// [x, y], or directories of .dat files; `-` reads standard input.
+    #[arg(required = true, value_name = "FILE|DIR")]
+    inputs: Vec<String>,
     /// Number of control points of the curve.
-    #[arg(long)]
-    control_points: usize,
+    #[arg(long, conflicts_with = "max_deviation")]
+    control_points: Option<usize>,
+    /// Instead of a number of control points: the fewest that bring every data point within
+    /// this distance of the curve.
+    #[arg(long, value_name = "D")]
+    max_deviation: Option<f64>,
     /// Degree of the curve (at least 3).
     #[arg(long, default_value_t = 3)]
     degree: usize,
     /// Number of curvature extrema the curve may have (alternating maximum, minimum, …,
     /// placed automatically); --extremum gives them one by one instead.
-    #[arg(long)]
+    #[arg(long, value_name = "K")]
     curvature_extrema: Option<usize>,
-    /// An allowed extremum: max, min, max@U or min@U (U in (0, 1)); repeat in the order of
-    /// the data.
+    /// An allowed extremum: max, min, max@U or min@U (U in (0, 1)); repeat, in the order of
+    /// the data. Default: one maximum (the nose of an airfoil).
     #[arg(long = "extremum", value_name = "KIND[@U]")]
     extrema: Vec<String>,
-    /// What is minimised: the largest deviation (default) or the sum of squares.
-    #[arg(long, default_value = "max")]
+    /// What is minimised: the largest deviation (max) or the sum of squared distances
+    /// (least-squares).
+    #[arg(long, default_value = "max", value_name = "max|least-squares")]
     objective: String,
-    /// Rounds of constrained solve and parameter correction, at most.
-    #[arg(long, default_value_t = 40)]
-    rounds: usize,
-    /// Exponent β of the knot density |C′| (κ L + c)^β (0: knots uniform in arc length).
-    #[arg(long, default_value_t = 0.5)]
-    knot_exponent: f64,
-    /// Floor c of the knot density.
-    #[arg(long, default_value_t = 0.6)]
-    knot_floor: f64,
-    /// Stop after this many rounds without improvement.
-    #[arg(long, default_value_t = 6)]
-    patience: usize,
+    /// Try every knot density and keep the closest curve (slower).
+    #[arg(long)]
+    thorough: bool,
+    /// Directory for one NAME.json per input and summary.jsonl (needed for several inputs).
+    #[arg(long, value_name = "DIR")]
+    out: Option<String>,
+    /// Parallel jobs for several inputs (default: every core).
+    #[arg(long, value_name = "J")]
+    jobs: Option<usize>,
 }
 
-pub fn smooth(args: &SmoothArgs) -> Result<()> {
-    let rows = io::read_points(&args.points)?;
-    let points = rows
-        .iter()
-        .map(|r| match r.as_slice() {
-            [x, y] => Ok(Vector2::new(*x, *y)),
-            _ => Err(Error::new(
-                ErrorKind::DimensionMismatch,
-                format!(
-                    "smooth needs planar points (2 coordinates), got {}",
-                    r.len()
-                ),
-            )),
-        })
-        .collect::<Result<Vec<_>>>()?;
-    let mut options = SmoothingOptions::new(args.control_points);
+fn options(args: &SmoothArgs) -> Result<SmoothingOptions> {
+    let control = match (args.control_points, args.max_deviation) {
+        (Some(n), None) => n,
+        (None, Some(_)) => 0,
+        (None, None) => {
+            return Err(Error::new(
+                ErrorKind::InvalidArgument,
+                "give --control-points N or --max-deviation D",
+            ));
+        }
+        (Some(_), Some(_)) => unreachable!("clap refuses both"),
+    };
+    let mut options = SmoothingOptions::new(control);
     options.degree = args.degree;
-    options.max_rounds = args.rounds;
-    options.knot_exponent = args.knot_exponent;
-    options.knot_floor = args.knot_floor;
-    options.patience = args.patience;
+    options.thorough = args.thorough;
     options.objective = match args.objective.as_str() {
         "max" => Objective::MaxDeviation,
-        "lsq" | "least-squares" => Objective::LeastSquares,
+        "least-squares" | "lsq" => Objective::LeastSquares,
         other => {
             return Err(Error::new(
                 ErrorKind::InvalidArgument,
-                format!("--objective: unknown choice {other:?} (max or least-squares)"),
+                format!(
+                    "--objective: unknown choice {} (max or least-squares)",
+                    io::quote(other)
+                ),
             ));
         }
     };
     if !args.extrema.is_empty() {
+        if args.curvature_extrema.is_some_and(|k| k != args.extrema.len()) {
+            return Err(Error::new(
+                ErrorKind::InvalidArgument,
+                format!(
+                    "--curvature-extrema {} disagrees with the {} --extremum given",
+                    args.curvature_extrema.unwrap_or(0),
+                    args.extrema.len()
+                ),
+            ));
+        }
         options.extrema = args
             .extrema
             .iter()
-            .map(|t| t.parse::<Extremum>())
+            .map(|t| t.parse::<Extremum>().map_err(|e| e.context("--extremum")))
             .collect::<Result<_>>()?;
     } else if let Some(k) = args.curvature_extrema {
         options.extrema = (0..k)
@@ -91,8 +111,38 @@ pub fn smooth(args: &SmoothArgs) -> Result<()> {
             })
             .collect();
     }
-    let result = erase(&points, &options)?;
-    io::print_json(&report(&result))
+    Ok(options)
+}
+
+/// Reads planar points: a JSON array of pairs, or an airfoil file.
+fn read_planar(path: &str) -> Result<Vec<Vector2<f64>>> {
+    let text = io::read_text(path)?;
+    if text.trim_start().starts_with('[') {
+        let rows = spline_geom::exchange::parse_points(&text).map_err(|e| e.context(path))?;
+        rows.iter()
+            .enumerate()
+            .map(|(i, r)| match r.as_slice() {
+                [x, y] => Ok(Vector2::new(*x, *y)),
+                _ => Err(Error::new(
+                    ErrorKind::DimensionMismatch,
+                    format!(
+                        "{path}: point {i} has {} coordinates; smoothing needs planar points",
+                        r.len()
+                    ),
+                )),
+            })
+            .collect()
+    } else {
+        Ok(parse_airfoil(&text).map_err(|e| e.context(path))?.points)
+    }
+}
+
+fn run_one(path: &str, options: &SmoothingOptions, tolerance: Option<f64>) -> Result<SmoothedCurve> {
+    let points = read_planar(path)?;
+    match tolerance {
+        Some(d) => smooth_to_tolerance(&points, d, options),
+        None => erase(&points, options),
+    }
 }
 
 fn report(result: &SmoothedCurve) -> Value {
@@ -110,10 +160,151 @@ fn report(result: &SmoothedCurve) -> Value {
         })).collect::<Vec<_>>(),
         "inflections": result.inflections,
         "control_points": result.curve.control_points().len(),
+        "degree": result.curve.degree(),
         "refinements": result.refinements,
-        "rounds": result.rounds,
-        "start_extrema": result.start_extrema,
         "conditions": result.conditions,
-        "newton_steps": result.newton_steps,
+        "least_squares_curvature_extrema": result.start_extrema,
     })
+}
+
+/// The `.dat` files of a directory, sorted.
+fn dat_files(dir: &Path) -> Result<Vec<PathBuf>> {
+    let entries = std::fs::read_dir(dir).map_err(|e| {
+        Error::new(
+            ErrorKind::InvalidArgument,
+            format!("cannot read the directory {}: {e}", dir.display()),
+        )
+    })?;
+    let mut files: Vec<PathBuf> = entries
+        .filter_map(|e| e.ok().map(|e| e.path()))
+        .filter(|p| p.extension().is_some_and(|x| x.eq_ignore_ascii_case("dat")))
+        .collect();
+    files.sort();
+    Ok(files)
+}
+
+pub fn smooth(args: &SmoothArgs) -> Result<()> {
+    let options = options(args)?;
+    let mut inputs: Vec<String> = Vec::new();
+    let mut directory = false;
+    for input in &args.inputs {
+        let path = Path::new(input);
+        if input != "-" && path.is_dir() {
+            directory = true;
+            inputs.extend(dat_files(path)?.iter().map(|p| p.display().to_string()));
+        } else {
+            inputs.push(input.clone());
+        }
+    }
+    if inputs.len() == 1 && !directory && args.out.is_none() {
+        io::check_stdout_open()?;
+        let result = run_one(&inputs[0], &options, args.max_deviation)?;
+        return io::print_json(&report(&result));
+    }
+    let Some(out) = &args.out else {
+        return Err(Error::new(
+            ErrorKind::InvalidArgument,
+            format!(
+                "{} inputs: give --out DIR for one NAME.json each and summary.jsonl",
+                inputs.len()
+            ),
+        ));
+    };
+    batch(&inputs, Path::new(out), &options, args)
+}
+
+/// Smooths every input in parallel, writing `DIR/NAME.json` and `DIR/summary.jsonl`; goes on
+/// after failures and reports them at the end.
+fn batch(inputs: &[String], out: &Path, options: &SmoothingOptions, args: &SmoothArgs) -> Result<()> {
+    std::fs::create_dir_all(out).map_err(|e| {
+        Error::new(
+            ErrorKind::InvalidArgument,
+            format!("cannot create {}: {e}", out.display()),
+        )
+    })?;
+    let summary_path = out.join("summary.jsonl");
+    let summary_name = summary_path.display().to_string();
+    let summary_file = io::create_file(&summary_name)?;
+    let jobs = args.jobs.unwrap_or(0);
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(jobs)
+        .build()
+        .map_err(|e| Error::new(ErrorKind::InvalidArgument, format!("--jobs: {e}")))?;
+    let bar = if std::io::stderr().is_terminal() {
+        let bar = ProgressBar::new(inputs.len() as u64);
+        if let Ok(style) =
+            ProgressStyle::with_template("{bar:40} {pos}/{len} airfoils, {elapsed} ({eta} left) {msg}")
+        {
+            bar.set_style(style);
+        }
+        bar
+    } else {
+        ProgressBar::hidden()
+    };
+    let started = Instant::now();
+    let lines: Vec<(String, bool)> = pool.install(|| {
+        inputs
+            .par_iter()
+            .map(|input| {
+                let name = Path::new(input)
+                    .file_stem()
+                    .map_or_else(|| input.clone(), |s| s.to_string_lossy().into_owned());
+                let t0 = Instant::now();
+                let outcome = run_one(input, options, args.max_deviation).and_then(|result| {
+                    let mut value = report(&result);
+                    value["name"] = json!(name);
+                    let path = out.join(format!("{name}.json"));
+                    let shown = path.display().to_string();
+                    io::write_file(io::create_file(&shown)?, &shown, &io::encode(&value)?)?;
+                    Ok(result)
+                });
+                let seconds = t0.elapsed().as_secs_f64();
+                bar.inc(1);
+                let line = match &outcome {
+                    Ok(r) => json!({
+                        "name": name,
+                        "control_points": r.curve.control_points().len(),
+                        "max_deviation": r.deviation.to_curve.max,
+                        "max_deviation_to_data": r.deviation.to_data,
+                        "extrema": r.extrema.len(),
+                        "seconds": seconds,
+                        "error": null,
+                    }),
+                    Err(e) => json!({
+                        "name": name,
+                        "control_points": null,
+                        "max_deviation": null,
+                        "max_deviation_to_data": null,
+                        "extrema": null,
+                        "seconds": seconds,
+                        "error": e.to_string(),
+                    }),
+                };
+                (line.to_string(), outcome.is_ok())
+            })
+            .collect()
+    });
+    bar.finish_and_clear();
+    let mut text = String::new();
+    for (line, _) in &lines {
+        text.push_str(line);
+        text.push('\n');
+    }
+    io::write_file(summary_file, &summary_name, text.as_bytes())?;
+    let failed = lines.iter().filter(|(_, ok)| !ok).count();
+    let message = format!(
+        "smoothed {} of {} inputs in {:.1} s; summary in {summary_name}",
+        lines.len() - failed,
+        lines.len(),
+        started.elapsed().as_secs_f64()
+    );
+    if failed > 0 {
+        Err(Error::new(
+            ErrorKind::NoConvergence,
+            format!("{message}; {failed} failed (their \"error\" field says why)"),
+        ))
+    } else {
+        eprintln!("spline: {message}");
+        Ok(())
+    }
 }

@@ -28,6 +28,11 @@ pub struct TwoSidedDeviation<T> {
     pub to_data: T,
     /// The parameter where the curve is farthest from the polyline.
     pub to_data_param: T,
+    /// The largest excess of the curve → data distance over what the polyline's own chords
+    /// explain: over the samples, the distance to the nearest polyline segment minus half its
+    /// length (a round curve through two data points stays within half their distance of
+    /// their chord; a curve that loops or strays between data points does not).
+    pub to_data_excess: T,
 }
 
 impl<T: Scalar> TwoSidedDeviation<T> {
@@ -73,10 +78,16 @@ impl<'a, T: Scalar, P: ControlPoint<T>> PolylineIndex<'a, T, P> {
 
     /// The distance from `x` to the polyline.
     fn distance(&self, x: &P) -> T {
+        self.nearest(x).0
+    }
+
+    /// The distance from `x` to the polyline and the length of the nearest segment.
+    fn nearest(&self, x: &P) -> (T, T) {
         let pts = self.points;
         if pts.len() == 1 {
-            return (*x - pts[0]).length();
+            return ((*x - pts[0]).length(), T::zero());
         }
+        let mut length = T::zero();
         let mut best = T::max_value().unwrap_or_else(|| cast(f64::MAX));
         let mut order: Vec<(T, usize)> = self
             .boxes
@@ -100,10 +111,14 @@ impl<'a, T: Scalar, P: ControlPoint<T>> PolylineIndex<'a, T, P> {
             let lo = c * CHUNK;
             let hi = ((c + 1) * CHUNK).min(pts.len() - 1);
             for k in lo..hi {
-                best = best.min(segment_distance(x, &pts[k], &pts[k + 1]));
+                let d = segment_distance(x, &pts[k], &pts[k + 1]);
+                if d < best {
+                    best = d;
+                    length = (pts[k + 1] - pts[k]).length();
+                }
             }
         }
-        best
+        (best, length)
     }
 }
 
@@ -159,26 +174,30 @@ pub fn two_sided_deviation<T: Scalar, P: ControlPoint<T>>(
         distances.push(hit.distance);
         params.push(hit.param);
     }
-    let (to_data, to_data_param) = curve_to_polyline(curve, points)?;
+    let (to_data, to_data_param, to_data_excess) = curve_to_polyline(curve, points)?;
     Ok(TwoSidedDeviation {
         to_curve: Deviation::from_distances(distances),
         params,
         to_data,
         to_data_param,
+        to_data_excess,
     })
 }
 
-/// The largest distance from the curve to the polyline through `points`, and where.
+/// The largest distance from the curve to the polyline through `points`, where, and the
+/// largest excess over half the nearest segment's length.
 fn curve_to_polyline<T: Scalar, P: ControlPoint<T>>(
     curve: &BSpline<T, P>,
     points: &[P],
-) -> Result<(T, T)> {
+) -> Result<(T, T, T)> {
     let index = PolylineIndex::new(points);
     let breaks = curve.knots().domain_breaks();
     let distance_at = |u: T| -> Result<T> { Ok(index.distance(&curve.eval(u)?)) };
     let (mut best, mut best_u) = (T::zero(), breaks[0]);
     let mut best_bracket = (breaks[0], breaks[0]);
     let steps: T = from_count(SAMPLES_PER_SPAN);
+    let half: T = cast(0.5);
+    let mut excess = T::zero();
     for w in breaks.windows(2) {
         let (a, b) = (w[0], w[1]);
         let h = (b - a) / steps;
@@ -188,7 +207,8 @@ fn curve_to_polyline<T: Scalar, P: ControlPoint<T>>(
             } else {
                 a + h * from_count::<T>(k)
             };
-            let d = distance_at(u)?;
+            let (d, length) = index.nearest(&curve.eval(u)?);
+            excess = excess.max(d - length * half);
             if d > best {
                 best = d;
                 best_u = u;
@@ -226,5 +246,5 @@ fn curve_to_polyline<T: Scalar, P: ControlPoint<T>>(
             best_u = x;
         }
     }
-    Ok((best, best_u))
+    Ok((best, best_u, excess))
 }

@@ -34,6 +34,7 @@ mod arclength;
 mod bezier;
 mod bspline;
 mod construct;
+pub mod airfoil;
 pub mod exchange;
 pub mod export;
 mod homogeneous;

@@ -31,6 +31,6 @@ pub use constrained::{
 pub use constrained_surface::{Region, SurfaceApproximation, SurfaceConstraint, SurfaceFit};
 pub use eraser::{
     CurvatureExtremum, Extremum, ExtremumKind, Objective, SampledExtremum, SmoothedCurve,
-    SmoothingOptions, sampled_curvature_extrema, smooth,
+    SmoothingOptions, sampled_curvature_extrema, smooth, smooth_to_tolerance,
 };
 pub use problem::{ApproximationProblem, Sign};

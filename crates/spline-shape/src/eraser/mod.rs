@@ -24,21 +24,23 @@
 //!    the pieces whose conditions are active (subdivision keeps the curve feasible and makes
 //!    the sufficient conditions closer to `g ≥ 0` itself). The best curve is kept.
 
+mod driver;
+mod placement;
 mod problem;
 mod verify;
 
 pub use verify::{SampledExtremum, sampled_curvature_extrema};
 
-use crate::barrier::{BarrierOptions, BarrierProblem, centre};
-use problem::EraserProblem;
-use nalgebra::{DVector, Vector2};
+use crate::barrier::BarrierOptions;
+use nalgebra::Vector2;
+use placement::{fit_with_correction, place_extrema};
 use spline_algebra::planar_features;
-use spline_core::{Error, ErrorKind, KnotVector, Result};
+use spline_core::{Error, ErrorKind, Result};
 use spline_fit::{
-    LeastSquares, Parametrization, TwoSidedDeviation, curvature_knots_with, nurbs_book_knots,
-    parametrize, project_ordered, two_sided_deviation,
+    Parametrization, TwoSidedDeviation, curvature_knots_with, nurbs_book_knots, parametrize,
+    two_sided_deviation,
 };
-use spline_geom::{BSpline, Curve2};
+use spline_geom::Curve2;
 use std::fmt;
 use std::str::FromStr;
 
@@ -159,16 +161,19 @@ pub struct SmoothingOptions {
     pub extrema: Vec<Extremum>,
     /// What is minimised.
     pub objective: Objective,
-    /// Rounds of constrained solve and parameter correction, at most.
-    pub max_rounds: usize,
-    /// Stop after this many rounds without a better curve.
-    pub patience: usize,
-    /// Passes of refinement of the active conditions, at most.
-    pub max_refinements: usize,
-    /// Exponent `β` of the knot density `|C′| (κ L + c)^β` ([`spline_fit::curvature_knots`]).
-    pub knot_exponent: f64,
+    /// Exponents `β` of the knot density `|C′| (κ L + c)^β`
+    /// ([`spline_fit::curvature_knots`]) tried in turn: the next one when no curve is found
+    /// (or the curve leaves the data) with the previous one, or every one with
+    /// [`SmoothingOptions::thorough`].
+    pub knot_exponents: Vec<f64>,
     /// Floor `c` of the knot density.
     pub knot_floor: f64,
+    /// Try every knot density and keep the closest curve (instead of the first found).
+    pub thorough: bool,
+    /// Centring steps of phase I, at most.
+    pub max_rounds: usize,
+    /// Passes of refinement of the active conditions, at most.
+    pub max_refinements: usize,
     /// Settings of the interior-point solver.
     pub barrier: BarrierOptions,
 }
@@ -183,11 +188,11 @@ impl SmoothingOptions {
             control_points,
             extrema: vec![Extremum::maximum()],
             objective: Objective::default(),
-            max_rounds: 40,
-            patience: 6,
-            max_refinements: 6,
-            knot_exponent: 0.5,
+            knot_exponents: vec![0.3, 0.5, 0.7],
             knot_floor: 0.6,
+            thorough: false,
+            max_rounds: 40,
+            max_refinements: 6,
             barrier: BarrierOptions {
                 gap_tolerance: 1e-7,
                 max_newton_iterations: 60,
@@ -213,8 +218,6 @@ pub struct CurvatureExtremum {
 pub struct SmoothedCurve {
     /// The smoothed curve, on `[0, 1]`.
     pub curve: Curve2<f64>,
-    /// The least-squares fit with parameter correction on the same knots (the start).
-    pub start: Curve2<f64>,
     /// The deviation from the data both ways: data → curve by closest points and curve →
     /// data polyline.
     pub deviation: TwoSidedDeviation<f64>,
@@ -222,18 +225,20 @@ pub struct SmoothedCurve {
     pub extrema: Vec<CurvatureExtremum>,
     /// The inflections of the result.
     pub inflections: Vec<f64>,
-    /// The number of curvature extrema of the start.
+    /// The number of curvature extrema of the least-squares fit of the same size.
     pub start_extrema: usize,
     /// `+1` if the data run counter-clockwise (the oriented curvature is the signed one),
     /// `−1` otherwise.
     pub orientation: f64,
-    /// Rounds of constrained solve and parameter correction.
-    pub rounds: usize,
+    /// The exponent of the knot density of the result.
+    pub knot_exponent: f64,
+    /// Levels of the coarse-to-fine continuation.
+    pub levels: usize,
     /// Refinement passes that split active pieces.
     pub refinements: usize,
     /// Sign conditions in the final problem.
     pub conditions: usize,
-    /// Newton steps of the interior-point method in all (phase I included).
+    /// Newton steps of the interior-point method in all (phase I included, every attempt).
     pub newton_steps: usize,
 }
 
@@ -251,15 +256,34 @@ fn extrema_words(k: usize) -> String {
 ///
 /// The data are translated and scaled to unit size for the computation and the result is
 /// mapped back, so the answer does not depend on units. Consecutive repeated points count
-/// once.
+/// once. The first and last data points stay at the ends of the curve.
+///
+/// ```
+/// use nalgebra::Vector2;
+/// use spline_shape::{SmoothingOptions, smooth};
+/// // A noisy quarter of an ellipse; its curvature rises from (0, 1) to (2, 0).
+/// let points: Vec<Vector2<f64>> = (0..60)
+///     .map(|k| {
+///         let t = f64::from(k) / 59.0 * std::f64::consts::FRAC_PI_2;
+///         let noise = 1e-3 * f64::from((k * 37) % 7) / 7.0;
+///         Vector2::new(2.0 * t.sin(), t.cos() + noise)
+///     })
+///     .collect();
+/// let mut options = SmoothingOptions::new(8);
+/// options.extrema = vec!["max@0.999".parse()?]; // monotone curvature up to the end
+/// let result = smooth(&points, &options)?;
+/// assert_eq!(result.extrema.len(), 1);
+/// assert!(result.deviation.to_curve.max < 3e-3);
+/// # Ok::<(), spline_core::Error>(())
+/// ```
 ///
 /// # Errors
 /// [`ErrorKind::InvalidArgument`] for a degree below 3, no extrema or kinds that do not
 /// alternate, parameters outside `(0, 1)` or not increasing, or more extrema than the control
 /// points allow; [`ErrorKind::TooFewPoints`] / [`ErrorKind::NonFinite`] /
 /// [`ErrorKind::DegenerateGeometry`] for unusable data; [`ErrorKind::NoConvergence`] when no
-/// curve with these extrema and control points is found near the data (the message says what
-/// to change).
+/// curve with these extrema and control points is found near the data, or the only ones
+/// found leave the data (the message says what to change).
 pub fn smooth(points: &[Vector2<f64>], options: &SmoothingOptions) -> Result<SmoothedCurve> {
     let p = options.degree;
     let n = options.control_points;
@@ -276,168 +300,194 @@ pub fn smooth(points: &[Vector2<f64>], options: &SmoothingOptions) -> Result<Smo
     }
     // Unit size: translate to the centre of the bounding box, scale by its diagonal.
     let (middle, size) = frame(&data);
+    if !(size > 0.0) {
+        return Err(Error::new(
+            ErrorKind::DegenerateGeometry,
+            "the data points all coincide",
+        ));
+    }
     let unit: Vec<Vector2<f64>> = data.iter().map(|q| (q - middle) / size).collect();
     let orientation = if polygon_area(&unit) >= 0.0 { 1.0 } else { -1.0 };
 
     // 1. The shape: centripetal parameters, least squares, parameter correction.
-    let mut params = parametrize(&unit, &Parametrization::Centripetal)?;
+    let params = parametrize(&unit, &Parametrization::Centripetal)?;
     let base = nurbs_book_knots(p, n, &params)?;
-    let (preliminary, corrected) = fit_with_correction(&unit, &params, &base, None, 8)?;
-    params = corrected;
-
-    // 2. Extrema on the shape, knots that follow it, the least-squares start.
-    let placed = place_extrema(&preliminary, &options.extrema, orientation)?;
-    let fixed: Vec<(f64, usize)> = placed.iter().map(|&u| (u, p - 2)).collect();
-    let (knots, start, params) = start_on_feature_knots(
-        &unit,
-        &params,
-        &preliminary,
-        &fixed,
-        options,
-    )?;
-    let start_extrema = planar_features(&start, 1e-10)
+    let (preliminary, params) = fit_with_correction(&unit, &params, &base, 8)?;
+    let start_extrema = planar_features(&preliminary, 1e-10)
         .map(|f| f.curvature_extrema.len())
         .unwrap_or(0);
 
-    // 3. Coarse to fine: the knot vectors of the levels are nested (every other free knot
-    //    dropped at each coarser level, the extremum knots kept), so that knot insertion
-    //    carries a strictly feasible curve of one level to the next one unchanged.
+    // 2. The allowed extrema on the shape; the first piece rises towards a maximum.
+    let placed = place_extrema(&preliminary, &options.extrema, orientation)?;
+    let fixed: Vec<(f64, usize)> = placed.iter().map(|&u| (u, p - 2)).collect();
     let first_sign = match options.extrema[0].kind {
         ExtremumKind::Maximum => orientation,
         ExtremumKind::Minimum => -orientation,
     };
-    let not_found = || {
-        Error::new(
+
+    // 3. Attempts with knots that follow the shape, densities in turn.
+    let mut best: Option<SmoothedCurve> = None;
+    let mut newton_steps = 0;
+    let mut left_the_data = false;
+    for &exponent in &options.knot_exponents {
+        let Ok(knots) =
+            curvature_knots_with(&preliminary, p, n, exponent, options.knot_floor, &fixed)
+        else {
+            continue;
+        };
+        let found = match driver::attempt(&unit, &params, &knots, &placed, first_sign, options)
+        {
+            Ok(found) => found,
+            Err(e)
+                if matches!(
+                    e.kind(),
+                    ErrorKind::SchoenbergWhitney
+                        | ErrorKind::SingularSystem
+                        | ErrorKind::NonFinite
+                        | ErrorKind::NoConvergence
+                ) =>
+            {
+                None
+            }
+            Err(e) => return Err(e),
+        };
+        let Some(found) = found else { continue };
+        newton_steps += found.newton_steps;
+        let curve = found.curve.map_control_points(|c| c * size + middle);
+        let deviation = two_sided_deviation(&curve, &data)?;
+        // A curve that strays from the data between data points is no answer: the curve →
+        // data distance may exceed the data → curve one only by the sagitta of the data's
+        // own chords.
+        if deviation.to_data_excess > 3.0 * deviation.to_curve.max + 1e-3 * size {
+            left_the_data = true;
+            continue;
+        }
+        let better = best
+            .as_ref()
+            .is_none_or(|b| deviation.to_curve.max < b.deviation.to_curve.max);
+        if better {
+            let features = planar_features(&curve, 1e-10)?;
+            let extrema = features
+                .curvature_extrema
+                .iter()
+                .map(|&u| classify(&curve, u, orientation))
+                .collect::<Result<Vec<_>>>()?;
+            best = Some(SmoothedCurve {
+                curve,
+                deviation,
+                extrema,
+                inflections: features.inflections,
+                start_extrema,
+                orientation,
+                knot_exponent: exponent,
+                levels: found.levels,
+                refinements: found.refinements,
+                conditions: found.conditions,
+                newton_steps: 0,
+            });
+        }
+        if !options.thorough {
+            break;
+        }
+    }
+    match best {
+        Some(mut result) => {
+            result.newton_steps = newton_steps;
+            Ok(result)
+        }
+        None => Err(Error::new(
             ErrorKind::NoConvergence,
             format!(
-                "no curve with {} and {n} control points was found near the data: allow more control points or more extrema",
-                extrema_words(placed.len())
+                "no curve with {} and {n} control points was found near the data{}: allow more control points or more extrema",
+                extrema_words(placed.len()),
+                if left_the_data {
+                    " (the curves found leave the data between data points)"
+                } else {
+                    ""
+                }
             ),
-        )
-    };
-    let levels = nested_levels(&knots, &placed)?;
-    let mut solver = Solver {
-        options,
-        newton_steps: 0,
-        phase_one_steps: 0,
-    };
-    let mut params = params;
-    let mut current: Option<Curve2<f64>> = None;
-    let mut last_problem = None;
-    let mut refinements = 0;
-    let mut unit_squared: Option<f64> = None;
-    for (level, level_knots) in levels.iter().enumerate() {
-        let finest = level + 1 == levels.len();
-        let mut problem = EraserProblem::new(
-            level_knots,
-            &unit,
-            &params,
-            options.objective,
-            placed.clone(),
-            first_sign,
-        )?;
-        let control: Vec<Vector2<f64>> = match &current {
-            // The same curve on the finer knots.
-            Some(curve) => curve.refine(&new_knots(curve.knots(), level_knots))?.control_points().to_vec(),
-            None => {
-                let (fit, corrected) =
-                    fit_with_correction(&unit, &params, level_knots, None, 12)?;
-                params = corrected;
-                problem = EraserProblem::new(
-                    level_knots,
-                    &unit,
-                    &params,
-                    options.objective,
-                    placed.clone(),
-                    first_sign,
-                )?;
-                fit.control_points().to_vec()
-            }
-        };
-        // Fixed parameters on the coarse levels (a coarse curve could otherwise fit the data
-        // degenerately, all of them near one end); corrected between levels.
-        problem.set_projection(finest);
-        if current.is_some() {
-            let before = BSpline::new(level_knots.clone(), control.clone())?;
-            params = project_ordered(&before, &unit, &params)?;
-            let last = params.len() - 1;
-            params[0] = 0.0;
-            params[last] = 1.0;
-            problem.set_anchors(&params);
-        }
-        let x0 = problem.variables(&control, 0.0);
-        let largest = problem
-            .squared_distances(&x0)
-            .iter()
-            .copied()
-            .fold(0.0, f64::max);
-        // One unit of squared distance for all levels: the largest at the coarsest start.
-        let unit_of_levels = *unit_squared.get_or_insert(largest.max(1e-24));
-        problem.set_unit(unit_of_levels);
-        let mut x = problem.variables(&control, 1.25 * largest.max(1e-24) / unit_of_levels);
-        if finest || std::env::var_os("SPLINE_EXC_ALL").is_some() {
-            problem.set_excursions(&x, 2.0 * largest.max(1e-24).sqrt());
-        }
-        problem.rescale(&x);
-        let feasible = problem
-            .constraints(&x)
-            .iter()
-            .all(|&c| c < 0.0);
-        if !feasible {
-            let z = x.get(2 * level_knots.num_basis()).copied().unwrap_or(0.0);
-            match solver.phase_one(&mut problem, &control, z) {
-                Some(found) => x = found,
-                // Too coarse to hold the allowed shape: start again one level finer.
-                None if !finest => continue,
-                None => return Err(not_found()),
-            }
-        }
-        let gap = if finest {
-            options.barrier.gap_tolerance
-        } else {
-            1e-4
-        };
-        let max_refinements = if finest { options.max_refinements } else { 0 };
-        refinements = solver.phase_two(&mut problem, &mut x, gap, max_refinements)?;
-        let curve = BSpline::new(level_knots.clone(), problem.control_points(&x))?;
-        params = problem.anchors();
-        current = Some(curve);
-        last_problem = Some(problem);
+        )),
     }
-    let problem = last_problem.ok_or_else(not_found)?;
-    let x_best = problem.variables(
-        current.as_ref().ok_or_else(not_found)?.control_points(),
-        0.0,
-    );
-    let rounds = levels.len();
-    let newton_steps = solver.newton_steps + solver.phase_one_steps;
-    let control: Vec<Vector2<f64>> = problem
-        .control_points(&x_best)
-        .into_iter()
-        .map(|c| c * size + middle)
-        .collect();
-    let curve = BSpline::new(knots.clone(), control)?;
-    let start = start.map_control_points(|c| c * size + middle);
-    let deviation = two_sided_deviation(&curve, &data)?;
-    let features = planar_features(&curve, 1e-10)?;
-    let extrema = features
-        .curvature_extrema
-        .iter()
-        .map(|&u| classify(&curve, u, orientation))
-        .collect::<Result<Vec<_>>>()?;
-    Ok(SmoothedCurve {
-        curve,
-        start,
-        deviation,
-        extrema,
-        inflections: features.inflections,
-        start_extrema,
-        orientation,
-        rounds,
-        refinements,
-        conditions: problem.num_conditions(),
-        newton_steps,
-    })
+}
+
+/// [`smooth`] with the fewest control points that bring every data point within
+/// `tolerance` of the curve (the thesis: "typically less than 2 mm" for a chord of 1 m). The
+/// number of control points in `options` is ignored: counts are doubled from the smallest the
+/// extrema allow until one reaches the tolerance, then bisected (deviations do not always
+/// fall as control points are added, so this is the fewest such a search finds).
+///
+/// # Errors
+/// [`ErrorKind::InvalidArgument`] for a tolerance that is not positive and finite; the
+/// errors of [`smooth`] for the other settings; [`ErrorKind::ToleranceExceeded`] when no
+/// count up to one less than the number of data points reaches the tolerance (the message
+/// gives the best deviation found).
+pub fn smooth_to_tolerance(
+    points: &[Vector2<f64>],
+    tolerance: f64,
+    options: &SmoothingOptions,
+) -> Result<SmoothedCurve> {
+    if !(tolerance > 0.0 && tolerance.is_finite()) {
+        return Err(Error::new(
+            ErrorKind::InvalidArgument,
+            format!("the maximum deviation must be positive and finite, got {tolerance}"),
+        ));
+    }
+    let p = options.degree;
+    let smallest = p + 1 + options.extrema.len() * p.saturating_sub(2);
+    let largest = distinct(points)?.len().saturating_sub(1);
+    if largest < smallest {
+        return Err(Error::new(
+            ErrorKind::TooFewPoints,
+            format!(
+                "{} need at least {} distinct data points, got {}",
+                extrema_words(options.extrema.len()),
+                smallest + 1,
+                largest + 1
+            ),
+        ));
+    }
+    let mut best_seen = f64::INFINITY;
+    let mut run = |n: usize| -> Result<Option<SmoothedCurve>> {
+        let mut o = options.clone();
+        o.control_points = n;
+        let result = match smooth(points, &o) {
+            Ok(r) => r,
+            Err(e) if e.kind() == ErrorKind::NoConvergence => {
+                return Ok(None);
+            }
+            Err(e) => return Err(e),
+        };
+        best_seen = best_seen.min(result.deviation.to_curve.max);
+        let ok = result.deviation.to_curve.max <= tolerance;
+        Ok(ok.then_some(result))
+    };
+    // Doubling, then bisection between the last failure and the first success.
+    let mut lo = smallest - 1; // fails by convention
+    let mut n = smallest;
+    let mut found = loop {
+        if let Some(r) = run(n)? {
+            break (n, r);
+        }
+        if n >= largest {
+            return Err(Error::new(
+                ErrorKind::ToleranceExceeded,
+                format!(
+                    "no curve with {} within {tolerance} of the data was found with up to {largest} control points (best deviation {best_seen:.3e})",
+                    extrema_words(options.extrema.len())
+                ),
+            ));
+        }
+        lo = n;
+        n = (2 * n).min(largest);
+    };
+    while found.0 - lo > 1 {
+        let mid = lo + (found.0 - lo) / 2;
+        match run(mid)? {
+            Some(r) => found = (mid, r),
+            None => lo = mid,
+        }
+    }
+    Ok(found.1)
 }
 
 fn check_options(options: &SmoothingOptions) -> Result<()> {
@@ -445,13 +495,26 @@ fn check_options(options: &SmoothingOptions) -> Result<()> {
     if p < 3 {
         return Err(Error::new(
             ErrorKind::InvalidArgument,
-            format!("smoothing needs degree 3 or more (the curvature's derivative involves c‴), got {p}"),
+            format!(
+                "smoothing needs degree 3 or more (the curvature's derivative involves c‴), got {p}"
+            ),
         ));
     }
     if options.extrema.is_empty() {
         return Err(Error::new(
             ErrorKind::InvalidArgument,
             "allow at least one curvature extremum",
+        ));
+    }
+    if options.knot_exponents.is_empty()
+        || options
+            .knot_exponents
+            .iter()
+            .any(|e| !(*e >= 0.0 && e.is_finite()))
+    {
+        return Err(Error::new(
+            ErrorKind::InvalidArgument,
+            "knot density exponents must be given, finite and not negative",
         ));
     }
     for w in options.extrema.windows(2) {
@@ -475,9 +538,7 @@ fn check_options(options: &SmoothingOptions) -> Result<()> {
             if !(u > last && u < 1.0) {
                 return Err(Error::new(
                     ErrorKind::InvalidArgument,
-                    format!(
-                        "extremum parameter {u} must lie in (0, 1), after the previous one"
-                    ),
+                    format!("extremum parameter {u} must lie in (0, 1), after the previous one"),
                 ));
             }
             last = u;
@@ -544,149 +605,6 @@ fn polygon_area(points: &[Vector2<f64>]) -> f64 {
     sum
 }
 
-
-/// Least squares on `knots` with `rounds` of parameter correction (projection of each point
-/// on the curve, in order); returns the last fit and the corrected parameters.
-fn fit_with_correction(
-    points: &[Vector2<f64>],
-    params: &[f64],
-    knots: &KnotVector<f64>,
-    weights: Option<&[f64]>,
-    rounds: usize,
-) -> Result<(Curve2<f64>, Vec<f64>)> {
-    let mut params = params.to_vec();
-    let fit = |params: &[f64]| -> Result<Curve2<f64>> {
-        let mut problem = LeastSquares::new(points, params, knots.clone());
-        if let Some(w) = weights {
-            problem = problem.weights(w);
-        }
-        BSpline::new(knots.clone(), problem.control_points()?)
-    };
-    let mut curve = fit(&params)?;
-    for _ in 0..rounds {
-        params = project_ordered(&curve, points, &params)?;
-        curve = fit(&params)?;
-    }
-    Ok((curve, params))
-}
-
-/// `(u, oriented κ(u), arc-length weight)` of `curve` on a dense grid.
-fn curvature_samples(curve: &Curve2<f64>, orientation: f64) -> Result<Vec<(f64, f64, f64)>> {
-    let samples = 2000;
-    let du = 1.0 / samples as f64;
-    (0..=samples)
-        .map(|k| {
-            let u = k as f64 * du;
-            let d = curve.derivatives(u, 1)?;
-            Ok((u, orientation * curve.signed_curvature(u)?, d[1].norm() * du))
-        })
-        .collect()
-}
-
-/// The weighted least-squares cost of making `values` monotone (pool adjacent violators).
-fn isotonic_cost(values: &[(f64, f64, f64)], increasing: bool) -> f64 {
-    // Blocks of (weighted sum, weight, sum of w·v²).
-    let mut blocks: Vec<(f64, f64, f64)> = Vec::with_capacity(values.len());
-    for &(_, v, w) in values {
-        let v = if increasing { v } else { -v };
-        let w = w.max(1e-300);
-        blocks.push((w * v, w, w * v * v));
-        while blocks.len() > 1 {
-            let (s1, w1, q1) = blocks[blocks.len() - 2];
-            let (s2, w2, q2) = blocks[blocks.len() - 1];
-            if s1 / w1 > s2 / w2 {
-                blocks.pop();
-                let last = blocks.len() - 1;
-                blocks[last] = (s1 + s2, w1 + w2, q1 + q2);
-            } else {
-                break;
-            }
-        }
-    }
-    blocks.iter().map(|(s, w, q)| q - s * s / w).sum()
-}
-
-/// Parameters of the allowed extrema: given ones as they are; automatic ones, from left to
-/// right, where the curvature of `fit` needs the least change to become monotone on both
-/// sides (weighted isotonic regression along the arc length, between the neighbouring
-/// extrema).
-fn place_extrema(fit: &Curve2<f64>, extrema: &[Extremum], orientation: f64) -> Result<Vec<f64>> {
-    let samples = curvature_samples(fit, orientation)?;
-    let mut slots: Vec<Option<f64>> = extrema.iter().map(|e| e.at).collect();
-    for i in 0..extrema.len() {
-        if slots[i].is_some() {
-            continue;
-        }
-        let lo = (0..i).rev().find_map(|j| slots[j]).unwrap_or(0.0);
-        let hi = (i + 1..extrema.len()).find_map(|j| slots[j]).unwrap_or(1.0);
-        let margin = 0.01;
-        let left = samples.partition_point(|s| s.0 < lo);
-        let right = samples.partition_point(|s| s.0 <= hi);
-        let rising_before = extrema[i].kind == ExtremumKind::Maximum;
-        let mut best: Option<(f64, f64)> = None;
-        for k in (left..right).step_by(4) {
-            let u = samples[k].0;
-            if !(u > lo + margin && u < hi - margin) {
-                continue;
-            }
-            let cost = isotonic_cost(&samples[left..=k], rising_before)
-                + isotonic_cost(&samples[k..right], !rising_before);
-            if best.is_none_or(|(c, _)| cost < c) {
-                best = Some((cost, u));
-            }
-        }
-        let Some((_, u)) = best else {
-            return Err(Error::new(
-                ErrorKind::InvalidArgument,
-                format!(
-                    "no room for curvature extremum {} between {lo} and {hi}: give its parameter",
-                    i + 1
-                ),
-            ));
-        };
-        slots[i] = Some(u);
-    }
-    let placed: Vec<f64> = slots.into_iter().map(|s| s.expect("placed")).collect();
-    if placed.windows(2).any(|w| !(w[1] > w[0])) {
-        return Err(Error::new(
-            ErrorKind::InvalidArgument,
-            "the automatic extrema do not come in the order given: give their parameters",
-        ));
-    }
-    Ok(placed)
-}
-
-/// Knots following the curvature of `preliminary` with the extremum knots, and the
-/// least-squares start on them (parameter correction included). Falls back to flatter knot
-/// densities when a knot span ends up without data.
-fn start_on_feature_knots(
-    points: &[Vector2<f64>],
-    params: &[f64],
-    preliminary: &Curve2<f64>,
-    fixed: &[(f64, usize)],
-    options: &SmoothingOptions,
-) -> Result<(KnotVector<f64>, Curve2<f64>, Vec<f64>)> {
-    let mut last = None;
-    for exponent in [options.knot_exponent, 0.5 * options.knot_exponent, 0.0] {
-        let knots = curvature_knots_with(
-            preliminary,
-            options.degree,
-            options.control_points,
-            exponent,
-            options.knot_floor,
-            fixed,
-        )?;
-        match fit_with_correction(points, params, &knots, None, 12) {
-            Ok((start, params)) => return Ok((knots, start, params)),
-            Err(e) if e.kind() == ErrorKind::SchoenbergWhitney || e.kind() == ErrorKind::SingularSystem => {
-                last = Some(e);
-            }
-            Err(e) => return Err(e),
-        }
-    }
-    Err(last.expect("at least one attempt"))
-}
-
 /// The kind of the extremum of the oriented curvature at `u`.
 fn classify(curve: &Curve2<f64>, u: f64, orientation: f64) -> Result<CurvatureExtremum> {
     let (a, b) = curve.domain();
@@ -704,169 +622,4 @@ fn classify(curve: &Curve2<f64>, u: f64, orientation: f64) -> Result<CurvatureEx
         point: curve.eval(u)?,
         kind,
     })
-}
-
-/// The knots of `fine` that `coarse` lacks (with multiplicity).
-fn new_knots(coarse: &KnotVector<f64>, fine: &KnotVector<f64>) -> Vec<f64> {
-    let mut out = Vec::new();
-    let (c, f) = (coarse.knots(), fine.knots());
-    let (mut i, mut j) = (0, 0);
-    while j < f.len() {
-        if i < c.len() && c[i] == f[j] {
-            i += 1;
-        } else {
-            out.push(f[j]);
-        }
-        j += 1;
-    }
-    out
-}
-
-/// Nested knot vectors from coarse to `knots`: each coarser level drops every other interior
-/// knot that is not an extremum knot, down to the extremum knots alone.
-fn nested_levels(knots: &KnotVector<f64>, extrema: &[f64]) -> Result<Vec<KnotVector<f64>>> {
-    let p = knots.degree();
-    let (a, b) = knots.domain();
-    let interior: Vec<f64> = knots.knots()[p + 1..knots.num_basis()].to_vec();
-    let fixed: Vec<f64> = interior
-        .iter()
-        .copied()
-        .filter(|u| extrema.contains(u))
-        .collect();
-    let mut free: Vec<f64> = interior
-        .iter()
-        .copied()
-        .filter(|u| !extrema.contains(u))
-        .collect();
-    let mut levels = Vec::new();
-    loop {
-        let mut all = fixed.clone();
-        all.extend(&free);
-        all.sort_by(f64::total_cmp);
-        levels.push(KnotVector::clamped(p, a, b, &all)?);
-        if free.is_empty() {
-            break;
-        }
-        // Keep every other free knot (the odd positions), at least halving.
-        free = free.iter().skip(1).step_by(2).copied().collect();
-    }
-    levels.reverse();
-    Ok(levels)
-}
-
-/// The interior-point machinery of the eraser, with its step counts.
-struct Solver<'a> {
-    options: &'a SmoothingOptions,
-    newton_steps: usize,
-    phase_one_steps: usize,
-}
-
-impl Solver<'_> {
-    /// One centring step at `t` (an unfinished one still improves the iterate), then the
-    /// foot points follow the curve.
-    fn centre(
-        &mut self,
-        problem: &EraserProblem,
-        x: &mut DVector<f64>,
-        t: f64,
-        stop: Option<&dyn Fn(&DVector<f64>) -> bool>,
-        phase_one: bool,
-    ) -> Result<()> {
-        let steps = match centre(problem, x, t, &self.options.barrier, stop) {
-            Ok(steps) => steps,
-            Err(e) if e.kind() == ErrorKind::NoConvergence => {
-                self.options.barrier.max_newton_iterations
-            }
-            Err(e) => return Err(e),
-        };
-        if phase_one {
-            self.phase_one_steps += steps;
-        } else {
-            self.newton_steps += steps;
-        }
-        problem.commit(x);
-        Ok(())
-    }
-
-    /// Phase I from `control`: `τ` as a variable, `min τ + pull · fit` until `τ < 0`, the
-    /// pull weakening as `t` grows; with shifts per condition first, then one shift for all.
-    /// `None` if no strictly feasible curve is found.
-    fn phase_one(
-        &mut self,
-        problem: &mut EraserProblem,
-        control: &[Vector2<f64>],
-        z: f64,
-    ) -> Option<DVector<f64>> {
-        for uniform in [false, true] {
-            let x = problem.variables(control, z);
-            problem.start_homotopy(&x, 0.1, uniform);
-            problem.set_relaxed(true, 1.0);
-            let mut y = problem.variables(control, z);
-            let index = problem.tau_index();
-            let mut t = problem.num_constraints() as f64;
-            let mut found = false;
-            let mut best_tau = f64::INFINITY;
-            let mut stalled = 0;
-            for _ in 0..self.options.max_rounds {
-                let feasible = |v: &DVector<f64>| v[index] < 0.0;
-                if self.centre(problem, &mut y, t, Some(&feasible), true).is_err() {
-                    break;
-                }
-                if std::env::var_os("SPLINE_DEBUG").is_some() {
-                    eprintln!("  phase I (uniform {uniform}) t {t:.1e} tau {:.3e} z {:.3e} pull {:.1e}", y[index], y[index - 1], problem.pull());
-                }
-                if y[index] < 0.0 {
-                    found = true;
-                    break;
-                }
-                // τ creeping towards zero from above: a degenerate configuration (g ≡ 0 on
-                // a piece), not a way to feasibility.
-                if y[index] > 0.5 * best_tau {
-                    stalled += 1;
-                    if stalled >= 3 {
-                        break;
-                    }
-                } else {
-                    stalled = 0;
-                }
-                best_tau = best_tau.min(y[index]);
-                t *= self.options.barrier.t_growth;
-                let pull = problem.pull() / self.options.barrier.t_growth;
-                problem.set_relaxed(true, pull);
-            }
-            problem.set_relaxed(false, 1.0);
-            problem.set_tau(0.0);
-            if found {
-                return Some(y.rows(0, index).into_owned());
-            }
-        }
-        None
-    }
-
-    /// Phase II from a strictly feasible `x`: path following until the gap bound `m/t`
-    /// is below `gap`, refining active conditions (at most `max_refinements` passes).
-    /// Returns the number of refinement passes that split something.
-    fn phase_two(
-        &mut self,
-        problem: &mut EraserProblem,
-        x: &mut DVector<f64>,
-        gap: f64,
-        max_refinements: usize,
-    ) -> Result<usize> {
-        let mut t = 10.0 * problem.num_constraints() as f64;
-        let mut refinements = 0;
-        loop {
-            self.centre(problem, x, t, None, false)?;
-            if refinements < max_refinements && problem.refine_active(x, 1e-3, 1.0 / 64.0) > 0 {
-                refinements += 1;
-            }
-            if std::env::var_os("SPLINE_DEBUG").is_some() {
-                eprintln!("  path t {t:.2e}: objective {:.5e} pieces {}", problem.objective(x), problem.num_pieces());
-            }
-            if problem.num_constraints() as f64 / t < gap {
-                return Ok(refinements);
-            }
-            t *= self.options.barrier.t_growth;
-        }
-    }
 }

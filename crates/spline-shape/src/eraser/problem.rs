@@ -467,11 +467,6 @@ impl EraserProblem {
         (0..=p).map(|k| control[span - p + k] * basis[k]).sum()
     }
 
-    /// Sets the anchors of the foot points.
-    pub(crate) fn set_anchors(&self, params: &[f64]) {
-        *self.distances.params.borrow_mut() = params.to_vec();
-        *self.feet.borrow_mut() = FeetCache::default();
-    }
 
     /// Moves the anchors of the foot points to the foot points of the curve of `x`.
     pub(crate) fn commit(&self, x: &DVector<f64>) {
@@ -507,20 +502,12 @@ impl EraserProblem {
         self.feet(x, false).feet.iter().map(|f| f.squared).collect()
     }
 
-    /// The unit of squared distances.
-    pub(crate) fn unit(&self) -> f64 {
-        self.unit
-    }
 
     /// Sets the unit of squared distances (the objective is then about 1 at the start).
     pub(crate) fn set_unit(&mut self, unit: f64) {
         self.unit = unit.max(f64::MIN_POSITIVE);
     }
 
-    /// The number of pieces (segments and their refinements).
-    pub(crate) fn num_pieces(&self) -> usize {
-        self.pieces.len()
-    }
 
     /// The number of sign conditions on `g`.
     pub(crate) fn num_conditions(&self) -> usize {

@@ -1,0 +1,235 @@
+//! One attempt of the eraser on normalised data: coarse-to-fine continuation over nested knot
+//! vectors, phase I where a level has no strictly feasible curve yet, path following with
+//! refinement of active conditions on the finest level.
+
+use super::placement::{fit_with_correction, nested_levels, new_knots, pin_ends};
+use super::problem::EraserProblem;
+use super::{Objective, SmoothingOptions};
+use crate::barrier::{BarrierProblem, centre};
+use nalgebra::{DVector, Vector2};
+use spline_core::{ErrorKind, KnotVector, Result};
+use spline_fit::project_ordered;
+use spline_geom::{BSpline, Curve2};
+
+/// What one attempt found.
+pub(crate) struct Attempt {
+    /// The curve on the final knots (normalised coordinates).
+    pub(crate) curve: Curve2<f64>,
+    pub(crate) refinements: usize,
+    pub(crate) conditions: usize,
+    pub(crate) newton_steps: usize,
+    pub(crate) levels: usize,
+}
+
+/// The interior-point machinery of the eraser, with its step counts.
+struct Solver<'a> {
+    options: &'a SmoothingOptions,
+    newton_steps: usize,
+}
+
+impl Solver<'_> {
+    /// One centring step at `t` (an unfinished one still improves the iterate), then the
+    /// anchors of the foot points follow the curve.
+    fn centre(
+        &mut self,
+        problem: &EraserProblem,
+        x: &mut DVector<f64>,
+        t: f64,
+        stop: Option<&dyn Fn(&DVector<f64>) -> bool>,
+    ) -> Result<()> {
+        let steps = match centre(problem, x, t, &self.options.barrier, stop) {
+            Ok(steps) => steps,
+            Err(e) if e.kind() == ErrorKind::NoConvergence => {
+                self.options.barrier.max_newton_iterations
+            }
+            Err(e) => return Err(e),
+        };
+        self.newton_steps += steps;
+        problem.commit(x);
+        Ok(())
+    }
+
+    /// Phase I from `control`: `τ` as a variable, `min τ + pull · fit` until `τ < 0`, the
+    /// pull weakening as `t` grows (so that the fit keeps its hold while the conditions are
+    /// driven to feasibility); shifts per condition first, then one shift for all. `None` if
+    /// no strictly feasible curve is found, or `τ` creeps towards zero from above (a
+    /// degenerate configuration, `g ≡ 0` on a piece, not a way to feasibility).
+    fn phase_one(
+        &mut self,
+        problem: &mut EraserProblem,
+        control: &[Vector2<f64>],
+        z: f64,
+    ) -> Option<DVector<f64>> {
+        for uniform in [false, true] {
+            let x = problem.variables(control, z);
+            problem.start_homotopy(&x, 0.1, uniform);
+            problem.set_relaxed(true, 1.0);
+            let mut y = problem.variables(control, z);
+            let index = problem.tau_index();
+            let mut t = problem.num_constraints() as f64;
+            let mut found = false;
+            let mut best_tau = f64::INFINITY;
+            let mut stalled = 0;
+            for _ in 0..self.options.max_rounds {
+                let feasible = |v: &DVector<f64>| v[index] < 0.0;
+                if self.centre(problem, &mut y, t, Some(&feasible)).is_err() {
+                    break;
+                }
+                if y[index] < 0.0 {
+                    found = true;
+                    break;
+                }
+                if y[index] > 0.5 * best_tau {
+                    stalled += 1;
+                    if stalled >= 3 {
+                        break;
+                    }
+                } else {
+                    stalled = 0;
+                }
+                best_tau = best_tau.min(y[index]);
+                t *= self.options.barrier.t_growth;
+                let pull = problem.pull() / self.options.barrier.t_growth;
+                problem.set_relaxed(true, pull);
+            }
+            problem.set_relaxed(false, 1.0);
+            problem.set_tau(0.0);
+            if found {
+                return Some(y.rows(0, index).into_owned());
+            }
+        }
+        None
+    }
+
+    /// Phase II from a strictly feasible `x`: path following until the gap bound `m/t` is
+    /// below `gap`, refining active conditions after each centring step (at most
+    /// `max_refinements` passes). Returns the number of passes that split something.
+    fn phase_two(
+        &mut self,
+        problem: &mut EraserProblem,
+        x: &mut DVector<f64>,
+        gap: f64,
+        max_refinements: usize,
+    ) -> Result<usize> {
+        let mut t = 10.0 * problem.num_constraints() as f64;
+        let mut refinements = 0;
+        loop {
+            self.centre(problem, x, t, None)?;
+            if refinements < max_refinements && problem.refine_active(x, 1e-3, 1.0 / 64.0) > 0 {
+                refinements += 1;
+            }
+            if problem.num_constraints() as f64 / t < gap {
+                return Ok(refinements);
+            }
+            t *= self.options.barrier.t_growth;
+        }
+    }
+}
+
+/// The constrained fit of `points` (normalised, at `params`) on `knots` with the allowed
+/// extrema at the knots `extrema` and the sign of the first piece `first_sign`. `None` when
+/// no strictly feasible curve was found on any level.
+pub(crate) fn attempt(
+    points: &[Vector2<f64>],
+    params: &[f64],
+    knots: &KnotVector<f64>,
+    extrema: &[f64],
+    first_sign: f64,
+    options: &SmoothingOptions,
+) -> Result<Option<Attempt>> {
+    let levels = nested_levels(knots, extrema)?;
+    let mut solver = Solver {
+        options,
+        newton_steps: 0,
+    };
+    let mut params = params.to_vec();
+    let mut current: Option<Curve2<f64>> = None;
+    let mut refinements = 0;
+    let mut conditions = 0;
+    let mut unit_squared: Option<f64> = None;
+    for (level, level_knots) in levels.iter().enumerate() {
+        let finest = level + 1 == levels.len();
+        // The start of the level: the previous curve on the finer knots (unchanged, so
+        // still strictly feasible), or a least-squares fit.
+        let control: Vec<Vector2<f64>> = match &current {
+            Some(curve) => {
+                let refined = curve.refine(&new_knots(curve.knots(), level_knots))?;
+                params = project_ordered(&refined, points, &params)?;
+                pin_ends(&mut params);
+                refined.control_points().to_vec()
+            }
+            None => match fit_with_correction(points, &params, level_knots, 12) {
+                Ok((fit, corrected)) => {
+                    params = corrected;
+                    fit.control_points().to_vec()
+                }
+                Err(e)
+                    if !finest
+                        && matches!(
+                            e.kind(),
+                            ErrorKind::SchoenbergWhitney | ErrorKind::SingularSystem
+                        ) =>
+                {
+                    continue;
+                }
+                Err(e) => return Err(e),
+            },
+        };
+        let mut problem = EraserProblem::new(
+            level_knots,
+            points,
+            &params,
+            options.objective,
+            extrema.to_vec(),
+            first_sign,
+        )?;
+        // Fixed parameters on the coarse levels (a coarse curve could otherwise fit the data
+        // degenerately, all of them near one end); they follow the curve on the finest one.
+        problem.set_projection(finest);
+        let largest = problem
+            .squared_distances(&problem.variables(&control, 0.0))
+            .iter()
+            .copied()
+            .fold(0.0, f64::max)
+            .max(1e-24);
+        let unit = *unit_squared.get_or_insert(largest);
+        problem.set_unit(unit);
+        let mut x = problem.variables(&control, 1.25 * largest / unit);
+        if finest {
+            problem.set_excursions(&x, 2.0 * largest.sqrt());
+        }
+        problem.rescale(&x);
+        if !problem.constraints(&x).iter().all(|&c| c < 0.0) {
+            let z = if options.objective == Objective::MaxDeviation {
+                1.25 * largest / unit
+            } else {
+                0.0
+            };
+            match solver.phase_one(&mut problem, &control, z) {
+                Some(found) => x = found,
+                // Too coarse to hold the allowed shape: start again one level finer.
+                None => {
+                    current = None;
+                    continue;
+                }
+            }
+        }
+        let (gap, max_refinements) = if finest {
+            (options.barrier.gap_tolerance, options.max_refinements)
+        } else {
+            (1e-4, 0)
+        };
+        refinements = solver.phase_two(&mut problem, &mut x, gap, max_refinements)?;
+        conditions = problem.num_conditions();
+        params = problem.anchors();
+        pin_ends(&mut params);
+        current = Some(BSpline::new(level_knots.clone(), problem.control_points(&x))?);
+    }
+    Ok(current.map(|curve| Attempt {
+        curve,
+        refinements,
+        conditions,
+        newton_steps: solver.newton_steps,
+        levels: levels.len(),
+    }))
+}
