@@ -48,6 +48,10 @@ pub struct SmoothArgs {
     /// Try every knot density and keep the closest curve (slower).
     #[arg(long)]
     thorough: bool,
+    /// Exponents β of the knot density |C′| (κ L + c)^β tried in turn, as JSON (default
+    /// [0.3, 0.5, 0.7]; 0 gives knots uniform in arc length).
+    #[arg(long, value_name = "JSON")]
+    knot_exponents: Option<String>,
     /// Directory for one NAME.json per input and summary.jsonl (needed for several inputs).
     #[arg(long, value_name = "DIR")]
     out: Option<String>,
@@ -71,6 +75,9 @@ fn options(args: &SmoothArgs) -> Result<SmoothingOptions> {
     let mut options = SmoothingOptions::new(control);
     options.degree = args.degree;
     options.thorough = args.thorough;
+    if let Some(text) = &args.knot_exponents {
+        options.knot_exponents = io::parse_arg("--knot-exponents", text)?;
+    }
     options.objective = match args.objective.as_str() {
         "max" => Objective::MaxDeviation,
         "least-squares" | "lsq" => Objective::LeastSquares,
@@ -164,6 +171,8 @@ fn report(result: &SmoothedCurve) -> Value {
         "refinements": result.refinements,
         "conditions": result.conditions,
         "least_squares_curvature_extrema": result.start_extrema,
+        "newton_steps": result.newton_steps,
+        "levels": result.levels,
     })
 }
 

@@ -254,7 +254,6 @@ pub(crate) fn centre(
                 let full = system.with(&h);
                 match full.solve_definite(&gradient) {
                     Some(d) => d,
-                    None if std::env::var_os("SPLINE_FULLSHIFT").is_some() => full.solve_shifted(&gradient)?,
                     None => system.solve_shifted(&gradient)?,
                 }
             }
@@ -274,9 +273,6 @@ pub(crate) fn centre(
             let candidate = &*x + &direction * s;
             if let Some(fc) = barrier_value(problem, &candidate, t) {
                 if fc <= f + options.armijo * s * slope {
-                    if std::env::var_os("SPLINE_TRACE").is_some() {
-                        eprintln!("  t {t:.2e} step {step} dec {decrement:.3e} f {f:.6e} s {s:.2e}");
-                    }
                     *x = candidate;
                     if stop.is_some_and(|stop| stop(x)) {
                         return Ok(step + 1);
@@ -364,8 +360,32 @@ fn centre_trust_region(
         if decrement / 2.0 <= options.newton_tolerance * (1.0 + f.abs()) {
             return Ok(accepted);
         }
-        // H̃ = L⁻¹ H L⁻ᵀ.
         let l = factor.l();
+        // The Newton step, when H is positive definite and the step fits in the region: no
+        // eigendecomposition needed (the common case near the central path).
+        if let Some(h_factor) = hessian.clone().cholesky() {
+            let d = h_factor.solve(&(-&gradient));
+            let y = l.transpose() * &d;
+            if d.iter().all(|v| v.is_finite()) && y.norm() <= radius {
+                let predicted = -0.5 * gradient.dot(&d);
+                let candidate = &*x + &d;
+                let actual = barrier_value(problem, &candidate, t).map(|fc| f - fc);
+                let ratio = actual.map_or(-1.0, |a| a / predicted);
+                if predicted > 0.0 && ratio > 0.25 {
+                    if ratio > 0.75 && y.norm() > 0.99 * radius {
+                        radius = (2.0 * radius).min(1e6);
+                    }
+                    *x = candidate;
+                    f -= actual.unwrap_or(0.0);
+                    accepted += 1;
+                    if stop.is_some_and(|stop| stop(x)) {
+                        return Ok(accepted);
+                    }
+                    continue;
+                }
+            }
+        }
+        // H̃ = L⁻¹ H L⁻ᵀ.
         let left = l.solve_lower_triangular(&hessian).unwrap_or_else(|| hessian.clone());
         let scaled = l
             .solve_lower_triangular(&left.transpose())
@@ -387,9 +407,6 @@ fn centre_trust_region(
                 radius *= 0.25;
             } else if ratio > 0.75 && on_boundary {
                 radius = (2.0 * radius).min(1e6);
-            }
-            if std::env::var_os("SPLINE_TRACE").is_some() {
-                eprintln!("  tr t {t:.2e} dec {decrement:.3e} pred {predicted:.3e} ratio {ratio:.3} radius {radius:.2e} |y| {:.2e}", y.norm());
             }
             if ratio > 1e-4 {
                 *x = candidate;

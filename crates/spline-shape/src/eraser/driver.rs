@@ -142,43 +142,16 @@ pub(crate) fn attempt(
         options,
         newton_steps: 0,
     };
-    let mut params = params.to_vec();
-    let mut current: Option<Curve2<f64>> = None;
-    let mut refinements = 0;
-    let mut conditions = 0;
-    let mut unit_squared: Option<f64> = None;
-    for (level, level_knots) in levels.iter().enumerate() {
-        let finest = level + 1 == levels.len();
-        // The start of the level: the previous curve on the finer knots (unchanged, so
-        // still strictly feasible), or a least-squares fit.
-        let control: Vec<Vector2<f64>> = match &current {
-            Some(curve) => {
-                let refined = curve.refine(&new_knots(curve.knots(), level_knots))?;
-                params = project_ordered(&refined, points, &params)?;
-                pin_ends(&mut params);
-                refined.control_points().to_vec()
-            }
-            None => match fit_with_correction(points, &params, level_knots, 12) {
-                Ok((fit, corrected)) => {
-                    params = corrected;
-                    fit.control_points().to_vec()
-                }
-                Err(e)
-                    if !finest
-                        && matches!(
-                            e.kind(),
-                            ErrorKind::SchoenbergWhitney | ErrorKind::SingularSystem
-                        ) =>
-                {
-                    continue;
-                }
-                Err(e) => return Err(e),
-            },
-        };
+    let setup = |level_knots: &KnotVector<f64>,
+                 control: &[Vector2<f64>],
+                 params: &[f64],
+                 finest: bool,
+                 unit: Option<f64>|
+     -> Result<(EraserProblem, DVector<f64>, f64)> {
         let mut problem = EraserProblem::new(
             level_knots,
             points,
-            &params,
+            params,
             options.objective,
             extrema.to_vec(),
             first_sign,
@@ -187,49 +160,99 @@ pub(crate) fn attempt(
         // degenerately, all of them near one end); they follow the curve on the finest one.
         problem.set_projection(finest);
         let largest = problem
-            .squared_distances(&problem.variables(&control, 0.0))
+            .squared_distances(&problem.variables(control, 0.0))
             .iter()
             .copied()
             .fold(0.0, f64::max)
             .max(1e-24);
-        let unit = *unit_squared.get_or_insert(largest);
+        let unit = unit.unwrap_or(largest);
         problem.set_unit(unit);
-        let mut x = problem.variables(&control, 1.25 * largest / unit);
+        let x = problem.variables(control, 1.25 * largest / unit);
         if finest {
             problem.set_excursions(&x, 2.0 * largest.sqrt());
         }
         problem.rescale(&x);
-        if !problem.constraints(&x).iter().all(|&c| c < 0.0) {
-            let z = if options.objective == Objective::MaxDeviation {
-                1.25 * largest / unit
-            } else {
-                0.0
-            };
-            match solver.phase_one(&mut problem, &control, z) {
-                Some(found) => x = found,
-                // Too coarse to hold the allowed shape: start again one level finer.
-                None => {
-                    current = None;
-                    continue;
-                }
+        Ok((problem, x, unit))
+    };
+    // The entry: the finest level whose least-squares fit leads to a strictly feasible
+    // curve (at once or by phase I), so that the continuation starts as close to the data
+    // as it can.
+    let mut entry = None;
+    for level in (0..levels.len()).rev() {
+        let finest = level + 1 == levels.len();
+        let (fit, corrected) = match fit_with_correction(points, params, &levels[level], 12) {
+            Ok(found) => found,
+            Err(e)
+                if matches!(
+                    e.kind(),
+                    ErrorKind::SchoenbergWhitney | ErrorKind::SingularSystem
+                ) =>
+            {
+                continue;
             }
+            Err(e) => return Err(e),
+        };
+        let control = fit.control_points().to_vec();
+        let (mut problem, x, unit) = setup(&levels[level], &control, &corrected, finest, None)?;
+        if problem.constraints(&x).iter().all(|&c| c < 0.0) {
+            entry = Some((level, problem, x, unit));
+            break;
         }
+        let z = if options.objective == Objective::MaxDeviation {
+            x[2 * levels[level].num_basis()]
+        } else {
+            0.0
+        };
+        if let Some(found) = solver.phase_one(&mut problem, &control, z) {
+            entry = Some((level, problem, found, unit));
+            break;
+        }
+    }
+    let Some((first, mut problem, mut x, unit)) = entry else {
+        return Ok(None);
+    };
+    let mut level = first;
+    loop {
+        let finest = level + 1 == levels.len();
         let (gap, max_refinements) = if finest {
             (options.barrier.gap_tolerance, options.max_refinements)
         } else {
             (1e-4, 0)
         };
-        refinements = solver.phase_two(&mut problem, &mut x, gap, max_refinements)?;
-        conditions = problem.num_conditions();
-        params = problem.anchors();
+        let refinements = solver.phase_two(&mut problem, &mut x, gap, max_refinements)?;
+        let mut params = problem.anchors();
         pin_ends(&mut params);
-        current = Some(BSpline::new(level_knots.clone(), problem.control_points(&x))?);
+        let curve = BSpline::new(levels[level].clone(), problem.control_points(&x))?;
+        if finest {
+            return Ok(Some(Attempt {
+                curve,
+                refinements,
+                conditions: problem.num_conditions(),
+                newton_steps: solver.newton_steps,
+                levels: levels.len() - first,
+            }));
+        }
+        // The same curve on the next level's knots: unchanged, so still strictly feasible.
+        level += 1;
+        let refined = curve.refine(&new_knots(curve.knots(), &levels[level]))?;
+        let mut params = project_ordered(&refined, points, &params)?;
+        pin_ends(&mut params);
+        let (mut next_problem, mut next_x, _) = setup(
+            &levels[level],
+            refined.control_points(),
+            &params,
+            level + 1 == levels.len(),
+            Some(unit),
+        )?;
+        // Rounding can leave a condition at zero after the insertion: phase I mends it.
+        if !next_problem.constraints(&next_x).iter().all(|&c| c < 0.0) {
+            let z = next_x.get(2 * levels[level].num_basis()).copied().unwrap_or(0.0);
+            match solver.phase_one(&mut next_problem, refined.control_points(), z) {
+                Some(found) => next_x = found,
+                None => return Ok(None),
+            }
+        }
+        problem = next_problem;
+        x = next_x;
     }
-    Ok(current.map(|curve| Attempt {
-        curve,
-        refinements,
-        conditions,
-        newton_steps: solver.newton_steps,
-        levels: levels.len(),
-    }))
 }

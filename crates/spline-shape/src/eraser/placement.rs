@@ -19,10 +19,15 @@ fn curvature_samples(curve: &Curve2<f64>, orientation: f64) -> Result<Vec<(f64, 
         .collect()
 }
 
-/// The weighted least-squares cost of making `values` monotone (pool adjacent violators).
-fn isotonic_cost(values: &[(f64, f64, f64)], increasing: bool) -> f64 {
-    // Blocks of (Σ w v, Σ w, Σ w v²).
+/// The weighted least-squares cost of making `values` monotone (pool adjacent violators),
+/// for every prefix: entry `k` is the cost of `values[..=k]`. The pool is online, so all
+/// prefixes cost one pass.
+fn isotonic_prefix_costs(values: &[(f64, f64, f64)], increasing: bool) -> Vec<f64> {
+    // Blocks of (Σ w v, Σ w, Σ w v²) and the running cost Σ over blocks of (Σwv² − (Σwv)²/Σw).
     let mut blocks: Vec<(f64, f64, f64)> = Vec::with_capacity(values.len());
+    let mut cost = 0.0;
+    let block_cost = |(s, w, q): (f64, f64, f64)| q - s * s / w;
+    let mut out = Vec::with_capacity(values.len());
     for &(_, v, w) in values {
         let v = if increasing { v } else { -v };
         let w = w.max(1e-300);
@@ -31,15 +36,27 @@ fn isotonic_cost(values: &[(f64, f64, f64)], increasing: bool) -> f64 {
             let (s1, w1, q1) = blocks[blocks.len() - 2];
             let (s2, w2, q2) = blocks[blocks.len() - 1];
             if s1 / w1 > s2 / w2 {
+                cost -= block_cost((s1, w1, q1));
                 blocks.pop();
                 let last = blocks.len() - 1;
                 blocks[last] = (s1 + s2, w1 + w2, q1 + q2);
+                cost += block_cost(blocks[last]);
             } else {
                 break;
             }
         }
+        out.push(cost.max(0.0));
     }
-    blocks.iter().map(|(s, w, q)| q - s * s / w).sum()
+    out
+}
+
+/// The cost of making `values` monotone (the last prefix cost).
+#[cfg(test)]
+fn isotonic_cost(values: &[(f64, f64, f64)], increasing: bool) -> f64 {
+    isotonic_prefix_costs(values, increasing)
+        .last()
+        .copied()
+        .unwrap_or(0.0)
 }
 
 /// Parameters of the allowed extrema: given ones as they are; automatic ones, from left to
@@ -67,14 +84,19 @@ pub(crate) fn place_extrema(
         let left = samples.partition_point(|s| s.0 < lo);
         let right = samples.partition_point(|s| s.0 <= hi);
         let rising_before = extrema[i].kind == ExtremumKind::Maximum;
+        let window = &samples[left..right];
+        // Prefix costs of the rising part and suffix costs of the falling part (the suffix
+        // read backwards is a prefix of the reversed samples, monotone the other way).
+        let before = isotonic_prefix_costs(window, rising_before);
+        let reversed: Vec<(f64, f64, f64)> = window.iter().rev().copied().collect();
+        let after = isotonic_prefix_costs(&reversed, rising_before);
         let mut best: Option<(f64, f64)> = None;
-        for k in (left..right).step_by(4) {
-            let u = samples[k].0;
+        for (k, sample) in window.iter().enumerate() {
+            let u = sample.0;
             if !(u > lo + margin && u < hi - margin) {
                 continue;
             }
-            let cost = isotonic_cost(&samples[left..=k], rising_before)
-                + isotonic_cost(&samples[k..right], !rising_before);
+            let cost = before[k] + after[window.len() - 1 - k];
             if best.is_none_or(|(c, _)| cost < c) {
                 best = Some((cost, u));
             }

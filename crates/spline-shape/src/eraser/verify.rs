@@ -93,7 +93,11 @@ fn sampled_curvature(
         let first = segment.derivative();
         let second = first.derivative();
         for k in 0..=per_span {
-            let u = a + (b - a) * k as f64 / per_span as f64;
+            let u = if k == per_span {
+                b
+            } else {
+                (a + (b - a) * k as f64 / per_span as f64).min(b)
+            };
             let d1: Vector2<f64> = first.eval(u)?;
             let d2: Vector2<f64> = second.eval(u)?;
             let speed = d1.norm();
