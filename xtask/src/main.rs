@@ -2,6 +2,9 @@
 //!
 //! - `ci`: exactly what CI runs (`.ci/run`): format check, clippy with warnings denied, tests.
 //! - `docs`: regenerate the SVG pictures in `docs/`.
+//! - `bench airfoils [--jobs J]`: the whole UIUC database (fetched once from the
+//!   `aerosandbox` wheel into `target/airfoils/`) smoothed by the release tool, 20 control
+//!   points and one curvature maximum: the distribution of deviations and times.
 //! - `bench fit`, `bench eval`: criterion benchmarks of fitting and of curve evaluation against
 //!   scipy in the same run (a Python virtual environment with scipy is created under `target/`).
 //! - `fuzz [--cases N | --seconds S] [--seed S] [--target T]`: structured mutation fuzzing of
@@ -10,10 +13,13 @@
 //!   campaign of the release binary over every subcommand (subprocesses, memory limit,
 //!   timeout), printing a table of panics, aborts, slow runs, non-finite outputs and
 //!   multi-line errors.
+//! - `reproduce`: the seeds' published numbers next to ours (thesis Table 6.1 and §5.1, seed
+//!   000 Tables 1 and 2).
 //! - `demo`: the main job — fit an airfoil shipped in `data/airfoils/`, print the result and
 //!   write `docs/airfoil.svg`.
 
 mod bench;
+mod bench_airfoils;
 mod bench_eval;
 mod bench_fit;
 mod campaign;
@@ -23,6 +29,7 @@ mod docs_shape_functions;
 mod docs_surfaces;
 mod fuzz;
 mod mutate;
+mod reproduce;
 
 use std::path::{Path, PathBuf};
 use std::process::{Command, ExitCode};
@@ -64,7 +71,7 @@ fn run_docs(root: &Path) -> Result<(), String> {
 }
 
 fn usage() -> String {
-    "usage: cargo xtask <ci | docs | bench fit | bench eval | demo | fuzz [--cases N | --seconds S] | campaign [--cases N]>".into()
+    "usage: cargo xtask <ci | docs | bench fit | bench eval | bench airfoils | demo | reproduce | fuzz [--cases N | --seconds S] | campaign [--cases N]>".into()
 }
 
 fn main() -> ExitCode {
@@ -74,12 +81,14 @@ fn main() -> ExitCode {
         Some("ci") => run_ci(&root),
         Some("docs") => run_docs(&root),
         Some("demo") => demo::run(&root),
+        Some("reproduce") => reproduce::run(&root),
         Some("campaign") => campaign::run(&root, &args[1..]),
         Some("fuzz") => fuzz::run(&root, &args[1..]),
         Some("bench") => match args.get(1).map(String::as_str) {
             Some("fit") => bench_fit::run(&root),
             Some("eval") => bench_eval::run(&root),
-            _ => Err("usage: cargo xtask bench fit | eval".into()),
+            Some("airfoils") => bench_airfoils::run_bench(&root, &args[2..]),
+            _ => Err("usage: cargo xtask bench fit | eval | airfoils [--jobs J]".into()),
         },
         _ => Err(usage()),
     };

@@ -80,10 +80,7 @@ fn product_weights<T: Scalar>(m: usize, n: usize) -> Vec<Vec<T>> {
     (0..=m)
         .map(|i| {
             (0..=n)
-                .map(|j| {
-                    binomial::<T>(m, i) * binomial::<T>(n, j)
-                        / binomial::<T>(m + n, i + j)
-                })
+                .map(|j| binomial::<T>(m, i) * binomial::<T>(n, j) / binomial::<T>(m + n, i + j))
                 .collect()
         })
         .collect()
@@ -193,6 +190,10 @@ impl<T: Scalar> SegmentCurvature<T> {
     /// [`ErrorKind::InvalidArgument`] for degree below 3 (then `c‴ = 0` and `g` has no
     /// Bernstein form of degree `4p − 6`; use [`crate::PlanarInvariants`]);
     /// [`ErrorKind::DegreeTooHigh`] if `4p − 6` exceeds [`MAX_DEGREE`].
+    ///
+    /// # Panics
+    /// Never: the `expect` only states that every segment of a valid knot vector's domain
+    /// lies in a knot span.
     pub fn new(knots: &KnotVector<T>) -> Result<Self> {
         let p = knots.degree();
         if p < 3 {

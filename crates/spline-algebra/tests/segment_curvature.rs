@@ -136,8 +136,13 @@ proptest! {
 /// product rule, without the sparse algebra).
 #[test]
 fn jacobian_matches_finite_differences() {
-    let knots = KnotVector::new(4, vec![0.0, 0.0, 0.0, 0.0, 0.0, 0.3, 0.3, 0.7, 1.0, 1.0, 1.0, 1.0, 1.0])
-        .unwrap();
+    let knots = KnotVector::new(
+        4,
+        vec![
+            0.0, 0.0, 0.0, 0.0, 0.0, 0.3, 0.3, 0.7, 1.0, 1.0, 1.0, 1.0, 1.0,
+        ],
+    )
+    .unwrap();
     let points: Vec<Vector2<f64>> = (0..knots.num_basis())
         .map(|i| {
             let t = i as f64;

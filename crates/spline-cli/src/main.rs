@@ -60,6 +60,8 @@ enum Command {
     Approximate(fitting::ApproximateArgs),
     /// Smooth points with a curve that has only the allowed curvature extrema.
     Smooth(shape::SmoothArgs),
+    /// Shape optimisation with adaptive parametrisation (seed 000 §3): minimise perimeter²/area.
+    Optimize(shape::OptimizeArgs),
     /// Build circles, arcs, conics, extrusions, ruled, conical, revolved surfaces, spheres, tori.
     Make(surfaces::MakeArgs),
     /// Triangulate a surface into an OBJ or OFF mesh.
@@ -85,6 +87,7 @@ fn run(command: Command) -> spline_core::Result<()> {
         Command::Natural(args) => fitting::natural(&args),
         Command::Approximate(args) => fitting::approximate(&args),
         Command::Smooth(args) => shape::smooth(&args),
+        Command::Optimize(args) => shape::optimize(&args),
         Command::Make(args) => surfaces::make(&args),
         Command::Mesh(args) => surfaces::mesh(&args),
     }

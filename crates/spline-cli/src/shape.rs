@@ -11,7 +11,8 @@ use spline_core::{Error, ErrorKind, Result};
 use spline_geom::airfoil::parse_airfoil;
 use spline_geom::exchange::CurveRecord;
 use spline_shape::{
-    Extremum, Objective, SmoothedCurve, SmoothingOptions, smooth as erase, smooth_to_tolerance,
+    AdaptiveOptions, Extremum, Objective, SmoothedCurve, SmoothingOptions,
+    optimise_perimeter_over_area, smooth as erase, smooth_to_tolerance,
 };
 use std::io::IsTerminal;
 use std::path::{Path, PathBuf};
@@ -92,7 +93,10 @@ fn options(args: &SmoothArgs) -> Result<SmoothingOptions> {
         }
     };
     if !args.extrema.is_empty() {
-        if args.curvature_extrema.is_some_and(|k| k != args.extrema.len()) {
+        if args
+            .curvature_extrema
+            .is_some_and(|k| k != args.extrema.len())
+        {
             return Err(Error::new(
                 ErrorKind::InvalidArgument,
                 format!(
@@ -144,7 +148,11 @@ fn read_planar(path: &str) -> Result<Vec<Vector2<f64>>> {
     }
 }
 
-fn run_one(path: &str, options: &SmoothingOptions, tolerance: Option<f64>) -> Result<SmoothedCurve> {
+fn run_one(
+    path: &str,
+    options: &SmoothingOptions,
+    tolerance: Option<f64>,
+) -> Result<SmoothedCurve> {
     let points = read_planar(path)?;
     match tolerance {
         Some(d) => smooth_to_tolerance(&points, d, options),
@@ -224,7 +232,12 @@ pub fn smooth(args: &SmoothArgs) -> Result<()> {
 
 /// Smooths every input in parallel, writing `DIR/NAME.json` and `DIR/summary.jsonl`; goes on
 /// after failures and reports them at the end.
-fn batch(inputs: &[String], out: &Path, options: &SmoothingOptions, args: &SmoothArgs) -> Result<()> {
+fn batch(
+    inputs: &[String],
+    out: &Path,
+    options: &SmoothingOptions,
+    args: &SmoothArgs,
+) -> Result<()> {
     std::fs::create_dir_all(out).map_err(|e| {
         Error::new(
             ErrorKind::InvalidArgument,
@@ -241,9 +254,9 @@ fn batch(inputs: &[String], out: &Path, options: &SmoothingOptions, args: &Smoot
         .map_err(|e| Error::new(ErrorKind::InvalidArgument, format!("--jobs: {e}")))?;
     let bar = if std::io::stderr().is_terminal() {
         let bar = ProgressBar::new(inputs.len() as u64);
-        if let Ok(style) =
-            ProgressStyle::with_template("{bar:40} {pos}/{len} airfoils, {elapsed} ({eta} left) {msg}")
-        {
+        if let Ok(style) = ProgressStyle::with_template(
+            "{bar:40} {pos}/{len} airfoils, {elapsed} ({eta} left) {msg}",
+        ) {
             bar.set_style(style);
         }
         bar
@@ -316,4 +329,90 @@ fn batch(inputs: &[String], out: &Path, options: &SmoothingOptions, args: &Smoot
         eprintln!("spline: {message}");
         Ok(())
     }
+}
+
+#[derive(Args)]
+pub struct OptimizeArgs {
+    /// The initial shape: planar points from (0, 0) to (1, 0) (JSON or text); default: half
+    /// an ellipse of height 0.3.
+    #[arg(value_name = "POINTS")]
+    initial: Option<String>,
+    /// Degree of the curve.
+    #[arg(long, default_value_t = 3)]
+    degree: usize,
+    /// Control points of the curve (n + 1).
+    #[arg(long, default_value_t = 11)]
+    control_points: usize,
+    /// Sample points of the adaptive re-fit (N + 1).
+    #[arg(long, default_value_t = 11)]
+    samples: usize,
+    /// Iterations of optimisation and re-fit.
+    #[arg(long, default_value_t = 8)]
+    iterations: usize,
+    /// Nelder–Mead iterations per step, at most.
+    #[arg(long, default_value_t = 20_000)]
+    simplex_iterations: u64,
+}
+
+/// The largest number of iterations `optimize` accepts.
+const MAX_OPTIMIZE_ITERATIONS: usize = 1000;
+
+/// Seed 000 §3: minimise J = P²/A by Nelder–Mead on the free ordinates, re-fitting the
+/// parametrisation between steps.
+pub fn optimize(args: &OptimizeArgs) -> Result<()> {
+    if args.iterations == 0 || args.iterations > MAX_OPTIMIZE_ITERATIONS {
+        return Err(Error::new(
+            ErrorKind::InvalidArgument,
+            format!(
+                "--iterations must be 1 to {MAX_OPTIMIZE_ITERATIONS}, got {}",
+                args.iterations
+            ),
+        ));
+    }
+    if args.samples > 100_000 || args.control_points > 1000 || args.simplex_iterations > 10_000_000
+    {
+        return Err(Error::new(
+            ErrorKind::InvalidArgument,
+            "at most 100000 samples, 1000 control points and 10000000 simplex iterations",
+        ));
+    }
+    let initial = match &args.initial {
+        Some(path) => read_planar(path)?,
+        None => (0..41)
+            .map(|i| {
+                let t = std::f64::consts::PI * f64::from(i) / 40.0;
+                if i == 40 {
+                    Vector2::new(1.0, 0.0)
+                } else {
+                    Vector2::new(0.5 - 0.5 * t.cos(), 0.3 * t.sin())
+                }
+            })
+            .collect(),
+    };
+    let options = AdaptiveOptions {
+        degree: args.degree,
+        control_points: args.control_points,
+        samples: args.samples,
+        iterations: args.iterations,
+        max_simplex_iterations: args.simplex_iterations,
+        ..AdaptiveOptions::default()
+    };
+    io::check_stdout_open()?;
+    let history = optimise_perimeter_over_area(&initial, &options)?;
+    let last = history.last().ok_or_else(|| {
+        Error::new(
+            ErrorKind::NoConvergence,
+            "the optimisation made no iteration",
+        )
+    })?;
+    io::print_json(&json!({
+        "curve": CurveRecord::from_bspline(&last.curve),
+        "criterion": last.criterion,
+        "iterations": history.iter().map(|h| json!({
+            "criterion": h.criterion,
+            "perimeter": h.perimeter,
+            "area": h.area,
+            "simplex_iterations": h.simplex_iterations,
+        })).collect::<Vec<_>>(),
+    }))
 }

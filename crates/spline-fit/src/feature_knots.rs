@@ -105,8 +105,7 @@ pub fn curvature_knots_with<T: Scalar, P: ControlPoint<T>>(
         ));
     }
     let free = interior_total - used;
-    if !(exponent >= T::zero() && exponent.is_finite() && floor >= T::zero() && floor.is_finite())
-    {
+    if !(exponent >= T::zero() && exponent.is_finite() && floor >= T::zero() && floor.is_finite()) {
         return Err(Error::new(
             ErrorKind::InvalidArgument,
             "the exponent and the floor of the knot density must be finite and not negative",
@@ -149,7 +148,9 @@ pub fn curvature_knots_with<T: Scalar, P: ControlPoint<T>>(
     let length = grid
         .windows(2)
         .zip(speed.windows(2))
-        .fold(T::zero(), |acc, (u, s)| acc + (s[0] + s[1]) * half * (u[1] - u[0]));
+        .fold(T::zero(), |acc, (u, s)| {
+            acc + (s[0] + s[1]) * half * (u[1] - u[0])
+        });
     if !(length > T::zero()) || !length.is_finite() {
         return Err(Error::new(
             ErrorKind::DegenerateGeometry,
@@ -178,14 +179,24 @@ pub fn curvature_knots_with<T: Scalar, P: ControlPoint<T>>(
     let at = |u: T| -> T {
         let i = grid.partition_point(|&g| g <= u).clamp(1, grid.len() - 1);
         let (g0, g1) = (grid[i - 1], grid[i]);
-        let t = if g1 > g0 { (u - g0) / (g1 - g0) } else { T::zero() };
+        let t = if g1 > g0 {
+            (u - g0) / (g1 - g0)
+        } else {
+            T::zero()
+        };
         cumulative[i - 1] + (cumulative[i] - cumulative[i - 1]) * t.max(T::zero()).min(T::one())
     };
     // The parameter where the cumulative density reaches `target`.
     let inverse = |target: T| -> T {
-        let i = cumulative.partition_point(|&c| c < target).clamp(1, grid.len() - 1);
+        let i = cumulative
+            .partition_point(|&c| c < target)
+            .clamp(1, grid.len() - 1);
         let (c0, c1) = (cumulative[i - 1], cumulative[i]);
-        let t = if c1 > c0 { (target - c0) / (c1 - c0) } else { T::zero() };
+        let t = if c1 > c0 {
+            (target - c0) / (c1 - c0)
+        } else {
+            T::zero()
+        };
         grid[i - 1] + (grid[i] - grid[i - 1]) * t
     };
     // Pieces between prescribed knots; spans shared by largest remainders, one at least.

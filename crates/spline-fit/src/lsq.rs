@@ -614,7 +614,10 @@ impl<T: Scalar, P: ControlPoint<T>> NormalEquations<T, P> {
     #[must_use]
     pub fn gram(&self, i: usize, j: usize) -> T {
         let n = self.len();
-        assert!(i < n && j < n, "index ({i}, {j}) outside a {n} × {n} matrix");
+        assert!(
+            i < n && j < n,
+            "index ({i}, {j}) outside a {n} × {n} matrix"
+        );
         let (i, j) = if j <= i { (i, j) } else { (j, i) };
         if i - j > self.bandwidth() {
             T::zero()

@@ -195,7 +195,11 @@ pub fn project_ordered<T: Scalar, P: ControlPoint<T>>(
     let mut out = params.to_vec();
     for k in 0..points.len() {
         let lo = if k == 0 { a } else { out[k - 1] };
-        let hi = if k + 1 == points.len() { b } else { params[k + 1] };
+        let hi = if k + 1 == points.len() {
+            b
+        } else {
+            params[k + 1]
+        };
         let start = out[k].max(lo).min(hi);
         out[k] = newton_from(curve, &points[k], start, lo, hi)?.0;
     }

@@ -71,7 +71,9 @@ fn classify(line: &str) -> Line {
         // A placeholder such as `0.0000     ......` holds no point.
         None if tokens.len() >= 2
             && tokens[0].parse::<f64>().is_ok()
-            && tokens[1..].iter().all(|t| t.len() >= 3 && t.chars().all(|c| c == '.')) =>
+            && tokens[1..]
+                .iter()
+                .all(|t| t.len() >= 3 && t.chars().all(|c| c == '.')) =>
         {
             Line::Blank
         }
@@ -241,7 +243,8 @@ mod tests {
         let c = parse_airfoil(two).unwrap();
         assert_eq!(c.name.as_deref(), Some("Ornithopter airfoil."));
         assert_eq!(c.points.len(), 3);
-        let footer = "name\n1 0\n0.5 0.1\n0 0\nProfili-> by Stefano Duranti\nhttp://www.example.org\n";
+        let footer =
+            "name\n1 0\n0.5 0.1\n0 0\nProfili-> by Stefano Duranti\nhttp://www.example.org\n";
         assert_eq!(parse_airfoil(footer).unwrap().points.len(), 3);
         let bare = "1\t0.00119\n0.5\t0.02\n0\t0\n";
         assert_eq!(parse_airfoil(bare).unwrap().name, None);
@@ -253,11 +256,17 @@ mod tests {
         assert_eq!(err.kind(), ErrorKind::Parse);
         assert!(err.to_string().contains("line 4"), "{err}");
         let err = parse_airfoil("name\n1 0\n0.5 0.1 0.3\n0 0\n").unwrap_err();
-        assert!(err.to_string().contains("line 3") && err.to_string().contains("3 numbers"), "{err}");
+        assert!(
+            err.to_string().contains("line 3") && err.to_string().contains("3 numbers"),
+            "{err}"
+        );
         let err = parse_airfoil("name\n1 0\n0 0\n").unwrap_err();
         assert_eq!(err.kind(), ErrorKind::TooFewPoints);
         let err = parse_airfoil("name\n1 0\n0.5 inf\n0 0\n").unwrap_err();
         assert_eq!(err.kind(), ErrorKind::NonFinite);
-        assert_eq!(parse_airfoil("").unwrap_err().kind(), ErrorKind::TooFewPoints);
+        assert_eq!(
+            parse_airfoil("").unwrap_err().kind(),
+            ErrorKind::TooFewPoints
+        );
     }
 }

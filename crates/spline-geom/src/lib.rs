@@ -30,11 +30,11 @@
 //! # Ok::<(), spline_core::Error>(())
 //! ```
 
+pub mod airfoil;
 mod arclength;
 mod bezier;
 mod bspline;
 mod construct;
-pub mod airfoil;
 pub mod exchange;
 pub mod export;
 mod homogeneous;

@@ -210,7 +210,7 @@ fn barrier_value(problem: &impl BarrierProblem, x: &DVector<f64>, t: f64) -> Opt
 }
 
 /// A condition that ends a centring step early.
-type StopRule<'a> = &'a dyn Fn(&DVector<f64>) -> bool;
+pub(crate) type StopRule<'a> = &'a dyn Fn(&DVector<f64>) -> bool;
 
 /// Newton's method on the barrier objective for fixed `t`; returns the number of steps.
 /// `stop` ends the centring early once an iterate satisfies it.
@@ -355,7 +355,10 @@ fn centre_trust_region(
             ));
         };
         // Decrement in the local metric: gᵀ M⁻¹ g.
-        let scaled_gradient = factor.l().solve_lower_triangular(&gradient).unwrap_or_else(|| gradient.clone());
+        let scaled_gradient = factor
+            .l()
+            .solve_lower_triangular(&gradient)
+            .unwrap_or_else(|| gradient.clone());
         let decrement = scaled_gradient.norm_squared();
         if decrement / 2.0 <= options.newton_tolerance * (1.0 + f.abs()) {
             return Ok(accepted);
@@ -386,7 +389,9 @@ fn centre_trust_region(
             }
         }
         // H̃ = L⁻¹ H L⁻ᵀ.
-        let left = l.solve_lower_triangular(&hessian).unwrap_or_else(|| hessian.clone());
+        let left = l
+            .solve_lower_triangular(&hessian)
+            .unwrap_or_else(|| hessian.clone());
         let scaled = l
             .solve_lower_triangular(&left.transpose())
             .unwrap_or_else(|| left.clone());
@@ -398,7 +403,10 @@ fn centre_trust_region(
             if !(predicted > 0.0) {
                 return Ok(accepted);
             }
-            let d = l.transpose().solve_upper_triangular(&y).unwrap_or(y.clone());
+            let d = l
+                .transpose()
+                .solve_upper_triangular(&y)
+                .unwrap_or(y.clone());
             let candidate = &*x + &d;
             let actual = barrier_value(problem, &candidate, t).map(|fc| f - fc);
             let ratio = actual.map_or(-1.0, |a| a / predicted);
@@ -440,7 +448,10 @@ fn centre_trust_region(
 /// needed.
 fn positive_definite_factor(m: &DMatrix<f64>) -> Option<nalgebra::Cholesky<f64, nalgebra::Dyn>> {
     let n = m.nrows();
-    let scale = (0..n).map(|i| m[(i, i)].abs()).fold(0.0, f64::max).max(1e-300);
+    let scale = (0..n)
+        .map(|i| m[(i, i)].abs())
+        .fold(0.0, f64::max)
+        .max(1e-300);
     let mut shift = 0.0;
     for _ in 0..20 {
         let mut shifted = m.clone();
@@ -450,7 +461,11 @@ fn positive_definite_factor(m: &DMatrix<f64>) -> Option<nalgebra::Cholesky<f64, 
         if let Some(f) = shifted.cholesky() {
             return Some(f);
         }
-        shift = if shift == 0.0 { 1e-12 * scale } else { shift * 100.0 };
+        shift = if shift == 0.0 {
+            1e-12 * scale
+        } else {
+            shift * 100.0
+        };
     }
     None
 }

@@ -11,7 +11,10 @@ use spline_shape::{
 };
 
 fn airfoil(path: &str) -> Vec<Vector2<f64>> {
-    let path = format!("{}/../../data/airfoils/{path}.dat", env!("CARGO_MANIFEST_DIR"));
+    let path = format!(
+        "{}/../../data/airfoils/{path}.dat",
+        env!("CARGO_MANIFEST_DIR")
+    );
     let text = std::fs::read_to_string(&path).unwrap();
     parse_points(&text)
         .unwrap()
@@ -43,20 +46,28 @@ fn an_airfoil_keeps_one_curvature_maximum_at_the_nose() {
     // Dense sampling agrees: one maximum of the curvature, there.
     let turns = sampled(&result.curve, result.orientation);
     assert_eq!(turns.len(), 1, "{turns:?}");
-    assert!(turns[0].1 && (turns[0].0 - nose.param).abs() < 1e-2, "{turns:?}");
+    assert!(
+        turns[0].1 && (turns[0].0 - nose.param).abs() < 1e-2,
+        "{turns:?}"
+    );
     // Close to the data both ways (chord 1): a fraction of a millimetre to a few.
-    assert!(result.deviation.to_curve.max < 2e-3, "{:?}", result.deviation.to_curve.max);
-    assert!(result.deviation.to_data < 4e-3, "{}", result.deviation.to_data);
+    assert!(
+        result.deviation.to_curve.max < 2e-3,
+        "{:?}",
+        result.deviation.to_curve.max
+    );
+    assert!(
+        result.deviation.to_data < 4e-3,
+        "{}",
+        result.deviation.to_data
+    );
 }
 
 #[test]
 fn table_6_1_airfoils_beat_the_thesis() {
     // Thesis Table 6.1: control points and maximum deviation (chord 1 m) with one curvature
     // maximum at the nose.
-    for (name, control, thesis) in [
-        ("a18sm", 17, 0.8e-3),
-        ("ch10sm", 22, 0.7e-3),
-    ] {
+    for (name, control, thesis) in [("a18sm", 17, 0.8e-3), ("ch10sm", 22, 0.7e-3)] {
         let points = airfoil(&format!("table61/{name}"));
         let result = smooth(&points, &SmoothingOptions::new(control)).unwrap();
         let turns = sampled(&result.curve, result.orientation);
@@ -92,7 +103,11 @@ fn a_noisy_half_ellipse_gets_its_single_extremum_back() {
     assert!((result.extrema[0].param - 0.5).abs() < 1e-9);
     assert_eq!(result.extrema[0].kind, ExtremumKind::Minimum);
     assert_eq!(sampled(&result.curve, result.orientation).len(), 1);
-    assert!(result.deviation.to_curve.max < 3e-3, "{}", result.deviation.to_curve.max);
+    assert!(
+        result.deviation.to_curve.max < 3e-3,
+        "{}",
+        result.deviation.to_curve.max
+    );
 }
 
 #[test]
@@ -113,7 +128,10 @@ fn least_squares_objective_and_higher_degrees_work() {
 fn the_answer_does_not_depend_on_units() {
     let points = airfoil("clarkv");
     let a = smooth(&points, &SmoothingOptions::new(16)).unwrap();
-    let scaled: Vec<Vector2<f64>> = points.iter().map(|p| p * 1000.0 + Vector2::new(5e3, -7e3)).collect();
+    let scaled: Vec<Vector2<f64>> = points
+        .iter()
+        .map(|p| p * 1000.0 + Vector2::new(5e3, -7e3))
+        .collect();
     let b = smooth(&scaled, &SmoothingOptions::new(16)).unwrap();
     let rel = (b.deviation.to_curve.max / 1000.0 - a.deviation.to_curve.max).abs();
     assert!(rel < 1e-6 * (1.0 + a.deviation.to_curve.max), "{rel}");
@@ -124,27 +142,44 @@ fn bad_requests_are_errors() {
     let points = airfoil("clarkv");
     let mut options = SmoothingOptions::new(20);
     options.degree = 2;
-    assert_eq!(smooth(&points, &options).unwrap_err().kind(), ErrorKind::InvalidArgument);
+    assert_eq!(
+        smooth(&points, &options).unwrap_err().kind(),
+        ErrorKind::InvalidArgument
+    );
     let mut options = SmoothingOptions::new(6);
-    options.extrema = vec![Extremum::maximum(), Extremum::minimum(), Extremum::maximum()];
-    assert_eq!(smooth(&points, &options).unwrap_err().kind(), ErrorKind::InvalidArgument);
+    options.extrema = vec![
+        Extremum::maximum(),
+        Extremum::minimum(),
+        Extremum::maximum(),
+    ];
+    assert_eq!(
+        smooth(&points, &options).unwrap_err().kind(),
+        ErrorKind::InvalidArgument
+    );
     let mut options = SmoothingOptions::new(20);
     options.extrema = vec![Extremum {
         kind: ExtremumKind::Maximum,
         at: Some(1.5),
     }];
-    assert_eq!(smooth(&points, &options).unwrap_err().kind(), ErrorKind::InvalidArgument);
+    assert_eq!(
+        smooth(&points, &options).unwrap_err().kind(),
+        ErrorKind::InvalidArgument
+    );
     options.extrema = vec![Extremum::maximum(), Extremum::maximum()];
     let err = smooth(&points, &options).unwrap_err();
     assert!(err.to_string().contains("alternate"), "{err}");
     assert_eq!(
-        smooth(&points[..3], &SmoothingOptions::new(20)).unwrap_err().kind(),
+        smooth(&points[..3], &SmoothingOptions::new(20))
+            .unwrap_err()
+            .kind(),
         ErrorKind::TooFewPoints
     );
     let mut with_nan = points.clone();
     with_nan[5].y = f64::NAN;
     assert_eq!(
-        smooth(&with_nan, &SmoothingOptions::new(20)).unwrap_err().kind(),
+        smooth(&with_nan, &SmoothingOptions::new(20))
+            .unwrap_err()
+            .kind(),
         ErrorKind::NonFinite
     );
     assert!("maximum@x".parse::<Extremum>().is_err());

@@ -5,7 +5,7 @@
 use super::placement::{fit_with_correction, nested_levels, new_knots, pin_ends};
 use super::problem::EraserProblem;
 use super::{Objective, SmoothingOptions};
-use crate::barrier::{BarrierProblem, centre};
+use crate::barrier::{BarrierProblem, StopRule, centre};
 use nalgebra::{DVector, Vector2};
 use spline_core::{ErrorKind, KnotVector, Result};
 use spline_fit::project_ordered;
@@ -35,7 +35,7 @@ impl Solver<'_> {
         problem: &EraserProblem,
         x: &mut DVector<f64>,
         t: f64,
-        stop: Option<&dyn Fn(&DVector<f64>) -> bool>,
+        stop: Option<StopRule<'_>>,
     ) -> Result<()> {
         let steps = match centre(problem, x, t, &self.options.barrier, stop) {
             Ok(steps) => steps,
@@ -51,7 +51,7 @@ impl Solver<'_> {
 
     /// Phase I from `control`: `τ` as a variable, `min τ + pull · fit` until `τ < 0`, the
     /// pull weakening as `t` grows (so that the fit keeps its hold while the conditions are
-    /// driven to feasibility); shifts per condition first, then one shift for all. `None` if
+    /// driven to feasibility), each condition shifted by its own violation. `None` if
     /// no strictly feasible curve is found, or `τ` creeps towards zero from above (a
     /// degenerate configuration, `g ≡ 0` on a piece, not a way to feasibility).
     fn phase_one(
@@ -60,9 +60,9 @@ impl Solver<'_> {
         control: &[Vector2<f64>],
         z: f64,
     ) -> Option<DVector<f64>> {
-        for uniform in [false, true] {
+        {
             let x = problem.variables(control, z);
-            problem.start_homotopy(&x, 0.1, uniform);
+            problem.start_homotopy(&x, 0.1);
             problem.set_relaxed(true, 1.0);
             let mut y = problem.variables(control, z);
             let index = problem.tau_index();
@@ -246,7 +246,10 @@ pub(crate) fn attempt(
         )?;
         // Rounding can leave a condition at zero after the insertion: phase I mends it.
         if !next_problem.constraints(&next_x).iter().all(|&c| c < 0.0) {
-            let z = next_x.get(2 * levels[level].num_basis()).copied().unwrap_or(0.0);
+            let z = next_x
+                .get(2 * levels[level].num_basis())
+                .copied()
+                .unwrap_or(0.0);
             match solver.phase_one(&mut next_problem, refined.control_points(), z) {
                 Some(found) => next_x = found,
                 None => return Ok(None),

@@ -307,7 +307,11 @@ pub fn smooth(points: &[Vector2<f64>], options: &SmoothingOptions) -> Result<Smo
         ));
     }
     let unit: Vec<Vector2<f64>> = data.iter().map(|q| (q - middle) / size).collect();
-    let orientation = if polygon_area(&unit) >= 0.0 { 1.0 } else { -1.0 };
+    let orientation = if polygon_area(&unit) >= 0.0 {
+        1.0
+    } else {
+        -1.0
+    };
 
     // 1. The shape: centripetal parameters, least squares, parameter correction.
     let params = parametrize(&unit, &Parametrization::Centripetal)?;
@@ -335,8 +339,7 @@ pub fn smooth(points: &[Vector2<f64>], options: &SmoothingOptions) -> Result<Smo
         else {
             continue;
         };
-        let found = match driver::attempt(&unit, &params, &knots, &placed, first_sign, options)
-        {
+        let found = match driver::attempt(&unit, &params, &knots, &placed, first_sign, options) {
             Ok(found) => found,
             Err(e)
                 if matches!(
@@ -562,7 +565,10 @@ fn check_options(options: &SmoothingOptions) -> Result<()> {
 
 /// The points without consecutive repetitions; all finite, at least two distinct.
 fn distinct(points: &[Vector2<f64>]) -> Result<Vec<Vector2<f64>>> {
-    if let Some(k) = points.iter().position(|q| !(q.x.is_finite() && q.y.is_finite())) {
+    if let Some(k) = points
+        .iter()
+        .position(|q| !(q.x.is_finite() && q.y.is_finite()))
+    {
         return Err(Error::new(
             ErrorKind::NonFinite,
             format!("data point {k} is not finite"),

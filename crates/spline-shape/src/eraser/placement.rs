@@ -14,7 +14,11 @@ fn curvature_samples(curve: &Curve2<f64>, orientation: f64) -> Result<Vec<(f64, 
         .map(|k| {
             let u = f64::from(k) * du;
             let d = curve.derivatives(u, 1)?;
-            Ok((u, orientation * curve.signed_curvature(u)?, d[1].norm() * du))
+            Ok((
+                u,
+                orientation * curve.signed_curvature(u)?,
+                d[1].norm() * du,
+            ))
         })
         .collect()
 }
@@ -180,12 +184,23 @@ pub(crate) fn new_knots(coarse: &KnotVector<f64>, fine: &KnotVector<f64>) -> Vec
 ///
 /// # Errors
 /// None for a valid clamped knot vector (the errors of [`KnotVector::clamped`]).
-pub(crate) fn nested_levels(knots: &KnotVector<f64>, extrema: &[f64]) -> Result<Vec<KnotVector<f64>>> {
+pub(crate) fn nested_levels(
+    knots: &KnotVector<f64>,
+    extrema: &[f64],
+) -> Result<Vec<KnotVector<f64>>> {
     let p = knots.degree();
     let (a, b) = knots.domain();
     let interior = &knots.knots()[p + 1..knots.num_basis()];
-    let fixed: Vec<f64> = interior.iter().copied().filter(|u| extrema.contains(u)).collect();
-    let mut free: Vec<f64> = interior.iter().copied().filter(|u| !extrema.contains(u)).collect();
+    let fixed: Vec<f64> = interior
+        .iter()
+        .copied()
+        .filter(|u| extrema.contains(u))
+        .collect();
+    let mut free: Vec<f64> = interior
+        .iter()
+        .copied()
+        .filter(|u| !extrema.contains(u))
+        .collect();
     let mut levels = Vec::new();
     loop {
         let mut all = fixed.clone();
@@ -218,8 +233,8 @@ mod tests {
 
     #[test]
     fn levels_are_nested_and_keep_the_extremum_knots() {
-        let knots = KnotVector::clamped(3, 0.0, 1.0, &[0.1, 0.2, 0.3, 0.45, 0.6, 0.7, 0.8, 0.9])
-            .unwrap();
+        let knots =
+            KnotVector::clamped(3, 0.0, 1.0, &[0.1, 0.2, 0.3, 0.45, 0.6, 0.7, 0.8, 0.9]).unwrap();
         let levels = nested_levels(&knots, &[0.45]).unwrap();
         assert_eq!(levels.last().unwrap(), &knots);
         assert_eq!(levels[0].knots().len(), 9); // 0.45 alone inside

@@ -138,7 +138,8 @@ impl Distances {
         let mut basis = [0.0; 3 * spline_core::MAX_ORDER];
         let eval = |u: f64, basis: &mut [f64]| -> (usize, [Vector2<f64>; 3]) {
             let span = self.knots.span_in_domain(u);
-            self.knots.basis_derivatives(span, u, 2, &mut basis[..3 * width]);
+            self.knots
+                .basis_derivatives(span, u, 2, &mut basis[..3 * width]);
             let mut d = [Vector2::zeros(); 3];
             for (k, dk) in d.iter_mut().enumerate() {
                 for a in 0..width {
@@ -190,7 +191,8 @@ impl Distances {
         let mut hessian = Vec::new();
         if derivatives {
             // Basis values at u (the evaluation left them in `basis`).
-            self.knots.basis_derivatives(span, u, 2, &mut basis[..3 * width]);
+            self.knots
+                .basis_derivatives(span, u, 2, &mut basis[..3 * width]);
             let value = &basis[..width];
             let slope = &basis[width..2 * width];
             gradient = vec![0.0; n];
@@ -467,7 +469,6 @@ impl EraserProblem {
         (0..=p).map(|k| control[span - p + k] * basis[k]).sum()
     }
 
-
     /// Moves the anchors of the foot points to the foot points of the curve of `x`.
     pub(crate) fn commit(&self, x: &DVector<f64>) {
         let params: Vec<f64> = self.feet(x, false).feet.iter().map(|f| f.param).collect();
@@ -502,12 +503,10 @@ impl EraserProblem {
         self.feet(x, false).feet.iter().map(|f| f.squared).collect()
     }
 
-
     /// Sets the unit of squared distances (the objective is then about 1 at the start).
     pub(crate) fn set_unit(&mut self, unit: f64) {
         self.unit = unit.max(f64::MIN_POSITIVE);
     }
-
 
     /// The number of sign conditions on `g`.
     pub(crate) fn num_conditions(&self) -> usize {
@@ -524,7 +523,8 @@ impl EraserProblem {
         } = &mut *scratch;
         let mut per_segment = Vec::with_capacity(self.kernel.num_segments());
         for s in 0..self.kernel.num_segments() {
-            self.kernel.segment(s, &control, workspace, values, None, None);
+            self.kernel
+                .segment(s, &control, workspace, values, None, None);
             per_segment.push(values.clone());
         }
         self.pieces
@@ -561,20 +561,14 @@ impl EraserProblem {
     /// Starts the homotopy at `x`: shifts `σ_i = max(0, −v_i(x)) + margin` so that `x` is
     /// strictly feasible at `τ = 1` (`v_i` the scaled signed coefficients). Returns whether
     /// any condition was violated.
-    pub(crate) fn start_homotopy(&mut self, x: &DVector<f64>, margin: f64, uniform: bool) -> bool {
+    pub(crate) fn start_homotopy(&mut self, x: &DVector<f64>, margin: f64) -> bool {
         let coefficients = self.signed_coefficients(x);
         let mut violated = false;
-        let worst = self
-            .pieces
-            .iter()
-            .zip(&coefficients)
-            .flat_map(|(piece, c)| c.iter().zip(&piece.scale).map(|(v, s)| -v / s))
-            .fold(0.0f64, f64::max);
         for (piece, c) in self.pieces.iter_mut().zip(&coefficients) {
             for ((shift, v), s) in piece.shift.iter_mut().zip(c).zip(&piece.scale) {
                 let scaled = v / s;
                 violated |= scaled <= 0.0;
-                *shift = if uniform { worst + margin } else { (-scaled).max(0.0) + margin };
+                *shift = (-scaled).max(0.0) + margin;
             }
         }
         self.tau = 1.0;
@@ -730,7 +724,11 @@ impl BarrierProblem for EraserProblem {
         let mut out = Vec::with_capacity(self.num_constraints());
         if self.minimax() {
             let z = x[2 * self.n];
-            out.extend(self.squared_distances(x).iter().map(|d2| d2 / self.unit - z));
+            out.extend(
+                self.squared_distances(x)
+                    .iter()
+                    .map(|d2| d2 / self.unit - z),
+            );
         }
         let control = self.control_points(x);
         for e in &self.excursions {
@@ -780,11 +778,11 @@ impl BarrierProblem for EraserProblem {
                 .basis_values(span, e.param, &mut basis[..=p]);
             let c: Vector2<f64> = (0..=p).map(|k| control[span - p + k] * basis[k]).sum();
             let r = (c - e.centre) * (2.0 / e.radius2);
-            for k in 0..=p {
+            for (k, b) in basis[..=p].iter().enumerate() {
                 cols.push(2 * (span - p + k));
-                vals.push(basis[k] * r.x);
+                vals.push(b * r.x);
                 cols.push(2 * (span - p + k) + 1);
-                vals.push(basis[k] * r.y);
+                vals.push(b * r.y);
             }
             offsets.push(cols.len());
         }
