@@ -1,100 +1,210 @@
-//! `spline smooth` through the binary: an airfoil keeps one curvature extremum; bad input
-//! gives exit status 2 and one line.
+//! `spline smooth` and `spline optimize` through the binary: an airfoil keeps one curvature
+//! extremum, the thesis's settings can be written on the command line, a directory gives one
+//! JSON per airfoil and a summary, bad input gives exit status 2 and one line.
 
 mod common;
 
 use common::{spline, temp_file};
+use serde_json::Value;
 
-fn airfoil() -> String {
+fn airfoil(name: &str) -> String {
     format!(
-        "{}/../../data/airfoils/clarkv.dat",
+        "{}/../../data/airfoils/{name}.dat",
         env!("CARGO_MANIFEST_DIR")
     )
 }
 
 #[test]
 fn smoothing_an_airfoil() {
-    let out = spline(&[
-        "smooth",
-        &airfoil(),
-        "--control-points",
-        "20",
-        "--curvature-extrema",
-        "1",
-    ])
-    .json();
+    let out = spline(&["smooth", &airfoil("clarkv"), "--control-points", "20"]).json();
     assert_eq!(out["curvature_extrema"].as_array().unwrap().len(), 1);
-    assert!(out["max_deviation"].as_f64().unwrap() < 5e-3);
+    assert_eq!(out["extrema"][0]["kind"], "maximum");
+    let nose_x = out["extrema"][0]["point"][0].as_f64().unwrap();
+    assert!(nose_x < 0.01, "{nose_x}");
+    assert!(out["max_deviation"].as_f64().unwrap() < 2e-3);
+    assert!(out["max_deviation_to_data"].as_f64().unwrap() < 4e-3);
+    assert!(out["rms"].as_f64().unwrap() < out["max_deviation"].as_f64().unwrap());
     assert_eq!(out["curve"]["degree"], 3);
+    assert_eq!(out["control_points"], 20);
     assert_eq!(out["curve"]["control_points"].as_array().unwrap().len(), 20);
-    assert!(
-        out["least_squares_curvature_extrema"]
-            .as_array()
-            .unwrap()
-            .len()
-            > 1
-    );
-    // The curve evaluates through the tool.
+    assert!(out["least_squares_curvature_extrema"].as_u64().unwrap() > 1);
+    // The curve evaluates through the tool and starts at the first data point (1, 0).
     let curve = temp_file("smoothed.json", &out["curve"].to_string());
     let ends = spline(&["eval", &curve, "--at", "[0, 1]"]).json();
     assert!((ends[0][0][0].as_f64().unwrap() - 1.0).abs() < 1e-2);
 }
 
 #[test]
+fn the_thesis_settings_on_the_command_line() {
+    // ah63k127: a minimum at u = 0.02 near the trailing edge, then the nose maximum.
+    let out = spline(&[
+        "smooth",
+        &airfoil("table61/ah63k127"),
+        "--control-points",
+        "26",
+        "--extremum",
+        "min@0.02",
+        "--extremum",
+        "max",
+    ])
+    .json();
+    let extrema = out["extrema"].as_array().unwrap();
+    assert_eq!(extrema.len(), 2, "{extrema:?}");
+    assert_eq!(extrema[0]["kind"], "minimum");
+    assert!((extrema[0]["u"].as_f64().unwrap() - 0.02).abs() < 1e-9);
+    assert_eq!(extrema[1]["kind"], "maximum");
+    assert!(out["max_deviation"].as_f64().unwrap() < 2.7e-3);
+}
+
+#[test]
+fn fewest_control_points_for_a_tolerance() {
+    let out = spline(&["smooth", &airfoil("clarkv"), "--max-deviation", "0.002"]).json();
+    let n = out["control_points"].as_u64().unwrap();
+    assert!(out["max_deviation"].as_f64().unwrap() <= 0.002);
+    // One control point less does not reach the tolerance (or finds no curve).
+    let fewer = (n - 1).to_string();
+    let run = spline(&["smooth", &airfoil("clarkv"), "--control-points", &fewer]);
+    if run.status == 0 {
+        let d = run.json()["max_deviation"].as_f64().unwrap();
+        assert!(
+            d > 0.002,
+            "{n} control points were not the fewest: {fewer} give {d}"
+        );
+    }
+}
+
+#[test]
+fn a_directory_of_airfoils() {
+    let dir = std::env::temp_dir().join(format!("spline-smooth-batch-{}", std::process::id()));
+    let input = dir.join("in");
+    let out = dir.join("out");
+    std::fs::create_dir_all(&input).unwrap();
+    for name in ["clarkv", "e422"] {
+        std::fs::copy(airfoil(name), input.join(format!("{name}.dat"))).unwrap();
+    }
+    // Not an airfoil: text between the points.
+    std::fs::write(
+        input.join("broken.dat"),
+        "name\n1 0\nnot a point\n0 0\n1 -0.1\n",
+    )
+    .unwrap();
+    let run = spline(&[
+        "smooth",
+        input.to_str().unwrap(),
+        "--control-points",
+        "16",
+        "--jobs",
+        "2",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    // One input failed: exit status 2 and one line, after every input was handled.
+    let message = run.assert_clean_error();
+    assert!(message.contains("smoothed 2 of 3"), "{message}");
+    let summary = std::fs::read_to_string(out.join("summary.jsonl")).unwrap();
+    let rows: Vec<Value> = summary
+        .lines()
+        .map(|l| serde_json::from_str(l).unwrap())
+        .collect();
+    assert_eq!(rows.len(), 3);
+    for row in &rows {
+        if row["name"] == "broken" {
+            assert!(row["error"].as_str().unwrap().contains("line 3"), "{row}");
+        } else {
+            assert!(row["error"].is_null(), "{row}");
+            assert_eq!(row["control_points"], 16);
+            assert_eq!(row["extrema"], 1);
+            let one: Value = serde_json::from_str(
+                &std::fs::read_to_string(
+                    out.join(format!("{}.json", row["name"].as_str().unwrap())),
+                )
+                .unwrap(),
+            )
+            .unwrap();
+            assert_eq!(one["max_deviation"], row["max_deviation"]);
+        }
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
 fn smoothing_errors() {
     let points3d = temp_file("p.json", "[[0,0,0],[1,0,0],[2,1,0],[3,0,0]]");
+    let clarkv = airfoil("clarkv");
     for (args, needle) in [
         (
-            vec![
-                "smooth",
-                &points3d as &str,
-                "--control-points",
-                "4",
-                "--curvature-extrema",
-                "1",
-            ],
+            vec!["smooth", &points3d as &str, "--control-points", "4"],
             "planar",
         ),
         (
-            vec![
-                "smooth",
-                &airfoil(),
-                "--control-points",
-                "20",
-                "--curvature-extrema",
-                "1",
-                "--degree",
-                "2",
-            ],
+            vec!["smooth", &clarkv, "--control-points", "20", "--degree", "2"],
             "degree 3",
         ),
         (
             vec![
                 "smooth",
-                &airfoil(),
+                &clarkv,
                 "--control-points",
                 "20",
-                "--curvature-extrema",
-                "1",
-                "--extremum-at",
-                "[2]",
+                "--extremum",
+                "max@2",
             ],
-            "inside (0, 1)",
+            "(0, 1)",
         ),
         (
             vec![
                 "smooth",
-                &airfoil(),
+                &clarkv,
+                "--control-points",
+                "20",
+                "--extremum",
+                "top",
+            ],
+            "--extremum",
+        ),
+        (
+            vec![
+                "smooth",
+                &clarkv,
+                "--control-points",
+                "20",
+                "--extremum",
+                "max",
+                "--extremum",
+                "max",
+            ],
+            "alternate",
+        ),
+        (
+            vec![
+                "smooth",
+                &clarkv,
                 "--control-points",
                 "6",
                 "--curvature-extrema",
                 "5",
             ],
-            "knot spans",
+            "at least",
         ),
+        (vec!["smooth", &clarkv], "--control-points"),
+        (
+            vec!["smooth", &clarkv, &clarkv, "--control-points", "20"],
+            "--out",
+        ),
+        (vec!["smooth", &clarkv, "--max-deviation", "0"], "positive"),
     ] {
         let args: Vec<&str> = args.iter().map(AsRef::as_ref).collect();
         let message = spline(&args).assert_clean_error();
-        assert!(message.contains(needle), "{message}");
+        assert!(message.contains(needle), "{args:?}: {message}");
     }
+}
+
+#[test]
+fn optimising_perimeter_squared_over_area() {
+    let out = spline(&["optimize", "--iterations", "3"]).json();
+    let j = out["criterion"].as_f64().unwrap();
+    assert!((j - 2.0 * std::f64::consts::PI).abs() < 1e-3, "{j}");
+    assert_eq!(out["iterations"].as_array().unwrap().len(), 3);
+    let message = spline(&["optimize", "--iterations", "0"]).assert_clean_error();
+    assert!(message.contains("--iterations"), "{message}");
 }
