@@ -1,113 +1,75 @@
 //! The main job: fit and smooth an airfoil shipped in `data/airfoils/`, print the result and
-//! write `docs/airfoil.svg`.
+//! draw it.
 //!
 //! 1. Read the UIUC coordinates (Selig order: trailing edge, upper surface, nose, lower
 //!    surface, trailing edge).
-//! 2. Least squares (chord-length parameters, knots by The NURBS Book (9.68)), then the
+//! 2. Least squares (chord-length parameters, knots by The NURBS Book (9.68)) with the
 //!    parameter correction of seed 003: the best curve of that size, which still wiggles —
 //!    its curvature has many extrema.
 //! 3. The selective eraser of curvature extrema (thesis ch. 6): the closest curve whose
 //!    curvature has a single maximum, at the nose.
-//! 4. Report deviations (closest-point distances to the data) and curvature features, and
-//!    draw both curves and their curvature graphs.
+//! 4. Report deviations both ways and the curvature features (checked by dense sampling),
+//!    and draw both curves and their curvature graphs.
+//!
+//! `cargo xtask demo` writes its pictures under `target/demo/` (the work tree stays clean);
+//! `cargo xtask docs` writes the same pictures into `docs/`.
 
 use nalgebra::Vector2;
 use spline::algebra::planar_features;
 use spline::fit::{
-    CorrectionOptions, LeastSquares, Parametrization, closest_point, correct_parameters,
-    nurbs_book_knots, parametrize,
+    CorrectionOptions, LeastSquares, Parametrization, correct_parameters, nurbs_book_knots,
+    parametrize, two_sided_deviation,
 };
 use spline::geom::Curve2;
-use spline::geom::exchange::parse_points;
+use spline::geom::airfoil::parse_airfoil;
 use spline::geom::export::SvgPlot;
-use spline::shape::{SmoothingOptions, smooth};
+use spline::shape::{SmoothedCurve, SmoothingOptions, sampled_curvature_extrema, smooth};
 use std::path::Path;
 
 const AIRFOIL: &str = "clarkv";
 const CONTROL_POINTS: usize = 20;
 
-fn closest_distances(curve: &Curve2, points: &[Vector2<f64>]) -> Result<(f64, f64), String> {
-    let mut max = 0.0f64;
-    let mut sum = 0.0;
-    for p in points {
-        let d = closest_point(curve, *p)
-            .map_err(|e| e.to_string())?
-            .distance;
-        max = max.max(d);
-        sum += d * d;
-    }
-    Ok((max, (sum / points.len() as f64).sqrt()))
+/// The least-squares fit with parameter correction and the smoothed curve of the demo.
+struct Demo {
+    points: Vec<Vector2<f64>>,
+    least_squares: Curve2<f64>,
+    sweeps: usize,
+    smoothed: SmoothedCurve,
 }
 
-/// Runs the demonstration.
-pub(crate) fn run(root: &Path) -> Result<(), String> {
-    let started = std::time::Instant::now();
+fn compute(root: &Path) -> Result<Demo, String> {
     let path = root.join("data/airfoils").join(format!("{AIRFOIL}.dat"));
     let text = std::fs::read_to_string(&path).map_err(|e| format!("{}: {e}", path.display()))?;
-    let points: Vec<Vector2<f64>> = parse_points(&text)
-        .map_err(|e| e.to_string())?
-        .into_iter()
-        .map(|p| Vector2::new(p[0], p[1]))
-        .collect();
-    println!(
-        "airfoil {AIRFOIL}: {} points from {}",
-        points.len(),
-        path.display()
-    );
-
-    // Least squares with parameter correction.
+    let points = parse_airfoil(&text).map_err(|e| e.to_string())?.points;
     let params = parametrize(&points, &Parametrization::Chordal).map_err(|e| e.to_string())?;
     let knots = nurbs_book_knots(3, CONTROL_POINTS, &params).map_err(|e| e.to_string())?;
     let problem = LeastSquares::new(&points, &params, knots);
     let (fit, report) =
         correct_parameters(&problem, &CorrectionOptions::default()).map_err(|e| e.to_string())?;
-    let least_squares = fit.curve;
-    let ls_features = planar_features(&least_squares, 1e-10).map_err(|e| e.to_string())?;
-    let (ls_max, ls_rms) = closest_distances(&least_squares, &points)?;
-    println!(
-        "least squares, cubic, {CONTROL_POINTS} control points, parameter correction ({} sweeps): max deviation {:.2} mm, rms {:.2} mm (chord 1 m); {} curvature extrema, {} inflections",
-        report.iterations,
-        ls_max * 1e3,
-        ls_rms * 1e3,
-        ls_features.curvature_extrema.len(),
-        ls_features.inflections.len()
-    );
-
-    // The eraser: one curvature maximum, at the nose.
     let smoothed =
         smooth(&points, &SmoothingOptions::new(CONTROL_POINTS)).map_err(|e| e.to_string())?;
-    let nose = smoothed.extrema[0].point;
-    println!(
-        "smoothed (selective eraser, thesis ch. 6): max deviation {:.2} mm at data point {} (curve to data {:.2} mm), rms {:.2} mm; {} curvature extremum at u = {:.4} (x = {:.4}, y = {:.4}), {} inflection(s)",
-        smoothed.deviation.to_curve.max * 1e3,
-        smoothed.deviation.to_curve.max_index,
-        smoothed.deviation.to_data * 1e3,
-        smoothed.deviation.to_curve.rms * 1e3,
-        smoothed.extrema.len(),
-        smoothed.extrema[0].param,
-        nose.x,
-        nose.y,
-        smoothed.inflections.len(),
-    );
-    println!("smoothed curve (exchange format):");
-    println!(
-        "{}",
-        serde_json::to_string(&smoothed.curve).map_err(|e| e.to_string())?
-    );
+    Ok(Demo {
+        points,
+        least_squares: fit.curve,
+        sweeps: report.iterations,
+        smoothed,
+    })
+}
 
+/// Draws the two curves over the data, and their curvature graphs, into `out`.
+fn draw(demo: &Demo, ls_extrema: usize, out: &Path) -> Result<(), String> {
+    std::fs::create_dir_all(out).map_err(|e| format!("cannot create {}: {e}", out.display()))?;
     let mut plot = SvgPlot::new();
     plot.set_width(1200.0);
     plot.set_title(format!(
-        "{AIRFOIL}: data (orange), least squares (red, {} curvature extrema), smoothed (blue, 1 extremum, green dot)",
-        ls_features.curvature_extrema.len()
+        "{AIRFOIL}: data (orange), least squares (red, {ls_extrema} curvature extrema), smoothed (blue, 1 extremum, green dot)"
     ));
-    plot.add_curve_styled(&least_squares, "curve2");
-    plot.add_curve(&smoothed.curve);
-    plot.add_markers(&points, "data");
-    plot.add_markers(&[nose], "extremum");
-    let out = root.join("docs/airfoil.svg");
-    std::fs::write(&out, plot.render()).map_err(|e| format!("{}: {e}", out.display()))?;
-
+    plot.add_curve_styled(&demo.least_squares, "curve2");
+    plot.add_curve(&demo.smoothed.curve);
+    plot.add_markers(&demo.points, "data");
+    let nose: Vec<Vector2<f64>> = demo.smoothed.extrema.iter().map(|e| e.point).collect();
+    plot.add_markers(&nose, "extremum");
+    crate::write_doc(out, "airfoil.svg", &plot.render())?;
     // Signed curvature along the curve, on an asinh scale so that the nose (κ ≈ 10²) and the
     // flat parts (κ ≈ 10⁻¹) are both readable.
     let mut graph = SvgPlot::new();
@@ -115,7 +77,7 @@ pub(crate) fn run(root: &Path) -> Result<(), String> {
     graph.set_title(
         "asinh(κ)/8 against the parameter: least squares (red) wiggles; smoothed (blue) rises to one maximum at the nose, then falls",
     );
-    for (curve, class) in [(&least_squares, "curve2"), (&smoothed.curve, "curve")] {
+    for (curve, class) in [(&demo.least_squares, "curve2"), (&demo.smoothed.curve, "curve")] {
         let samples: Vec<Vector2<f64>> = (0..=2000)
             .filter_map(|i| {
                 let u = f64::from(i) / 2000.0;
@@ -128,13 +90,64 @@ pub(crate) fn run(root: &Path) -> Result<(), String> {
         graph.add_polyline(&samples, class);
     }
     graph.add_polyline(&[Vector2::new(0.0, 0.0), Vector2::new(1.0, 0.0)], "axis");
-    let curvature_out = root.join("docs/airfoil_curvature.svg");
-    std::fs::write(&curvature_out, graph.render())
-        .map_err(|e| format!("{}: {e}", curvature_out.display()))?;
-    println!("curvature graph: {}", curvature_out.display());
+    crate::write_doc(out, "airfoil_curvature.svg", &graph.render())
+}
+
+/// The pictures of the demo, for `cargo xtask docs`.
+pub(crate) fn render(root: &Path, out: &Path) -> Result<(), String> {
+    let demo = compute(root)?;
+    let ls = planar_features(&demo.least_squares, 1e-10).map_err(|e| e.to_string())?;
+    draw(&demo, ls.curvature_extrema.len(), out)
+}
+
+/// Runs the demonstration: prints the result, draws it under `target/demo/`.
+pub(crate) fn run(root: &Path) -> Result<(), String> {
+    let started = std::time::Instant::now();
+    let demo = compute(root)?;
     println!(
-        "picture: {} ({:.1} s)",
-        out.display(),
+        "airfoil {AIRFOIL}: {} points (data/airfoils/{AIRFOIL}.dat, chord 1 m)",
+        demo.points.len()
+    );
+    let ls = planar_features(&demo.least_squares, 1e-10).map_err(|e| e.to_string())?;
+    let ls_dev = two_sided_deviation(&demo.least_squares, &demo.points).map_err(|e| e.to_string())?;
+    println!(
+        "least squares, cubic, {CONTROL_POINTS} control points, parameter correction ({} sweeps): max deviation {:.2} mm, rms {:.2} mm; {} curvature extrema, {} inflections",
+        demo.sweeps,
+        ls_dev.to_curve.max * 1e3,
+        ls_dev.to_curve.rms * 1e3,
+        ls.curvature_extrema.len(),
+        ls.inflections.len()
+    );
+    let s = &demo.smoothed;
+    let nose = s.extrema.first().ok_or("the smoothed curve has no extremum")?;
+    println!(
+        "smoothed (selective eraser, thesis ch. 6): max deviation {:.2} mm (curve to data polyline {:.2} mm), rms {:.2} mm; {} curvature {} at u = {:.3} (x = {:.4}, y = {:.4}), {} inflection(s)",
+        s.deviation.to_curve.max * 1e3,
+        s.deviation.to_data * 1e3,
+        s.deviation.to_curve.rms * 1e3,
+        s.extrema.len(),
+        nose.kind,
+        nose.param,
+        nose.point.x,
+        nose.point.y,
+        s.inflections.len(),
+    );
+    let turns = sampled_curvature_extrema(&s.curve, s.orientation, 400, 1e-9)
+        .map_err(|e| e.to_string())?;
+    println!(
+        "check by dense sampling of the curvature (both one-sided limits at every knot): {} turning point(s)",
+        turns.len()
+    );
+    println!("smoothed curve (exchange format):");
+    println!(
+        "{}",
+        serde_json::to_string(&s.curve).map_err(|e| e.to_string())?
+    );
+    let out = crate::bench::target_dir(root).join("demo");
+    draw(&demo, ls.curvature_extrema.len(), &out)?;
+    eprintln!(
+        "pictures: {} and airfoil_curvature.svg ({:.1} s)",
+        out.join("airfoil.svg").display(),
         started.elapsed().as_secs_f64()
     );
     Ok(())

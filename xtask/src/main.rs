@@ -66,6 +66,7 @@ fn run_docs(root: &Path) -> Result<(), String> {
     docs_curves::render(&out)?;
     docs_surfaces::render(&out)?;
     docs_shape_functions::render(&out)?;
+    demo::render(root, &out)?;
     println!("pictures written to {}", out.display());
     Ok(())
 }
