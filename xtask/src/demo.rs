@@ -77,7 +77,10 @@ fn draw(demo: &Demo, ls_extrema: usize, out: &Path) -> Result<(), String> {
     graph.set_title(
         "asinh(κ)/8 against the parameter: least squares (red) wiggles; smoothed (blue) rises to one maximum at the nose, then falls",
     );
-    for (curve, class) in [(&demo.least_squares, "curve2"), (&demo.smoothed.curve, "curve")] {
+    for (curve, class) in [
+        (&demo.least_squares, "curve2"),
+        (&demo.smoothed.curve, "curve"),
+    ] {
         let samples: Vec<Vector2<f64>> = (0..=2000)
             .filter_map(|i| {
                 let u = f64::from(i) / 2000.0;
@@ -109,7 +112,8 @@ pub(crate) fn run(root: &Path) -> Result<(), String> {
         demo.points.len()
     );
     let ls = planar_features(&demo.least_squares, 1e-10).map_err(|e| e.to_string())?;
-    let ls_dev = two_sided_deviation(&demo.least_squares, &demo.points).map_err(|e| e.to_string())?;
+    let ls_dev =
+        two_sided_deviation(&demo.least_squares, &demo.points).map_err(|e| e.to_string())?;
     println!(
         "least squares, cubic, {CONTROL_POINTS} control points, parameter correction ({} sweeps): max deviation {:.2} mm, rms {:.2} mm; {} curvature extrema, {} inflections",
         demo.sweeps,
@@ -119,7 +123,10 @@ pub(crate) fn run(root: &Path) -> Result<(), String> {
         ls.inflections.len()
     );
     let s = &demo.smoothed;
-    let nose = s.extrema.first().ok_or("the smoothed curve has no extremum")?;
+    let nose = s
+        .extrema
+        .first()
+        .ok_or("the smoothed curve has no extremum")?;
     println!(
         "smoothed (selective eraser, thesis ch. 6): max deviation {:.2} mm (curve to data polyline {:.2} mm), rms {:.2} mm; {} curvature {} at u = {:.3} (x = {:.4}, y = {:.4}), {} inflection(s)",
         s.deviation.to_curve.max * 1e3,
@@ -132,8 +139,8 @@ pub(crate) fn run(root: &Path) -> Result<(), String> {
         nose.point.y,
         s.inflections.len(),
     );
-    let turns = sampled_curvature_extrema(&s.curve, s.orientation, 400, 1e-9)
-        .map_err(|e| e.to_string())?;
+    let turns =
+        sampled_curvature_extrema(&s.curve, s.orientation, 400, 1e-9).map_err(|e| e.to_string())?;
     println!(
         "check by dense sampling of the curvature (both one-sided limits at every knot): {} turning point(s)",
         turns.len()

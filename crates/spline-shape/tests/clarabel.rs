@@ -119,8 +119,12 @@ fn functions_of_section_5_1_agree_with_clarabel() {
     let cases: [(&str, usize, usize, Target); 4] = [
         ("5.1.3", 3, 0, f64::cos),
         ("5.1.4", 3, 1, |u| u.sin() + 0.5 * u),
-        ("5.1.4 bis", 4, 2, |u| (2.0 * u).cos() + 0.2 * (u - 2.0 * PI).powi(2)),
-        ("5.1.5", 5, 3, |u| (2.0 * u).sin() + 0.05 * (u - 2.0 * PI).powi(3)),
+        ("5.1.4 bis", 4, 2, |u| {
+            (2.0 * u).cos() + 0.2 * (u - 2.0 * PI).powi(2)
+        }),
+        ("5.1.5", 5, 3, |u| {
+            (2.0 * u).sin() + 0.05 * (u - 2.0 * PI).powi(3)
+        }),
     ];
     for (what, degree, order, f) in cases {
         for n in [11, 40] {
@@ -136,7 +140,11 @@ fn functions_of_section_5_1_agree_with_clarabel() {
             let d = dense(&SplineMap::derivative(&knots, order).unwrap());
             let (y, reference) = clarabel(&a, &b, &d);
             let x = DVector::from_column_slice(ours.spline.control_points());
-            assert_agree(&format!("{what}, {n} coefficients"), (&x, ours.objective), (&y, reference));
+            assert_agree(
+                &format!("{what}, {n} coefficients"),
+                (&x, ours.objective),
+                (&y, reference),
+            );
         }
     }
 }
@@ -162,9 +170,6 @@ fn a_nonnegative_surface_of_section_5_5_agrees_with_clarabel() {
     let b = DVector::from_vec(values);
     let identity = DMatrix::identity(a.ncols(), a.ncols());
     let (y, reference) = clarabel(&a, &b, &identity);
-    let x = DVector::from_iterator(
-        a.ncols(),
-        ours.surface.control_points().iter().copied(),
-    );
+    let x = DVector::from_iterator(a.ncols(), ours.surface.control_points().iter().copied());
     assert_agree("§5.5.2, 10 × 10", (&x, ours.objective), (&y, reference));
 }

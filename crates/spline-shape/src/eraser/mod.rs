@@ -369,10 +369,16 @@ pub fn smooth(points: &[Vector2<f64>], options: &SmoothingOptions) -> Result<Smo
             .as_ref()
             .is_none_or(|b| deviation.to_curve.max < b.deviation.to_curve.max);
         if better {
-            let features = planar_features(&curve, 1e-10)?;
+            // A curve whose velocity vanishes somewhere has no curvature there: no answer.
+            let Ok(features) = planar_features(&curve, 1e-10) else {
+                continue;
+            };
+            // Extrema strictly inside the domain (the ends are not extrema of a curve that
+            // stops there).
             let extrema = features
                 .curvature_extrema
                 .iter()
+                .filter(|&&u| u > 1e-9 && u < 1.0 - 1e-9)
                 .map(|&u| classify(&curve, u, orientation))
                 .collect::<Result<Vec<_>>>()?;
             best = Some(SmoothedCurve {
