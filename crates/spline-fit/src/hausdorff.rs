@@ -144,7 +144,7 @@ fn segment_distance<T: Scalar, P: ControlPoint<T>>(x: &P, a: &P, b: &P) -> T {
 /// // so every data point lies on the curve, but the curve leaves the data polyline by 0.5.
 /// let arch = BSpline::from_knots(
 ///     2,
-///     vec![0.0, 0.0, 0.0, 1.0, 1.0, 1.0],
+///     vec![0.0f64, 0.0, 0.0, 1.0, 1.0, 1.0],
 ///     vec![Vector2::new(0.0, 0.0), Vector2::new(1.0, 1.0), Vector2::new(2.0, 0.0)],
 /// )?;
 /// let data = [Vector2::new(0.0, 0.0), Vector2::new(2.0, 0.0)];

@@ -155,7 +155,7 @@ pub fn closest_point<T: Scalar, P: ControlPoint<T>>(
 /// use spline_fit::project_ordered;
 /// use spline_geom::BSpline;
 /// let line = BSpline::from_knots(
-///     1, vec![0.0, 0.0, 1.0, 1.0], vec![Vector2::new(0.0, 0.0), Vector2::new(2.0, 0.0)])?;
+///     1, vec![0.0f64, 0.0, 1.0, 1.0], vec![Vector2::new(0.0, 0.0), Vector2::new(2.0, 0.0)])?;
 /// let points = [Vector2::new(0.2, 1.0), Vector2::new(1.0, -1.0), Vector2::new(1.9, 0.5)];
 /// let params = project_ordered(&line, &points, &[0.0, 0.5, 1.0])?;
 /// assert!((params[0] - 0.1).abs() < 1e-12 && (params[2] - 0.95).abs() < 1e-12);
