@@ -37,7 +37,19 @@ impl Solver<'_> {
         t: f64,
         stop: Option<StopRule<'_>>,
     ) -> Result<()> {
-        let steps = match centre(problem, x, t, &self.options.barrier, stop) {
+        self.centre_with(problem, x, t, stop, &self.options.barrier.clone())
+    }
+
+    /// [`Solver::centre`] with other barrier settings.
+    fn centre_with(
+        &mut self,
+        problem: &EraserProblem,
+        x: &mut DVector<f64>,
+        t: f64,
+        stop: Option<StopRule<'_>>,
+        barrier: &crate::barrier::BarrierOptions,
+    ) -> Result<()> {
+        let steps = match centre(problem, x, t, barrier, stop) {
             Ok(steps) => steps,
             Err(e) if e.kind() == ErrorKind::NoConvergence => {
                 self.options.barrier.max_newton_iterations
@@ -113,12 +125,23 @@ impl Solver<'_> {
     ) -> Result<usize> {
         let mut t = 10.0 * problem.num_constraints() as f64;
         let mut refinements = 0;
+        // Intermediate centring steps need not be accurate (the next t moves the centre
+        // anyway); the last one is.
+        let loose = crate::barrier::BarrierOptions {
+            newton_tolerance: 1e-6,
+            ..self.options.barrier.clone()
+        };
         loop {
-            self.centre(problem, x, t, None)?;
+            let last = problem.num_constraints() as f64 / t < gap;
+            if last {
+                self.centre(problem, x, t, None)?;
+            } else {
+                self.centre_with(problem, x, t, None, &loose)?;
+            }
             if refinements < max_refinements && problem.refine_active(x, 1e-3, 1.0 / 64.0) > 0 {
                 refinements += 1;
             }
-            if problem.num_constraints() as f64 / t < gap {
+            if last {
                 return Ok(refinements);
             }
             t *= self.options.barrier.t_growth;
