@@ -24,7 +24,9 @@
 //!    the pieces whose conditions are active (subdivision keeps the curve feasible and makes
 //!    the sufficient conditions closer to `g ≥ 0` itself). The best curve is kept.
 
+mod distances;
 mod driver;
+mod pieces;
 mod placement;
 mod problem;
 mod verify;

@@ -1,0 +1,147 @@
+//! The squared distances of data points to a curve at their foot points, with their gradients
+//! and Hessians with respect to the control points (variable projection).
+
+use nalgebra::Vector2;
+use spline_core::KnotVector;
+use std::cell::RefCell;
+
+/// One data point's squared distance at the current curve.
+#[derive(Clone, Debug)]
+pub(super) struct Foot {
+    /// `d² = ‖C(u) − Q‖²`.
+    pub(super) squared: f64,
+    /// First control point acting at `u`.
+    pub(super) first: usize,
+    /// `∂d²/∂x` on the `2(p+1)` local variables.
+    pub(super) gradient: Vec<f64>,
+    /// `∂²d²/∂x²` on the local variables, row-major.
+    pub(super) hessian: Vec<f64>,
+    /// The foot-point parameter.
+    pub(super) param: f64,
+}
+
+/// The squared distances of the data to curves of one knot vector. Foot points are found
+/// from anchor parameters that change only when the driver commits a new curve, so that the
+/// distances are a deterministic function of the control points during a Newton iteration.
+pub(super) struct Distances {
+    pub(super) knots: KnotVector<f64>,
+    pub(super) points: Vec<Vector2<f64>>,
+    pub(super) params: RefCell<Vec<f64>>,
+    /// Whether foot points follow the curve (variable projection) or stay at the anchors
+    /// (the fixed parameters of classic least squares).
+    pub(super) project: bool,
+}
+
+impl Distances {
+    /// The foot point of data point `j` near its cached parameter, with the derivatives of
+    /// its squared distance when `derivatives`.
+    pub(super) fn foot(&self, control: &[Vector2<f64>], j: usize, derivatives: bool) -> Foot {
+        let p = self.knots.degree();
+        let width = p + 1;
+        let q = self.points[j];
+        let last = self.points.len() - 1;
+        let fixed = j == 0 || j == last || !self.project;
+        let mut u = if j == 0 {
+            0.0
+        } else if j == last {
+            1.0
+        } else {
+            self.params.borrow()[j]
+        };
+        let fixed = fixed || j == 0 || j == last;
+        let mut basis = [0.0; 3 * spline_core::MAX_ORDER];
+        let eval = |u: f64, basis: &mut [f64]| -> (usize, [Vector2<f64>; 3]) {
+            let span = self.knots.span_in_domain(u);
+            self.knots
+                .basis_derivatives(span, u, 2, &mut basis[..3 * width]);
+            let mut d = [Vector2::zeros(); 3];
+            for (k, dk) in d.iter_mut().enumerate() {
+                for a in 0..width {
+                    *dk += control[span - p + a] * basis[k * width + a];
+                }
+            }
+            (span, d)
+        };
+        let (mut span, mut d) = eval(u, &mut basis);
+        if !fixed {
+            let mut dist2 = (d[0] - q).norm_squared();
+            for _ in 0..30 {
+                let r = d[0] - q;
+                let psi = r.dot(&d[1]);
+                let dpsi = d[1].norm_squared() + r.dot(&d[2]);
+                let mut step = if dpsi > 0.0 {
+                    -psi / dpsi
+                } else {
+                    -psi.signum() * 0.01
+                };
+                let mut moved = false;
+                for _ in 0..30 {
+                    let candidate = (u + step).clamp(0.0, 1.0);
+                    if candidate == u {
+                        break;
+                    }
+                    let (s2, d2) = eval(candidate, &mut basis);
+                    let c2 = (d2[0] - q).norm_squared();
+                    if c2 <= dist2 {
+                        moved = (candidate - u).abs() > 1e-15;
+                        u = candidate;
+                        span = s2;
+                        d = d2;
+                        dist2 = c2;
+                        break;
+                    }
+                    step *= 0.5;
+                }
+                if !moved {
+                    break;
+                }
+            }
+        }
+        let r = d[0] - q;
+        let squared = r.norm_squared();
+        let first = span - p;
+        let n = 2 * width;
+        let mut gradient = Vec::new();
+        let mut hessian = Vec::new();
+        if derivatives {
+            // Basis values at u (the evaluation left them in `basis`).
+            self.knots
+                .basis_derivatives(span, u, 2, &mut basis[..3 * width]);
+            let value = &basis[..width];
+            let slope = &basis[width..2 * width];
+            gradient = vec![0.0; n];
+            hessian = vec![0.0; n * n];
+            for a in 0..width {
+                gradient[2 * a] = 2.0 * value[a] * r.x;
+                gradient[2 * a + 1] = 2.0 * value[a] * r.y;
+                for b in 0..width {
+                    let v = 2.0 * value[a] * value[b];
+                    hessian[(2 * a) * n + 2 * b] = v;
+                    hessian[(2 * a + 1) * n + 2 * b + 1] = v;
+                }
+            }
+            let interior = !fixed && u > 0.0 && u < 1.0;
+            let phi_uu = 2.0 * (d[1].norm_squared() + r.dot(&d[2]));
+            if interior && phi_uu > 0.0 {
+                // φ_xu = 2 (N′ r + N c′) per local variable.
+                let mut cross = vec![0.0; n];
+                for a in 0..width {
+                    cross[2 * a] = 2.0 * (slope[a] * r.x + value[a] * d[1].x);
+                    cross[2 * a + 1] = 2.0 * (slope[a] * r.y + value[a] * d[1].y);
+                }
+                for i in 0..n {
+                    for k in 0..n {
+                        hessian[i * n + k] -= cross[i] * cross[k] / phi_uu;
+                    }
+                }
+            }
+        }
+        Foot {
+            squared,
+            first,
+            gradient,
+            hessian,
+            param: u,
+        }
+    }
+}
