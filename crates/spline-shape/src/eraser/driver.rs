@@ -11,6 +11,9 @@ use spline_core::{ErrorKind, KnotVector, Result};
 use spline_fit::project_ordered;
 use spline_geom::{BSpline, Curve2};
 
+/// Newton steps per centring step in phase I, at most.
+const PHASE_ONE_NEWTON_STEPS: usize = 30;
+
 /// What one attempt found.
 pub(crate) struct Attempt {
     /// The curve on the final knots (normalised coordinates).
@@ -72,45 +75,48 @@ impl Solver<'_> {
         control: &[Vector2<f64>],
         z: f64,
     ) -> Option<DVector<f64>> {
-        {
-            let x = problem.variables(control, z);
-            problem.start_homotopy(&x, 0.1);
-            problem.set_relaxed(true, 1.0);
-            let mut y = problem.variables(control, z);
-            let index = problem.tau_index();
-            let mut t = problem.num_constraints() as f64;
-            let mut found = false;
-            let mut best_tau = f64::INFINITY;
-            let mut stalled = 0;
-            for _ in 0..self.options.max_rounds {
-                let feasible = |v: &DVector<f64>| v[index] < 0.0;
-                if self.centre(problem, &mut y, t, Some(&feasible)).is_err() {
+        let x = problem.variables(control, z);
+        problem.start_homotopy(&x, 0.1);
+        problem.set_relaxed(true, 1.0);
+        let mut y = problem.variables(control, z);
+        let index = problem.tau_index();
+        let mut t = problem.num_constraints() as f64;
+        let mut found = false;
+        let mut best_tau = f64::INFINITY;
+        let mut stalled = 0;
+        // Phase I needs no accurate centring: a few Newton steps per value of t.
+        let quick = crate::barrier::BarrierOptions {
+            max_newton_iterations: PHASE_ONE_NEWTON_STEPS,
+            ..self.options.barrier.clone()
+        };
+        for _ in 0..self.options.max_rounds {
+            let feasible = |v: &DVector<f64>| v[index] < 0.0;
+            if self
+                .centre_with(problem, &mut y, t, Some(&feasible), &quick)
+                .is_err()
+            {
+                break;
+            }
+            if y[index] < 0.0 {
+                found = true;
+                break;
+            }
+            if y[index] > 0.5 * best_tau {
+                stalled += 1;
+                if stalled >= 2 {
                     break;
                 }
-                if y[index] < 0.0 {
-                    found = true;
-                    break;
-                }
-                if y[index] > 0.5 * best_tau {
-                    stalled += 1;
-                    if stalled >= 3 {
-                        break;
-                    }
-                } else {
-                    stalled = 0;
-                }
-                best_tau = best_tau.min(y[index]);
-                t *= self.options.barrier.t_growth;
-                let pull = problem.pull() / self.options.barrier.t_growth;
-                problem.set_relaxed(true, pull);
+            } else {
+                stalled = 0;
             }
-            problem.set_relaxed(false, 1.0);
-            problem.set_tau(0.0);
-            if found {
-                return Some(y.rows(0, index).into_owned());
-            }
+            best_tau = best_tau.min(y[index]);
+            t *= self.options.barrier.t_growth;
+            let pull = problem.pull() / self.options.barrier.t_growth;
+            problem.set_relaxed(true, pull);
         }
-        None
+        problem.set_relaxed(false, 1.0);
+        problem.set_tau(0.0);
+        found.then(|| y.rows(0, index).into_owned())
     }
 
     /// Phase II from a strictly feasible `x`: path following until the gap bound `m/t` is
