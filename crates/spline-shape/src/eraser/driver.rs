@@ -12,7 +12,7 @@ use spline_fit::project_ordered;
 use spline_geom::{BSpline, Curve2};
 
 /// Newton steps per centring step in phase I, at most.
-const PHASE_ONE_NEWTON_STEPS: usize = 30;
+const PHASE_ONE_NEWTON_STEPS: usize = 60;
 
 /// What one attempt found.
 pub(crate) struct Attempt {
