@@ -1,6 +1,8 @@
 //! Curve evaluation: a cubic planar B-spline with 100 control points at 10^6 random
 //! parameters, one call per point and batched (random and sorted order).
-//! `cargo bench --bench curves`; per-point cost = median / 10^6.
+//! `cargo bench --bench curves`; per-point cost = median / 10^6. The structural group
+//! times knot insertion, refinement, degree elevation and Bézier extraction of the same
+//! curve.
 
 // criterion_group! generates an undocumented public function.
 #![allow(missing_docs)]
@@ -80,5 +82,33 @@ fn evaluation(c: &mut Criterion) {
     group.finish();
 }
 
-criterion_group!(benches, evaluation);
+/// Structural operations on `f64` points: knot insertion, refinement, degree elevation and
+/// Bézier extraction of the same cubic curve (the fast path of the generic algorithms).
+fn structural(c: &mut Criterion) {
+    let curve = cubic_curve();
+    let knots = uniform_samples(100, 11);
+    let mut group = c.benchmark_group("structural_cubic_100_ctrl");
+    group.sample_size(20);
+    group.bench_function("insert_knot_once", |b| {
+        b.iter(|| curve.insert_knot(black_box(0.4321), 1).unwrap());
+    });
+    group.bench_function("insert_knot_three_times", |b| {
+        b.iter(|| curve.insert_knot(black_box(0.4321), 3).unwrap());
+    });
+    group.bench_function("refine_100_knots", |b| {
+        b.iter(|| curve.refine(black_box(&knots)).unwrap());
+    });
+    group.bench_function("elevate_by_1", |b| {
+        b.iter(|| curve.elevate_degree(black_box(1)).unwrap());
+    });
+    group.bench_function("elevate_by_3", |b| {
+        b.iter(|| curve.elevate_degree(black_box(3)).unwrap());
+    });
+    group.bench_function("bezier_segments", |b| {
+        b.iter(|| black_box(&curve).bezier_segments());
+    });
+    group.finish();
+}
+
+criterion_group!(benches, evaluation, structural);
 criterion_main!(benches);
