@@ -3,7 +3,7 @@
 //! inflections and curvature extrema built on them.
 
 use crate::bilinear::SparseBilinear;
-use crate::maps::{SplineMap, bernstein_space};
+use crate::maps::SplineMap;
 use crate::product::{bernstein_product, product_knots};
 use crate::roots::{sign_changes, zeros};
 use crate::sparse::{add_scaled, interleave_columns, matmul};
@@ -146,8 +146,8 @@ impl<T: Scalar> PlanarInvariants<T> {
         let mut spaces = Vec::new();
         for k in 1..=3.min(d) {
             let der = SplineMap::derivative(knots, k)?;
-            let pieces = bernstein_space(d - k, &breakpoints)?;
-            let ext = SplineMap::transfer_unchecked(der.target(), &pieces);
+            let pieces = KnotVector::bernstein(d - k, &breakpoints)?;
+            let ext = SplineMap::transfer(der.target(), &pieces)?;
             let m = matmul(ext.matrix(), der.matrix());
             cx.push(interleave_columns(&m, 2, 0));
             cy.push(interleave_columns(&m, 2, 1));
@@ -181,21 +181,21 @@ impl<T: Scalar> PlanarInvariants<T> {
         let w2 = if d >= 3 {
             product_knots(&spaces[0], &spaces[2])?
         } else {
-            bernstein_space(0, &breakpoints)?
+            KnotVector::bernstein(0, &breakpoints)?
         };
         let w3 = product_knots(&spaces[0], &spaces[1])?;
         let degrees = [2 * d - 2, 2 * d - 4, 2 * d - 3, 2 * d - 3];
         let ws = [&w1, &w2, &w3, &w3];
         let mut removal = Vec::with_capacity(4);
         for (deg, w) in degrees.iter().zip(ws) {
-            removal.push(SplineMap::removal_unchecked(
-                &bernstein_space(*deg, &breakpoints)?,
+            removal.push(SplineMap::knot_removal(
+                &KnotVector::bernstein(*deg, &breakpoints)?,
                 w,
-            ));
+            )?);
         }
         let wg = product_knots(&w1, &w2)?.merged(&product_knots(&w3, &w3)?)?;
         let g_removal =
-            SplineMap::removal_unchecked(&bernstein_space(4 * d - 6, &breakpoints)?, &wg);
+            SplineMap::knot_removal(&KnotVector::bernstein(4 * d - 6, &breakpoints)?, &wg)?;
         let removal: [SplineMap<T>; 4] = removal.try_into().expect("four maps");
         Ok(Self {
             knots: knots.clone(),

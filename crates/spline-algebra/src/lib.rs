@@ -53,7 +53,6 @@
 //! None.
 
 mod bilinear;
-mod blossom;
 mod curves;
 mod maps;
 mod product;
@@ -67,7 +66,7 @@ pub use curves::{
     Differentiated, Form, Invariant, PlanarFeatures, PlanarInvariants, curvature_extrema,
     inflections, planar_features,
 };
-pub use maps::{SplineMap, bernstein_space};
+pub use maps::SplineMap;
 pub use nalgebra_sparse::CsrMatrix;
 pub use product::{
     ProductJacobians, ProductMap, Square, bernstein_product, common_space, difference, dot,

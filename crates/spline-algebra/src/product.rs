@@ -3,7 +3,7 @@
 //! bilinear second derivative; dot and wedge products; sums and squares.
 
 use crate::bilinear::SparseBilinear;
-use crate::maps::{SplineMap, bernstein_space, check_same_domain};
+use crate::maps::{SplineMap, check_same_domain};
 use crate::sparse::{add_scaled, check_len, interleave_columns, matmul};
 use nalgebra::{SVector, Vector2};
 use nalgebra_sparse::CsrMatrix;
@@ -33,7 +33,7 @@ use spline_geom::BSpline;
 /// ```
 ///
 /// # Errors
-/// [`ErrorKind::InvalidArgument`] if the domains differ; [`ErrorKind::DegreeTooHigh`] if
+/// [`ErrorKind::SpaceMismatch`] if the domains differ. [`ErrorKind::DegreeTooHigh`] if
 /// `p + q` exceeds [`spline_core::MAX_DEGREE`].
 pub fn product_knots<T: Scalar>(a: &KnotVector<T>, b: &KnotVector<T>) -> Result<KnotVector<T>> {
     check_same_domain(a, b, "the factors of a product")?;
@@ -156,12 +156,12 @@ impl<T: Scalar> ProductMap<T> {
     pub fn new(a: &KnotVector<T>, b: &KnotVector<T>) -> Result<Self> {
         let target = product_knots(a, b)?;
         let breakpoints = target.domain_breaks();
-        let left = SplineMap::transfer_unchecked(a, &bernstein_space(a.degree(), &breakpoints)?);
-        let right = SplineMap::transfer_unchecked(b, &bernstein_space(b.degree(), &breakpoints)?);
+        let left = SplineMap::transfer(a, &KnotVector::bernstein(a.degree(), &breakpoints)?)?;
+        let right = SplineMap::transfer(b, &KnotVector::bernstein(b.degree(), &breakpoints)?)?;
         let segments = breakpoints.len() - 1;
         let pieces = bernstein_product(a.degree(), b.degree(), segments);
-        let pieces_space = bernstein_space(a.degree() + b.degree(), &breakpoints)?;
-        let removal = SplineMap::removal_unchecked(&pieces_space, &target);
+        let pieces_space = KnotVector::bernstein(a.degree() + b.degree(), &breakpoints)?;
+        let removal = SplineMap::knot_removal(&pieces_space, &target)?;
         Ok(Self {
             left,
             right,
@@ -471,7 +471,7 @@ fn combined_product<T: Scalar, P: ControlPoint<T>>(
 /// multiplicities, clamped on the domain unless both knot vectors already agree).
 ///
 /// # Errors
-/// [`ErrorKind::InvalidArgument`] if the domains differ.
+/// [`ErrorKind::SpaceMismatch`] if the domains differ.
 pub fn common_space<T: Scalar>(
     a: &KnotVector<T>,
     b: &KnotVector<T>,
@@ -483,30 +483,9 @@ pub fn common_space<T: Scalar>(
     if ea.target() == eb.target() {
         return Ok((ea, eb));
     }
-    let (lo, hi) = a.domain();
-    let mut knots = Vec::new();
-    knots.extend(std::iter::repeat_n(lo, d + 1));
-    let ka = ea.target().interior_breakpoints();
-    let kb = eb.target().interior_breakpoints();
-    let (mut i, mut j) = (0, 0);
-    while i < ka.len() || j < kb.len() {
-        let (x, m) = if j >= kb.len() || (i < ka.len() && ka[i].0 < kb[j].0) {
-            i += 1;
-            ka[i - 1]
-        } else if i >= ka.len() || kb[j].0 < ka[i].0 {
-            j += 1;
-            kb[j - 1]
-        } else {
-            i += 1;
-            j += 1;
-            (ka[i - 1].0, ka[i - 1].1.max(kb[j - 1].1))
-        };
-        knots.extend(std::iter::repeat_n(x, m));
-    }
-    knots.extend(std::iter::repeat_n(hi, d + 1));
-    let target = KnotVector::new(d, knots)?;
-    let ta = SplineMap::transfer_unchecked(ea.target(), &target);
-    let tb = SplineMap::transfer_unchecked(eb.target(), &target);
+    let target = ea.target().to_clamped().merged(&eb.target().to_clamped())?;
+    let ta = SplineMap::transfer(ea.target(), &target)?;
+    let tb = SplineMap::transfer(eb.target(), &target)?;
     Ok((ea.then(&ta)?, eb.then(&tb)?))
 }
 

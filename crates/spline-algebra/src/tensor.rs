@@ -415,12 +415,12 @@ pub fn hessian_determinant<T: Scalar>(s: &Surface<T, T>) -> Result<QuadraticFunc
     let target_u = p1.u().target().merged(p2.u().target())?;
     let target_v = p1.v().target().merged(p2.v().target())?;
     let r1 = TensorMap::new(
-        SplineMap::transfer_unchecked(p1.u().target(), &target_u),
-        SplineMap::transfer_unchecked(p1.v().target(), &target_v),
+        SplineMap::transfer(p1.u().target(), &target_u)?,
+        SplineMap::transfer(p1.v().target(), &target_v)?,
     );
     let r2 = TensorMap::new(
-        SplineMap::transfer_unchecked(p2.u().target(), &target_u),
-        SplineMap::transfer_unchecked(p2.v().target(), &target_v),
+        SplineMap::transfer(p2.u().target(), &target_u)?,
+        SplineMap::transfer(p2.v().target(), &target_v)?,
     );
     let b1 = fed_product(&p1, &duu, &dvv)?.then(&r1.matrix())?;
     let b2 = fed_product(&p2, &duv, &duv)?.then(&r2.matrix())?;

@@ -125,11 +125,17 @@ fn product_space_has_minimal_multiplicities() {
         assert_eq!(w.len(), expected_interior + 2 * (p + q + 1));
         // The product is exactly representable: it evaluates correctly (checked above), and a
         // generic product really needs every knot: a space with one fewer copy of any
-        // interior knot cannot represent it (the removal error is large).
+        // interior knot cannot represent it (the removal error is large) — unless another
+        // knot lies close by (the pool has knots 1e-4 apart), which makes the smaller space
+        // numerically as good: such knots are not tested.
         let a = BSpline::new(ka.clone(), rng.values(ka.num_basis())).unwrap();
         let b = BSpline::new(kb.clone(), rng.values(kb.num_basis())).unwrap();
         let c = product(&a, &b).unwrap();
-        if let Some(&(x, _)) = w.interior_breakpoints().first() {
+        let breaks = w.domain_breaks();
+        let isolated = (1..breaks.len() - 1)
+            .find(|&k| breaks[k] - breaks[k - 1] > 0.01 && breaks[k + 1] - breaks[k] > 0.01)
+            .map(|k| breaks[k]);
+        if let Some(x) = isolated {
             if p + q > 0 {
                 let removed = c.remove_knot(x, 1, 1e-9);
                 assert!(

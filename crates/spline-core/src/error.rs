@@ -1,6 +1,7 @@
 //! The error type shared by every layer of the library.
 
 use std::fmt;
+use std::sync::Arc;
 
 /// What went wrong, in a form a program can match on.
 ///
@@ -40,27 +41,67 @@ pub enum ErrorKind {
     NoConvergence,
     /// Malformed input text (JSON, point files).
     Parse,
-    /// Any other invalid argument (negative tolerance, unknown option…).
+    /// Any other invalid argument (unknown option, inconsistent settings…).
     InvalidArgument,
+    /// Reading or writing a file or stream failed; [`std::error::Error::source`] holds the
+    /// I/O error.
+    Io,
+    /// The operation does not exist for this kind of object (the derivative of a NURBS
+    /// curve as a NURBS curve on the same knots, a mesh of a curve…).
+    Unsupported,
+    /// A derivative order above the degree, or above
+    /// [`crate::MAX_DERIVATIVE_ORDER`].
+    OrderTooHigh,
+    /// A tolerance or accuracy that is negative, zero where it must be positive, or NaN.
+    InvalidTolerance,
+    /// Two operands, or an operand and an operator, live on different spaces (different
+    /// domains, degrees or knot vectors where equal ones are needed).
+    SpaceMismatch,
+    /// An index (of a control point, a coordinate, a knot) is out of range.
+    IndexOutOfRange,
 }
 
-/// The error of every fallible operation: a [`ErrorKind`] plus a one-line message that says
-/// what was wrong with which input.
+/// The error of every fallible operation: an [`ErrorKind`], a one-line message that says
+/// what was wrong with which input, the structured facts behind it ([`Error::index`],
+/// [`Error::value`], [`Error::interval`], [`Error::counts`]) and, for I/O failures, the
+/// underlying error as [`std::error::Error::source`].
 ///
 /// Messages are for people: [`Error::new`] and [`Error::context`] keep them on one line
 /// (line breaks become spaces) and write numbers short: a number that `{}` would print with
 /// hundreds of digits (`5e-324`, `1e300`) is written in exponent form, with the same
-/// shortest round-trip digits.
+/// shortest round-trip digits. Programs match on [`Error::kind`] and read the fields.
 ///
 /// ```
 /// use spline_core::{Error, ErrorKind};
 /// let e = Error::new(ErrorKind::OutOfDomain, format!("parameter {} is outside", -5e-324));
 /// assert_eq!(e.message(), "parameter -5e-324 is outside");
+/// let e = Error::out_of_domain(2.5, (0.0, 1.0)).context("parameter 3");
+/// assert_eq!(e.kind(), ErrorKind::OutOfDomain);
+/// assert_eq!((e.value(), e.interval()), (Some(2.5), Some((0.0, 1.0))));
+/// assert_eq!(e.to_string(), "parameter 3: parameter 2.5 is outside the domain [0, 1]");
 /// ```
-#[derive(Clone, Debug, PartialEq, Eq)]
+#[derive(Clone, Debug)]
 pub struct Error {
     kind: ErrorKind,
     message: String,
+    fields: Fields,
+    source: Option<Arc<dyn std::error::Error + Send + Sync + 'static>>,
+}
+
+/// The structured facts of an [`Error`], each present when it applies.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+struct Fields {
+    index: Option<usize>,
+    value: Option<f64>,
+    interval: Option<(f64, f64)>,
+    counts: Option<(usize, usize)>,
+}
+
+/// Errors are equal when their kinds, messages and fields are (sources are not compared).
+impl PartialEq for Error {
+    fn eq(&self, other: &Self) -> bool {
+        self.kind == other.kind && self.message == other.message && self.fields == other.fields
+    }
 }
 
 impl Error {
@@ -69,7 +110,108 @@ impl Error {
         Self {
             kind,
             message: for_people(message.into()),
+            fields: Fields::default(),
+            source: None,
         }
+    }
+
+    /// [`ErrorKind::OutOfDomain`]: `parameter {u} is outside the domain [{a}, {b}]`, with
+    /// the parameter as [`Error::value`] and the domain as [`Error::interval`].
+    #[must_use]
+    pub fn out_of_domain(u: f64, (a, b): (f64, f64)) -> Self {
+        Self::new(
+            ErrorKind::OutOfDomain,
+            format!(
+                "parameter {} is outside the domain [{}, {}]",
+                Short(u),
+                Short(a),
+                Short(b)
+            ),
+        )
+        .with_value(u)
+        .with_interval(a, b)
+    }
+
+    /// [`ErrorKind::NonFinite`]: `{what} is not finite`.
+    #[must_use]
+    pub fn non_finite(what: impl fmt::Display) -> Self {
+        Self::new(ErrorKind::NonFinite, format!("{what} is not finite"))
+    }
+
+    /// [`ErrorKind::InvalidLength`]: `{what}: expected {expected}, got {found}`, with the two
+    /// counts as [`Error::counts`].
+    #[must_use]
+    pub fn invalid_length(what: impl fmt::Display, expected: usize, found: usize) -> Self {
+        Self::new(
+            ErrorKind::InvalidLength,
+            format!("{what}: expected {expected}, got {found}"),
+        )
+        .with_counts(expected, found)
+    }
+
+    /// [`ErrorKind::InvalidTolerance`]: `{what} must be {requirement}, got {value}`.
+    #[must_use]
+    pub fn invalid_tolerance(what: &str, requirement: &str, value: f64) -> Self {
+        Self::new(
+            ErrorKind::InvalidTolerance,
+            format!("{what} must be {requirement}, got {}", Short(value)),
+        )
+        .with_value(value)
+    }
+
+    /// [`ErrorKind::OrderTooHigh`]: a derivative order above `limit` (the degree, or
+    /// [`crate::MAX_DERIVATIVE_ORDER`]), with `(limit, order)` as [`Error::counts`].
+    #[must_use]
+    pub fn order_too_high(order: usize, limit: usize, what: &str) -> Self {
+        Self::new(
+            ErrorKind::OrderTooHigh,
+            format!("derivative order {order} exceeds {what} {limit}"),
+        )
+        .with_counts(limit, order)
+    }
+
+    /// [`ErrorKind::Io`]: `cannot {action}: {error}`, with the I/O error as
+    /// [`std::error::Error::source`].
+    #[must_use]
+    pub fn io(action: impl fmt::Display, error: std::io::Error) -> Self {
+        let mut e = Self::new(ErrorKind::Io, format!("cannot {action}: {error}"));
+        e.source = Some(Arc::new(error));
+        e
+    }
+
+    /// Attaches an underlying error, returned by [`std::error::Error::source`].
+    #[must_use]
+    pub fn with_source(mut self, source: impl std::error::Error + Send + Sync + 'static) -> Self {
+        self.source = Some(Arc::new(source));
+        self
+    }
+
+    /// Records the index of the offending entry (a control point, a parameter, a knot).
+    #[must_use]
+    pub fn with_index(mut self, index: usize) -> Self {
+        self.fields.index = Some(index);
+        self
+    }
+
+    /// Records the offending value (a parameter, a knot, a weight, a tolerance).
+    #[must_use]
+    pub fn with_value(mut self, value: f64) -> Self {
+        self.fields.value = Some(value);
+        self
+    }
+
+    /// Records the interval involved (a domain).
+    #[must_use]
+    pub fn with_interval(mut self, a: f64, b: f64) -> Self {
+        self.fields.interval = Some((a, b));
+        self
+    }
+
+    /// Records an expected and a found count (lengths, orders, multiplicities).
+    #[must_use]
+    pub fn with_counts(mut self, expected: usize, found: usize) -> Self {
+        self.fields.counts = Some((expected, found));
+        self
     }
 
     /// The kind of the error.
@@ -82,6 +224,30 @@ impl Error {
     #[must_use]
     pub fn message(&self) -> &str {
         &self.message
+    }
+
+    /// The index of the offending entry, when the error is about one.
+    #[must_use]
+    pub fn index(&self) -> Option<usize> {
+        self.fields.index
+    }
+
+    /// The offending value, when the error is about one.
+    #[must_use]
+    pub fn value(&self) -> Option<f64> {
+        self.fields.value
+    }
+
+    /// The interval involved (the domain of an out-of-domain parameter).
+    #[must_use]
+    pub fn interval(&self) -> Option<(f64, f64)> {
+        self.fields.interval
+    }
+
+    /// `(expected, found)` counts, for errors about lengths, orders and multiplicities.
+    #[must_use]
+    pub fn counts(&self) -> Option<(usize, usize)> {
+        self.fields.counts
     }
 
     /// Prefixes the message with context (`"control point 3: " + message`).
@@ -98,7 +264,13 @@ impl fmt::Display for Error {
     }
 }
 
-impl std::error::Error for Error {}
+impl std::error::Error for Error {
+    fn source(&self) -> Option<&(dyn std::error::Error + 'static)> {
+        self.source
+            .as_deref()
+            .map(|e| e as &(dyn std::error::Error + 'static))
+    }
+}
 
 /// `Result` with the library's [`Error`].
 pub type Result<T> = std::result::Result<T, Error>;

@@ -36,6 +36,6 @@ pub use knots::{
     KnotVector, MAX_DEGREE, MAX_DERIVATIVE_ORDER, MAX_ORDER, check_derivative_order,
     check_elevated_degree, check_params,
 };
-pub use point::{ControlPoint, lerp};
+pub use point::{ControlPoint, SymbolicPoint, VectorSpace, lerp};
 pub use quadrature::gauss_legendre;
 pub use scalar::{Scalar, cast, from_count, power_of_two_scale, to_f64};

@@ -1,9 +1,10 @@
 //! Bézier curves: Bernstein form on a parameter interval.
 
 use crate::bspline::BSpline;
+use crate::structural::BernsteinElevation;
 use spline_core::{
-    ControlPoint, Error, ErrorKind, KnotVector, MAX_ORDER, Result, Scalar, bernstein_all, binomial,
-    from_count, to_f64,
+    ControlPoint, Error, ErrorKind, KnotVector, MAX_ORDER, Result, Scalar, VectorSpace,
+    bernstein_all, from_count, to_f64,
 };
 
 /// A Bézier curve of degree `n` on `[a, b]`:
@@ -27,6 +28,35 @@ pub struct Bezier<T, P> {
     control_points: Vec<P>,
     start: T,
     end: T,
+}
+
+/// Accessors, for any point type.
+impl<T: Scalar, P> Bezier<T, P> {
+    pub(crate) fn new_unchecked(control_points: Vec<P>, start: T, end: T) -> Self {
+        Self {
+            control_points,
+            start,
+            end,
+        }
+    }
+
+    /// The degree `n` (number of control points − 1).
+    #[must_use]
+    pub fn degree(&self) -> usize {
+        self.control_points.len() - 1
+    }
+
+    /// The control points.
+    #[must_use]
+    pub fn control_points(&self) -> &[P] {
+        &self.control_points
+    }
+
+    /// The parameter interval `[a, b]`.
+    #[must_use]
+    pub fn interval(&self) -> (T, T) {
+        (self.start, self.end)
+    }
 }
 
 impl<T: Scalar, P: ControlPoint<T>> Bezier<T, P> {
@@ -68,32 +98,6 @@ impl<T: Scalar, P: ControlPoint<T>> Bezier<T, P> {
             ));
         }
         Ok(Self::new_unchecked(control_points, a, b))
-    }
-
-    pub(crate) fn new_unchecked(control_points: Vec<P>, start: T, end: T) -> Self {
-        Self {
-            control_points,
-            start,
-            end,
-        }
-    }
-
-    /// The degree `n` (number of control points − 1).
-    #[must_use]
-    pub fn degree(&self) -> usize {
-        self.control_points.len() - 1
-    }
-
-    /// The control points.
-    #[must_use]
-    pub fn control_points(&self) -> &[P] {
-        &self.control_points
-    }
-
-    /// The parameter interval `[a, b]`.
-    #[must_use]
-    pub fn interval(&self) -> (T, T) {
-        (self.start, self.end)
     }
 
     fn local(&self, t: T) -> Result<T> {
@@ -192,25 +196,19 @@ impl<T: Scalar, P: ControlPoint<T>> Bezier<T, P> {
     }
 
     /// Raises the degree by `times`:
-    /// $Q_i = \sum_j \binom{n}{j}\binom{r}{i-j} / \binom{n+r}{i}\, P_j$.
+    /// $Q_i = \sum_j \binom{n}{j}\binom{r}{i-j} / \binom{n+r}{i}\ P_j$ (the Bernstein elevation
+    /// that [`BSpline::elevate_degree`] applies to every segment).
     ///
     /// # Panics
     /// If `n + times` overflows `usize` (a programmer error: no such curve fits in memory).
     #[must_use]
     pub fn elevate_degree(&self, times: usize) -> Self {
-        let n = self.degree();
-        let nh = n
+        let nh = self
+            .degree()
             .checked_add(times)
             .expect("the elevated degree of a Bézier curve overflows usize");
-        let points = (0..=nh)
-            .map(|i| {
-                let inv = T::one() / binomial::<T>(nh, i);
-                (i.saturating_sub(times)..=n.min(i)).fold(P::origin(), |acc, j| {
-                    acc + self.control_points[j]
-                        * (inv * binomial::<T>(n, j) * binomial::<T>(times, i - j))
-                })
-            })
-            .collect();
+        let mut points = Vec::with_capacity(nh + 1);
+        BernsteinElevation::new(self.degree(), times).apply(&self.control_points, &mut points);
         Self::new_unchecked(points, self.start, self.end)
     }
 
@@ -243,45 +241,20 @@ impl<T: Scalar, P: ControlPoint<T>> Bezier<T, P> {
     }
 }
 
-/// In the exchange format a Bézier curve is the clamped B-spline of one segment: knots
-/// `p + 1` copies of `a`, then `p + 1` copies of `b`.
-impl<T: Scalar, P: ControlPoint<T>> serde::Serialize for Bezier<T, P> {
-    fn serialize<S: serde::Serializer>(
-        &self,
-        serializer: S,
-    ) -> std::result::Result<S::Ok, S::Error> {
-        let n = self.degree();
-        crate::exchange::CurveRecord {
-            degree: n,
-            knots: std::iter::repeat_n(to_f64(self.start), n + 1)
-                .chain(std::iter::repeat_n(to_f64(self.end), n + 1))
-                .collect(),
-            control_points: self
-                .control_points
-                .iter()
-                .map(|p| (0..P::DIM).map(|i| to_f64(p.coord(i))).collect())
-                .collect(),
-            weights: None,
-        }
-        .serialize(serializer)
-    }
-}
 
-impl<'de, T: Scalar, P: ControlPoint<T>> serde::Deserialize<'de> for Bezier<T, P> {
-    fn deserialize<D: serde::Deserializer<'de>>(
-        deserializer: D,
-    ) -> std::result::Result<Self, D::Error> {
-        use serde::de::Error as _;
-        let curve: BSpline<T, P> = BSpline::deserialize(deserializer)?;
-        let (a, b) = curve.domain();
-        if curve.control_points().len() != curve.degree() + 1 {
-            return Err(D::Error::custom(format!(
-                "a Bézier curve of degree {} has {} control points and knots [a; p+1] + [b; p+1], got {} control points",
-                curve.degree(),
-                curve.degree() + 1,
-                curve.control_points().len()
-            )));
-        }
-        Self::with_interval(curve.control_points().to_vec(), a, b).map_err(D::Error::custom)
+impl<T: Scalar, V: VectorSpace<T>> BSpline<T, V> {
+    /// The Bézier segments of the curve, one per non-empty knot span of the domain, each on
+    /// its own parameter interval ([`BSpline::to_bernstein`], cut into segments).
+    #[must_use]
+    pub fn bezier_segments(&self) -> Vec<Bezier<T, V>> {
+        let p = self.degree();
+        let pieces = self.to_bernstein();
+        let breaks = self.knots().domain_breaks();
+        pieces
+            .control_points()
+            .chunks_exact(p + 1)
+            .zip(breaks.windows(2))
+            .map(|(segment, ends)| Bezier::new_unchecked(segment.to_vec(), ends[0], ends[1]))
+            .collect()
     }
 }

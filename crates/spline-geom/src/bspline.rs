@@ -36,6 +36,77 @@ pub struct BSpline<T, P> {
     control_points: Vec<P>,
 }
 
+/// Accessors, for any point type (control points, [`spline_core::SymbolicPoint`]s, lines of
+/// a surface's net).
+impl<T: Scalar, P> BSpline<T, P> {
+    /// A B-spline whose data the caller guarantees consistent (checked in debug builds).
+    ///
+    /// # Panics
+    /// In debug builds, if the number of control points does not match the knots.
+    #[must_use]
+    pub fn new_unchecked(knots: KnotVector<T>, control_points: Vec<P>) -> Self {
+        debug_assert_eq!(control_points.len(), knots.num_basis());
+        Self {
+            knots,
+            control_points,
+        }
+    }
+
+    /// The degree `p`.
+    #[inline]
+    #[must_use]
+    pub fn degree(&self) -> usize {
+        self.knots.degree()
+    }
+
+    /// The knot vector.
+    #[inline]
+    #[must_use]
+    pub fn knots(&self) -> &KnotVector<T> {
+        &self.knots
+    }
+
+    /// The control points.
+    #[inline]
+    #[must_use]
+    pub fn control_points(&self) -> &[P] {
+        &self.control_points
+    }
+
+    /// The number of control points `n`.
+    #[inline]
+    #[must_use]
+    pub fn len(&self) -> usize {
+        self.control_points.len()
+    }
+
+    /// Always `false`: a spline has at least `p + 1` control points.
+    #[inline]
+    #[must_use]
+    pub fn is_empty(&self) -> bool {
+        self.control_points.is_empty()
+    }
+
+    /// Mutable access to the control points (their number is fixed by the knots).
+    #[inline]
+    pub fn control_points_mut(&mut self) -> &mut [P] {
+        &mut self.control_points
+    }
+
+    /// Splits the spline into its knot vector and control points.
+    #[must_use]
+    pub fn into_parts(self) -> (KnotVector<T>, Vec<P>) {
+        (self.knots, self.control_points)
+    }
+
+    /// The parametric domain $[u_p, u_n]$.
+    #[inline]
+    #[must_use]
+    pub fn domain(&self) -> (T, T) {
+        self.knots.domain()
+    }
+}
+
 impl<T: Scalar, P: ControlPoint<T>> BSpline<T, P> {
     /// A B-spline from a validated knot vector and its control points.
     ///
@@ -73,59 +144,6 @@ impl<T: Scalar, P: ControlPoint<T>> BSpline<T, P> {
     /// The errors of [`KnotVector::new`] and [`BSpline::new`].
     pub fn from_knots(degree: usize, knots: Vec<T>, control_points: Vec<P>) -> Result<Self> {
         Self::new(KnotVector::new(degree, knots)?, control_points)
-    }
-
-    /// A B-spline whose data the caller guarantees consistent (checked in debug builds).
-    ///
-    /// # Panics
-    /// In debug builds, if the number of control points does not match the knots.
-    #[must_use]
-    pub fn new_unchecked(knots: KnotVector<T>, control_points: Vec<P>) -> Self {
-        debug_assert_eq!(control_points.len(), knots.num_basis());
-        Self {
-            knots,
-            control_points,
-        }
-    }
-
-    /// The degree `p`.
-    #[inline]
-    #[must_use]
-    pub fn degree(&self) -> usize {
-        self.knots.degree()
-    }
-
-    /// The knot vector.
-    #[inline]
-    #[must_use]
-    pub fn knots(&self) -> &KnotVector<T> {
-        &self.knots
-    }
-
-    /// The control points.
-    #[inline]
-    #[must_use]
-    pub fn control_points(&self) -> &[P] {
-        &self.control_points
-    }
-
-    /// Mutable access to the control points (their number is fixed by the knots).
-    #[inline]
-    pub fn control_points_mut(&mut self) -> &mut [P] {
-        &mut self.control_points
-    }
-
-    /// Splits the spline into its knot vector and control points.
-    #[must_use]
-    pub fn into_parts(self) -> (KnotVector<T>, Vec<P>) {
-        (self.knots, self.control_points)
-    }
-
-    /// The parametric domain $[u_p, u_n]$.
-    #[inline]
-    #[must_use]
-    pub fn domain(&self) -> (T, T) {
-        self.knots.domain()
     }
 
     /// The same knots with other control points (of any type).
@@ -393,68 +411,6 @@ impl<T: Scalar, P: ControlPoint<T>> BSpline<T, P> {
             self.derivatives_in_span(span, u, chunk);
         }
         Ok(())
-    }
-
-    /// The derivative of order `order` as a B-spline of degree `p − order` on the knots with
-    /// `order` knots dropped at each end (seed 000 (6)):
-    /// $Q_i = \frac{p}{u_{i+p+1} - u_{i+1}} (P_{i+1} - P_i)$, applied `order` times.
-    /// Where a knot of multiplicity `p + 1` (a discontinuity) makes the denominator vanish,
-    /// the coefficient multiplies an identically zero basis function: it is dropped with one
-    /// copy of the knot, so the result is the piecewise derivative (jumps are not Dirac
-    /// masses) and its knot vector stays valid.
-    ///
-    /// # Errors
-    /// [`ErrorKind::InvalidArgument`] if `order > p`; [`ErrorKind::NonFinite`] when a
-    /// coefficient is too large for the scalar type.
-    pub fn derivative(&self, order: usize) -> Result<Self> {
-        if order > self.degree() {
-            return Err(Error::new(
-                ErrorKind::InvalidArgument,
-                format!(
-                    "derivative order {order} exceeds the degree {} (higher derivatives are zero)",
-                    self.degree()
-                ),
-            ));
-        }
-        let mut knots = self.knots.knots().to_vec();
-        let mut points = self.control_points.clone();
-        let mut p = self.degree();
-        for _ in 0..order {
-            let pt = from_count::<T>(p);
-            // Derivative coefficients; `None` marks a basis function with empty support
-            // (a knot of multiplicity p + 1), dropped together with one copy of that knot.
-            let coefficients: Vec<Option<P>> = (0..points.len() - 1)
-                .map(|i| {
-                    let denom = knots[i + p + 1] - knots[i + 1];
-                    (denom > T::zero()).then(|| (points[i + 1] - points[i]) * (pt / denom))
-                })
-                .collect();
-            let inner = &knots[1..knots.len() - 1];
-            let mut new_knots = Vec::with_capacity(inner.len());
-            let mut new_points = Vec::with_capacity(coefficients.len());
-            for (i, &k) in inner.iter().enumerate() {
-                match coefficients.get(i) {
-                    Some(None) => {}
-                    Some(Some(q)) => {
-                        new_points.push(*q);
-                        new_knots.push(k);
-                    }
-                    None => new_knots.push(k),
-                }
-            }
-            knots = new_knots;
-            points = new_points;
-            p -= 1;
-        }
-        if !points.iter().all(ControlPoint::all_finite) {
-            return Err(spline_core::overflow(format_args!(
-                "a control point of the derivative of order {order}"
-            )));
-        }
-        Ok(Self::new_unchecked(
-            KnotVector::new_unchecked(p, knots),
-            points,
-        ))
     }
 }
 

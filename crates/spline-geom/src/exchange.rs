@@ -4,6 +4,7 @@
 //! curve adds `"weights"` (control points stay Cartesian). Deserialisation validates
 //! everything the constructors validate and reports the first problem.
 
+use crate::bezier::Bezier;
 use crate::bspline::BSpline;
 use serde::{Deserialize, Deserializer, Serialize, Serializer};
 use spline_core::{ControlPoint, Error, ErrorKind, KnotVector, Result, Scalar, cast, to_f64};
@@ -119,6 +120,49 @@ pub fn points_from_rows<T: Scalar, P: ControlPoint<T>>(rows: &[Vec<f64>]) -> Res
             }
         })
         .collect()
+}
+
+/// In the exchange format a Bézier curve is the clamped B-spline of one segment: knots
+/// `p + 1` copies of `a`, then `p + 1` copies of `b`.
+impl<T: Scalar, P: ControlPoint<T>> Serialize for Bezier<T, P> {
+    fn serialize<S: Serializer>(
+        &self,
+        serializer: S,
+    ) -> std::result::Result<S::Ok, S::Error> {
+        let n = self.degree();
+        CurveRecord {
+            degree: n,
+            knots: std::iter::repeat_n(to_f64(self.interval().0), n + 1)
+                .chain(std::iter::repeat_n(to_f64(self.interval().1), n + 1))
+                .collect(),
+            control_points: self
+                .control_points()
+                .iter()
+                .map(|p| (0..P::DIM).map(|i| to_f64(p.coord(i))).collect())
+                .collect(),
+            weights: None,
+        }
+        .serialize(serializer)
+    }
+}
+
+impl<'de, T: Scalar, P: ControlPoint<T>> Deserialize<'de> for Bezier<T, P> {
+    fn deserialize<D: Deserializer<'de>>(
+        deserializer: D,
+    ) -> std::result::Result<Self, D::Error> {
+        use serde::de::Error as _;
+        let curve: BSpline<T, P> = BSpline::deserialize(deserializer)?;
+        let (a, b) = curve.domain();
+        if curve.control_points().len() != curve.degree() + 1 {
+            return Err(D::Error::custom(format!(
+                "a Bézier curve of degree {} has {} control points and knots [a; p+1] + [b; p+1], got {} control points",
+                curve.degree(),
+                curve.degree() + 1,
+                curve.control_points().len()
+            )));
+        }
+        Self::with_interval(curve.control_points().to_vec(), a, b).map_err(D::Error::custom)
+    }
 }
 
 impl<T: Scalar, P: ControlPoint<T>> Serialize for BSpline<T, P> {

@@ -1,7 +1,7 @@
 //! Homogeneous points: the control points of the B-spline containers behind NURBS.
 
 use nalgebra::SVector;
-use spline_core::{ControlPoint, Error, ErrorKind, Result, Scalar, to_f64};
+use spline_core::{ControlPoint, Error, ErrorKind, Result, Scalar, VectorSpace, to_f64};
 use std::ops::{Add, AddAssign, Mul, Neg, Sub, SubAssign};
 
 /// A point of $\mathbb{R}^{D+1}$ in homogeneous form $(w P, w)$: the control points of the
@@ -133,6 +133,10 @@ impl<T: Scalar, const D: usize> SubAssign for Homogeneous<T, D> {
         self.point -= rhs.point;
         self.weight -= rhs.weight;
     }
+}
+
+impl<T: Scalar, const D: usize> VectorSpace<T> for Homogeneous<T, D> {
+    spline_core::vector_space_by_operators!(T; Homogeneous<T, D>);
 }
 
 impl<T: Scalar, const D: usize> ControlPoint<T> for Homogeneous<T, D> {

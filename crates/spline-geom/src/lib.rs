@@ -44,6 +44,7 @@ mod planar;
 mod structural;
 mod surface;
 mod surface_geometry;
+mod transfer;
 mod variation;
 
 pub use arclength::DEFAULT_ACCURACY;

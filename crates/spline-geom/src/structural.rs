@@ -1,49 +1,148 @@
-//! Structural algorithms: knot insertion, refinement, removal, degree elevation, splitting,
-//! clamping, Bézier decomposition, reversal and reparametrisation. Each leaves the curve
-//! unchanged on its domain (up to rounding) and changes only its representation.
+//! Structural algorithms: knot insertion and refinement, exact knot removal, degree
+//! elevation, the derivative, clamping, restriction and splitting, reversal and
+//! reparametrisation. Each changes the representation, not the curve (the derivative
+//! excepted), and each is written once, generic over the point type: on control points it
+//! is the fast path, on [`spline_core::SymbolicPoint`]s it yields the operation's sparse
+//! matrix (spline-algebra's `SplineMap` is built that way), so the two cannot disagree.
+//! The target knot vectors come from the rules of [`KnotVector`] in spline-core.
 
-use crate::bezier::Bezier;
 use crate::bspline::BSpline;
-use nalgebra::RealField;
+use crate::transfer::{reduce_points, refine_points};
 use spline_core::{
-    ControlPoint, Error, ErrorKind, KnotVector, MAX_ORDER, Result, Scalar, binomial, to_f64,
+    ControlPoint, Error, ErrorKind, KnotVector, Result, Scalar, VectorSpace, binomial,
+    from_count, to_f64,
 };
 
 /// The default relative tolerance of [`BSpline::remove_knot`]: `1e-9` times the size of the
 /// control polygon.
 pub const DEFAULT_REMOVAL_TOLERANCE: f64 = 1e-9;
 
-/// The scale that turns a relative removal tolerance into an absolute one: the largest of
-/// the control points' coordinate magnitudes, or 1 if that is smaller.
-pub(crate) fn relative_scale<T: Scalar>(magnitudes: impl IntoIterator<Item = T>) -> T {
-    magnitudes.into_iter().fold(T::one(), RealField::max)
+/// The Bernstein degree elevation by `times` of segments of degree `p`:
+/// $Q_i = \sum_j \binom{p}{j}\binom{t}{i-j} / \binom{p+t}{i}\ P_j$, weights computed once.
+pub(crate) struct BernsteinElevation<T> {
+    times: usize,
+    /// Row `i` holds the weights of `P_j` for `j = max(0, i − t) … min(p, i)`.
+    rows: Vec<Vec<T>>,
 }
 
-impl<T: Scalar, P: ControlPoint<T>> BSpline<T, P> {
-    /// Inserts the knot `u` once (Boehm; seed 000 Algorithm 3, seed 004 (8.4)–(8.5)):
-    /// $\bar P_i = \alpha_i P_i + (1 - \alpha_i) P_{i-1}$ with
-    /// $\alpha_i = \frac{u - u_i}{u_{i+p} - u_i}$ for $k - p + 1 \le i \le k$.
-    fn insert_once(&self, u: T) -> Self {
-        let p = self.degree();
-        let knots = self.knots().knots();
-        let k = self.knots().span_in_domain(u);
-        let old = self.control_points();
-        let mut points = Vec::with_capacity(old.len() + 1);
-        points.extend_from_slice(&old[..=k - p]);
-        for i in k - p + 1..=k {
-            let alpha = (u - knots[i]) / (knots[i + p] - knots[i]);
-            points.push(old[i] * alpha + old[i - 1] * (T::one() - alpha));
-        }
-        points.extend_from_slice(&old[k..]);
-        let at = knots.partition_point(|&x| x <= u);
-        let mut new_knots = Vec::with_capacity(knots.len() + 1);
-        new_knots.extend_from_slice(&knots[..at]);
-        new_knots.push(u);
-        new_knots.extend_from_slice(&knots[at..]);
-        Self::new_unchecked(KnotVector::new_unchecked(p, new_knots), points)
+impl<T: Scalar> BernsteinElevation<T> {
+    pub(crate) fn new(p: usize, times: usize) -> Self {
+        let ph = p + times;
+        let rows = (0..=ph)
+            .map(|i| {
+                let inv = T::one() / binomial::<T>(ph, i);
+                (i.saturating_sub(times)..=p.min(i))
+                    .map(|j| inv * binomial::<T>(p, j) * binomial::<T>(times, i - j))
+                    .collect()
+            })
+            .collect();
+        Self { times, rows }
     }
 
-    /// Inserts the knot `u` `times` times without changing the curve.
+    /// Appends the `p + t + 1` elevated control points of one segment to `out`.
+    pub(crate) fn apply<V: VectorSpace<T>>(&self, points: &[V], out: &mut Vec<V>) {
+        for (i, row) in self.rows.iter().enumerate() {
+            let first = i.saturating_sub(self.times);
+            let mut acc = V::zero_vector();
+            for (point, &w) in points[first..].iter().zip(row) {
+                acc.add_scaled(point, w);
+            }
+            out.push(acc);
+        }
+    }
+}
+
+/// The differences $Q_i = \frac{p}{u_{i+p+1} - u_{i+1}} (P_{i+1} - P_i)$ of the first
+/// derivative, for the rows that [`KnotVector::derivative_row_kept`] keeps.
+fn differences<T: Scalar, V: VectorSpace<T>>(knots: &KnotVector<T>, points: &[V]) -> Vec<V> {
+    let p = knots.degree();
+    let t = knots.knots();
+    let pt = from_count::<T>(p);
+    (0..points.len() - 1)
+        .filter(|&i| knots.derivative_row_kept(i))
+        .map(|i| {
+            let s = pt / (t[i + p + 1] - t[i + 1]);
+            points[i + 1].combine(s, &points[i], -s)
+        })
+        .collect()
+}
+
+impl<T: Scalar, V: VectorSpace<T>> BSpline<T, V> {
+    /// The spline with the sorted knots `x` inserted (A5.4), no checks.
+    fn refined_unchecked(&self, x: &[T]) -> Self {
+        let (knots, points) = refine_points(self.knots(), self.control_points(), x);
+        Self::new_unchecked(KnotVector::new_unchecked(self.degree(), knots), points)
+    }
+
+    /// The spline on a space contained in this one (see [`BSpline::reduced`]), no checks.
+    fn reduced_unchecked(&self, target: &KnotVector<T>) -> Self {
+        Self::new_unchecked(
+            target.clone(),
+            reduce_points(self.knots(), target, self.control_points()),
+        )
+    }
+
+    /// Inserts every value of `breaks` (sorted, in the domain) up to multiplicity `p + 1`
+    /// and returns the refined spline with, for each break, the index of the first of its
+    /// `p + 1` knots: the pieces between breaks are then slices.
+    fn cut_at(&self, breaks: &[T]) -> (Self, Vec<usize>) {
+        let p = self.degree();
+        let mut x = Vec::with_capacity(breaks.len() * (p + 1));
+        for &u in breaks {
+            let missing = (p + 1).saturating_sub(self.knots().multiplicity(u));
+            x.extend(std::iter::repeat_n(u, missing));
+        }
+        let full = self.refined_unchecked(&x);
+        let firsts = breaks
+            .iter()
+            .map(|&u| full.knots().knots().partition_point(|&k| k < u))
+            .collect();
+        (full, firsts)
+    }
+
+    /// The piece between the breaks whose first knots are at `from` and `to` of a spline
+    /// cut there ([`BSpline::cut_at`]), clamped at both ends.
+    fn slice(&self, from: usize, to: usize) -> Self {
+        let p = self.degree();
+        Self::new_unchecked(
+            KnotVector::new_unchecked(p, self.knots().knots()[from..=to + p].to_vec()),
+            self.control_points()[from..to].to_vec(),
+        )
+    }
+
+    /// The same spline on another knot vector of the same degree that contains this space
+    /// on its domain (a refinement, the clamped form, a restriction, a finer Bernstein
+    /// space, an unclamped form): restriction to the target domain, refinement, and for
+    /// unclamped targets the exact transfer of [`BSpline::reduced`].
+    ///
+    /// # Errors
+    /// [`ErrorKind::SpaceMismatch`] unless `target` contains the space on its domain
+    /// ([`KnotVector::check_contained_in`]).
+    pub fn transferred(&self, target: &KnotVector<T>) -> Result<Self> {
+        self.knots().check_contained_in(target, "transfer")?;
+        if target == self.knots() {
+            return Ok(self.clone());
+        }
+        let (a, b) = target.domain();
+        let (cut, firsts) = self.cut_at(&[a, b]);
+        let restricted = cut.slice(firsts[0], firsts[1]);
+        let clamped = target.to_clamped();
+        let mut missing = Vec::new();
+        for (k, m) in clamped.interior_breakpoints() {
+            let have = restricted.knots().multiplicity(k);
+            missing.extend(std::iter::repeat_n(k, m.saturating_sub(have)));
+        }
+        let refined = restricted.refined_unchecked(&missing);
+        debug_assert_eq!(refined.knots(), &clamped);
+        Ok(if &clamped == target {
+            refined
+        } else {
+            refined.reduced_unchecked(target)
+        })
+    }
+
+    /// Inserts the knot `u` `times` times without changing the curve (seed 000 Algorithm 3,
+    /// seed 004 (8.4)–(8.5); a refinement by `times` copies of `u`).
     ///
     /// ```
     /// use spline_geom::BSpline;
@@ -59,12 +158,9 @@ impl<T: Scalar, P: ControlPoint<T>> BSpline<T, P> {
     /// [`ErrorKind::NonFinite`]/[`ErrorKind::OutOfDomain`] for `u`;
     /// [`ErrorKind::KnotMultiplicity`] if `u` would appear more than `p + 1` times.
     pub fn insert_knot(&self, u: T, times: usize) -> Result<Self> {
-        // Validates u and the final multiplicity.
-        self.knots().with_inserted(u, times)?;
-        let mut curve = self.clone();
-        for _ in 0..times {
-            curve = curve.insert_once(u);
-        }
+        let target = self.knots().with_inserted(u, times)?;
+        let curve = self.refined_unchecked(&vec![u; times]);
+        debug_assert_eq!(curve.knots(), &target);
         Ok(curve)
     }
 
@@ -77,121 +173,237 @@ impl<T: Scalar, P: ControlPoint<T>> BSpline<T, P> {
         if new_knots.is_empty() {
             return Ok(self.clone());
         }
-        for (j, &u) in new_knots.iter().enumerate() {
-            self.knots()
-                .check_param(u)
-                .map_err(|e| e.context(format_args!("knot {j}")))?;
-        }
+        let target = self.knots().refined(new_knots)?;
         let mut x = new_knots.to_vec();
         x.sort_by(|a, b| a.partial_cmp(b).unwrap_or(std::cmp::Ordering::Equal));
-        let p = self.degree();
-        let old_knots = self.knots().knots();
-        let mut merged = Vec::with_capacity(old_knots.len() + x.len());
-        merged.extend_from_slice(old_knots);
-        merged.extend_from_slice(&x);
-        merged.sort_by(|a, b| a.partial_cmp(b).unwrap_or(std::cmp::Ordering::Equal));
-        let target = KnotVector::new(p, merged)?;
-
-        let old = self.control_points();
-        let n = old.len() - 1; // index of the last control point
-        let m = n + p + 1; // index of the last knot
-        let r = x.len() - 1;
-        let a = self.knots().span_in_domain(x[0]);
-        let b = self.knots().span_in_domain(x[r]) + 1;
-        let mut q = vec![P::origin(); n + r + 2];
-        let mut ubar = vec![T::zero(); m + r + 2];
-        q[..=a - p].copy_from_slice(&old[..=a - p]);
-        for j in b - 1..=n {
-            q[j + r + 1] = old[j];
-        }
-        ubar[..=a].copy_from_slice(&old_knots[..=a]);
-        for j in b + p..=m {
-            ubar[j + r + 1] = old_knots[j];
-        }
-        let mut i = b + p - 1;
-        let mut k = b + p + r;
-        for j in (0..=r).rev() {
-            while x[j] <= old_knots[i] && i > a {
-                q[k - p - 1] = old[i - p - 1];
-                ubar[k] = old_knots[i];
-                k -= 1;
-                i -= 1;
-            }
-            q[k - p - 1] = q[k - p];
-            for l in 1..=p {
-                let ind = k - p + l;
-                let alpha = ubar[k + l] - x[j];
-                if alpha == T::zero() {
-                    q[ind - 1] = q[ind];
-                } else {
-                    let alpha = alpha / (ubar[k + l] - old_knots[i + l - p]);
-                    q[ind - 1] = q[ind - 1] * alpha + q[ind] * (T::one() - alpha);
-                }
-            }
-            ubar[k] = x[j];
-            k -= 1;
-        }
-        debug_assert!(ubar.iter().zip(target.knots()).all(|(a, b)| a == b));
-        Ok(Self::new_unchecked(target, q))
+        let curve = self.refined_unchecked(&x);
+        debug_assert_eq!(curve.knots(), &target);
+        Ok(curve)
     }
 
+    /// The spline on a *subspace* (same degree and domain, every knot at most as often as
+    /// here): exact for splines that lie in it, a local quasi-interpolant otherwise. Each
+    /// coefficient is the blossom of one polynomial piece at the target knots, on the piece
+    /// where the blossom extrapolates least — no tolerance, no sequential removal.
+    ///
+    /// ```
+    /// use spline_core::KnotVector;
+    /// use spline_geom::BSpline;
+    /// let coarse = KnotVector::new(3, vec![0.0, 0.0, 0.0, 0.0, 1.0, 2.0, 2.0, 2.0, 2.0])?;
+    /// let f = BSpline::new(coarse.clone(), vec![1.0, -2.0, 0.5, 3.0, 1.0])?;
+    /// let back = f.refine(&[0.5, 1.0, 1.5])?.reduced(&coarse)?;
+    /// assert!(back.control_points().iter().zip(f.control_points()).all(|(a, b): (&f64, &f64)| (a - b).abs() < 1e-14));
+    /// # Ok::<(), spline_core::Error>(())
+    /// ```
+    ///
+    /// # Errors
+    /// [`ErrorKind::SpaceMismatch`] unless `target` is such a subspace.
+    pub fn reduced(&self, target: &KnotVector<T>) -> Result<Self> {
+        target.check_contained_in(self.knots(), "knot removal")?;
+        if target.domain() != self.domain() {
+            return Err(Error::new(
+                ErrorKind::SpaceMismatch,
+                "knot removal needs the same domain",
+            ));
+        }
+        Ok(self.reduced_unchecked(target))
+    }
+
+    /// The coefficients of the Bézier segments one after the other: the same spline on the
+    /// per-segment Bernstein space [`KnotVector::bezier_space`] (Bézier extraction by
+    /// refinement, segment `k` owning coefficients `(p + 1) k … (p + 1) k + p`).
+    #[must_use]
+    pub fn to_bernstein(&self) -> Self {
+        let p = self.degree();
+        let (a, b) = self.domain();
+        let breaks = self.knots().domain_breaks();
+        let mut x = Vec::new();
+        for (u, m) in self.knots().breakpoints() {
+            // Ends up to p + 1 copies, interior breaks up to p: neighbours share a point.
+            let wanted = if u == a || u == b {
+                p + 1
+            } else if u > a && u < b {
+                p
+            } else {
+                0
+            };
+            x.extend(std::iter::repeat_n(u, wanted.saturating_sub(m)));
+        }
+        let full = self.refined_unchecked(&x);
+        let knots = full.knots().knots();
+        let mut points = Vec::with_capacity((breaks.len() - 1) * (p + 1));
+        // The segment starting at a break begins p before the last copy of the break.
+        let mut last = 0;
+        for &u in &breaks[..breaks.len() - 1] {
+            while knots[last + 1] <= u {
+                last += 1;
+            }
+            let first = last - p;
+            points.extend_from_slice(&full.control_points()[first..=first + p]);
+        }
+        Self::new_unchecked(self.knots().bezier_space(), points)
+    }
+
+    /// Raises the degree by `times` (every distinct knot's multiplicity rises by exactly
+    /// `times`), exactly: Bézier extraction ([`BSpline::to_bernstein`]), Bernstein
+    /// elevation of each segment, then the blossoms of the elevated pieces at the knots of
+    /// the elevated space ([`BSpline::reduced`]). Unlike The NURBS Book A5.9 it never
+    /// divides by differences of close knots, so high degrees with nearly equal knots stay
+    /// exact. An unclamped curve comes back clamped at its domain ends.
+    ///
+    /// ```
+    /// use spline_geom::BSpline;
+    /// let f = BSpline::from_knots(2, vec![0.0, 0.0, 0.0, 1.0, 1.0, 1.0], vec![0.0, 1.0, 0.0])?;
+    /// let g = f.elevate_degree(1)?;
+    /// assert_eq!(g.knots().knots(), &[0.0, 0.0, 0.0, 0.0, 1.0, 1.0, 1.0, 1.0]);
+    /// let (a, b): (f64, f64) = (g.eval(0.3)?, f.eval(0.3)?);
+    /// assert!((a - b).abs() < 1e-15);
+    /// # Ok::<(), spline_core::Error>(())
+    /// ```
+    ///
+    /// # Errors
+    /// [`ErrorKind::DegreeTooHigh`] if `p + times` exceeds [`spline_core::MAX_DEGREE`].
+    pub fn elevate_degree(&self, times: usize) -> Result<Self> {
+        if times == 0 {
+            return Ok(self.clone());
+        }
+        let target = self.knots().elevated(times)?;
+        let p = self.degree();
+        let pieces = self.to_bernstein();
+        let weights = BernsteinElevation::new(p, times);
+        let mut elevated = Vec::with_capacity(pieces.len() / (p + 1) * (p + times + 1));
+        for segment in pieces.control_points().chunks_exact(p + 1) {
+            weights.apply(segment, &mut elevated);
+        }
+        let elevated_pieces = pieces.knots().with_degree_of_pieces(p + times);
+        Ok(Self::new_unchecked(
+            target.clone(),
+            reduce_points(&elevated_pieces, &target, &elevated),
+        ))
+    }
+
+    /// The derivative of order `order` as a B-spline of degree `p − order` on the knots of
+    /// [`KnotVector::derivative_knots_of_order`] (seed 000 (6)):
+    /// $Q_i = \frac{p}{u_{i+p+1} - u_{i+1}} (P_{i+1} - P_i)$, applied `order` times. Where a
+    /// knot of multiplicity `p + 1` (a discontinuity) makes the denominator vanish, the
+    /// coefficient multiplies an identically zero basis function and is dropped with one
+    /// copy of the knot, so the result is the piecewise derivative.
+    ///
+    /// # Errors
+    /// [`ErrorKind::OrderTooHigh`] if `order > p`; [`ErrorKind::NonFinite`] when a
+    /// coefficient is too large for the scalar type.
+    pub fn derivative(&self, order: usize) -> Result<Self> {
+        if order > self.degree() {
+            return Err(Error::order_too_high(order, self.degree(), "the degree")
+                .context("higher derivatives are zero"));
+        }
+        let mut knots = self.knots().clone();
+        let mut points = self.control_points().to_vec();
+        for _ in 0..order {
+            points = differences(&knots, &points);
+            knots = knots.derivative_knots()?;
+        }
+        if !points.iter().all(VectorSpace::is_finite_vector) {
+            return Err(spline_core::overflow(format_args!(
+                "a control point of the derivative of order {order}"
+            )));
+        }
+        Ok(Self::new_unchecked(knots, points))
+    }
+
+    /// The curve on the same domain with clamped knots (`p + 1` copies of each domain end),
+    /// so that it interpolates its first and last control points. Clamped curves are
+    /// returned unchanged.
+    #[must_use]
+    pub fn clamped(&self) -> Self {
+        if self.knots().is_clamped() {
+            return self.clone();
+        }
+        let (a, b) = self.domain();
+        let (cut, firsts) = self.cut_at(&[a, b]);
+        cut.slice(firsts[0], firsts[1])
+    }
+
+    /// The curve restricted to `[a, b]` inside the domain, clamped there.
+    ///
+    /// # Errors
+    /// [`ErrorKind::NonFinite`]; [`ErrorKind::OutOfDomain`] unless `a < b` lie in the domain.
+    pub fn restricted(&self, a: T, b: T) -> Result<Self> {
+        let target = self.knots().restricted(a, b)?;
+        let (cut, firsts) = self.cut_at(&[a, b]);
+        let piece = cut.slice(firsts[0], firsts[1]);
+        debug_assert_eq!(piece.knots(), &target);
+        Ok(piece)
+    }
+
+    /// Splits the curve at `u` (seed 000 FIG. 5; seed 004 (8.6)–(8.7)) into two curves, both
+    /// clamped at `u` (`p + 1` copies of `u`), whose domains are `[a, u]` and `[u, b]`.
+    ///
+    /// # Errors
+    /// [`ErrorKind::NonFinite`]; [`ErrorKind::OutOfDomain`] unless `a < u < b`.
+    pub fn split(&self, u: T) -> Result<(Self, Self)> {
+        self.knots().split_at(u)?;
+        let (a, b) = self.domain();
+        let (cut, firsts) = self.cut_at(&[a, u, b]);
+        Ok((
+            cut.slice(firsts[0], firsts[1]),
+            cut.slice(firsts[1], firsts[2]),
+        ))
+    }
+
+    /// The same curve traversed backwards on the same domain: $\tilde C(u) = C(a + b - u)$.
+    #[must_use]
+    pub fn reversed(&self) -> Self {
+        let mut points = self.control_points().to_vec();
+        points.reverse();
+        Self::new_unchecked(self.knots().reversed(), points)
+    }
+
+    /// The same curve on the domain `[a, b]` (affine change of parameter).
+    ///
+    /// # Errors
+    /// [`ErrorKind::EmptyDomain`] unless `a < b`; [`ErrorKind::NonFinite`].
+    pub fn reparametrized(&self, a: T, b: T) -> Result<Self> {
+        Ok(Self::new_unchecked(
+            self.knots().reparametrized(a, b)?,
+            self.control_points().to_vec(),
+        ))
+    }
+}
+
+impl<T: Scalar, P: ControlPoint<T>> BSpline<T, P> {
     /// Removes the interior knot `u` `times` times if the curve moves by at most
     /// `tolerance` (absolute; see [`BSpline::remove_knot`] for the relative default).
     ///
-    /// Each removal solves the local equations of The NURBS Book A5.8; the result is then
-    /// checked exactly: re-inserting the knots gives control points whose largest distance
-    /// to the original ones bounds the change of the curve (partition of unity).
+    /// The new control points are those of the exact removal ([`BSpline::reduced`]); the
+    /// result is then checked exactly: re-inserting the knots gives control points whose
+    /// largest distance to the original ones bounds the change of the curve (partition of
+    /// unity).
     ///
     /// # Errors
-    /// [`ErrorKind::InvalidArgument`] if `u` is not an interior knot, is repeated fewer than
-    /// `times` times, or `tolerance` is negative or NaN; [`ErrorKind::ToleranceExceeded`]
-    /// (the message gives the deviation) if the curve would move more than `tolerance`.
+    /// [`ErrorKind::InvalidArgument`] if `u` is not an interior knot or is repeated fewer
+    /// than `times` times; [`ErrorKind::InvalidTolerance`] if `tolerance` is negative or
+    /// NaN; [`ErrorKind::ToleranceExceeded`] (the message gives the deviation) if the curve
+    /// would move more than `tolerance`.
     pub fn remove_knot_within(&self, u: T, times: usize, tolerance: T) -> Result<Self> {
-        if !(tolerance >= T::zero()) {
-            return Err(Error::new(
-                ErrorKind::InvalidArgument,
-                format!("tolerance must be non-negative, got {}", to_f64(tolerance)),
-            ));
-        }
-        let (a, b) = self.domain();
-        let mult = self.knots().multiplicity(u);
-        if !(u > a && u < b) || mult == 0 {
-            return Err(Error::new(
-                ErrorKind::InvalidArgument,
-                format!("{} is not an interior knot of the curve", to_f64(u)),
-            ));
-        }
-        if times > mult {
-            return Err(Error::new(
-                ErrorKind::InvalidArgument,
-                format!(
-                    "knot {} appears {mult} times and cannot be removed {times} times",
-                    to_f64(u)
-                ),
-            ));
-        }
-        let mut curve = self.clone();
-        for _ in 0..times {
-            curve = curve.remove_once(u);
-        }
-        let back = curve.insert_knot(u, times)?;
-        let deviation = back
-            .control_points()
-            .iter()
-            .zip(self.control_points())
-            .fold(T::zero(), |m, (x, y)| m.max((*x - *y).length()));
-        if !(deviation <= tolerance) {
-            return Err(Error::new(
-                ErrorKind::ToleranceExceeded,
-                format!(
-                    "removing knot {} {times} time(s) would move the curve by up to {:.3e}, more than the tolerance {:.3e}",
-                    to_f64(u),
-                    to_f64(deviation),
-                    to_f64(tolerance)
-                ),
-            ));
-        }
-        Ok(curve)
+        self.removal_candidate(u, times, tolerance)
+            .and_then(|curve| {
+                let back = curve.insert_knot(u, times)?;
+                let deviation = max_distance(back.control_points(), self.control_points());
+                if deviation <= tolerance {
+                    Ok(curve)
+                } else {
+                    Err(tolerance_exceeded(u, times, Some(deviation), tolerance))
+                }
+            })
+    }
+
+    /// The result of the exact removal ([`BSpline::reduced`]) of `u`, `times` times, after
+    /// checking the arguments; the caller checks the deviation.
+    pub(crate) fn removal_candidate(&self, u: T, times: usize, tolerance: T) -> Result<Self> {
+        check_tolerance(tolerance)?;
+        let target = self.knots().removed(u, times)?;
+        Ok(self.reduced_unchecked(&target))
     }
 
     /// Removes the interior knot `u` `times` times if the curve moves by at most
@@ -214,358 +426,56 @@ impl<T: Scalar, P: ControlPoint<T>> BSpline<T, P> {
         let scale = relative_scale(self.control_points().iter().map(ControlPoint::max_abs));
         self.remove_knot_within(u, times, relative_tolerance * scale)
     }
+}
 
-    /// One removal of the interior knot `u` (The NURBS Book A5.8 with `num = 1`), without
-    /// any tolerance check.
-    fn remove_once(&self, u: T) -> Self {
-        let p = self.degree();
-        let knots = self.knots().knots();
-        let old = self.control_points();
-        let s = self.knots().multiplicity(u);
-        let r = knots.partition_point(|&k| k <= u) - 1; // last occurrence of u
-        let first = r - p;
-        let last = r - s;
-        let off = first - 1;
-        let mut temp = vec![P::origin(); last + 2 - off];
-        temp[0] = old[off];
-        temp[last + 1 - off] = old[last + 1];
-        let (mut i, mut j) = (first, last);
-        let (mut ii, mut jj) = (1, last - off);
-        while j > i {
-            let alpha_i = (u - knots[i]) / (knots[i + p + 1] - knots[i]);
-            let alpha_j = (u - knots[j]) / (knots[j + p + 1] - knots[j]);
-            temp[ii] = (old[i] - temp[ii - 1] * (T::one() - alpha_i)) * (T::one() / alpha_i);
-            temp[jj] = (old[j] - temp[jj + 1] * alpha_j) * (T::one() / (T::one() - alpha_j));
-            i += 1;
-            ii += 1;
-            j -= 1;
-            jj -= 1;
-        }
-        let mut points = old.to_vec();
-        let (mut i, mut j) = (first, last);
-        while j > i {
-            points[i] = temp[i - off];
-            points[j] = temp[j - off];
-            i += 1;
-            j -= 1;
-        }
-        let fout = (2 * r - s - p) / 2;
-        points.remove(fout);
-        let mut new_knots = knots.to_vec();
-        new_knots.remove(r);
-        Self::new_unchecked(KnotVector::new_unchecked(p, new_knots), points)
-    }
+/// The largest distance between corresponding points of two lists.
+pub(crate) fn max_distance<T: Scalar, P: ControlPoint<T>>(a: &[P], b: &[P]) -> T {
+    a.iter()
+        .zip(b)
+        .fold(T::zero(), |m, (x, y)| m.max((*x - *y).length()))
+}
 
-    /// Raises the degree by `times` (Cohen–Lyche–Schumaker; The NURBS Book A5.9): every
-    /// distinct knot's multiplicity rises by exactly `times`, the curve is unchanged.
-    /// An unclamped curve is first clamped at its domain ends.
-    ///
-    /// # Errors
-    /// [`ErrorKind::DegreeTooHigh`] if `p + times` exceeds [`spline_core::MAX_DEGREE`].
-    ///
-    /// # Panics
-    /// Never: the internal `expect`s guard invariants of the algorithm.
-    // The loops mirror the indices of A5.9 so that the code can be checked against the book.
-    #[allow(clippy::needless_range_loop, clippy::explicit_counter_loop)]
-    pub fn elevate_degree(&self, times: usize) -> Result<Self> {
-        if times == 0 {
-            return Ok(self.clone());
-        }
-        let p = self.degree();
-        let ph = spline_core::check_elevated_degree(p, times)?;
-        if p == 0 {
-            // Piecewise constants: every knot gains `times` copies, every coefficient too.
-            let knots = self.knots().elevated(times)?;
-            let points = self
-                .control_points()
-                .iter()
-                .flat_map(|&c| std::iter::repeat_n(c, times + 1))
-                .collect();
-            return Ok(Self::new_unchecked(knots, points));
-        }
-        let clamped = self.clamped();
-        // A5.9 assumes continuity at interior knots: elevate the pieces between
-        // discontinuities (multiplicity p + 1) separately and join them.
-        if let Some(&(cut_at, _)) = clamped
-            .knots()
-            .interior_breakpoints()
-            .iter()
-            .find(|(_, m)| *m == p + 1)
-        {
-            let (left, right) = clamped.cut(cut_at);
-            let (left, right) = (
-                left.expect("interior").elevate_degree(times)?,
-                right.expect("interior").elevate_degree(times)?,
-            );
-            let mut knots = left.knots().knots().to_vec();
-            knots.extend_from_slice(&right.knots().knots()[ph + 1..]);
-            let mut points = left.control_points().to_vec();
-            points.extend_from_slice(right.control_points());
-            return Ok(Self::new_unchecked(
-                KnotVector::new_unchecked(ph, knots),
-                points,
-            ));
-        }
-        let u = clamped.knots().knots();
-        let pw = clamped.control_points();
-        let t = times;
-        let m = u.len() - 1;
-        let ph2 = ph / 2;
-        // Bézier degree-elevation coefficients.
-        let mut bezalfs = vec![vec![T::zero(); p + 1]; ph + 1];
-        bezalfs[0][0] = T::one();
-        bezalfs[ph][p] = T::one();
-        for i in 1..=ph2 {
-            let inv = T::one() / binomial::<T>(ph, i);
-            for j in i.saturating_sub(t)..=p.min(i) {
-                bezalfs[i][j] = inv * binomial::<T>(p, j) * binomial::<T>(t, i - j);
-            }
-        }
-        for i in ph2 + 1..ph {
-            for j in i.saturating_sub(t)..=p.min(i) {
-                bezalfs[i][j] = bezalfs[ph - i][p - j];
-            }
-        }
-        let target = clamped.knots().elevated(t)?;
-        let mut qw = vec![P::origin(); target.num_basis()];
-        let mut uh = vec![T::zero(); target.len()];
-        let mut bpts = [P::origin(); MAX_ORDER];
-        let mut next_bpts = [P::origin(); MAX_ORDER];
-        let mut ebpts = [P::origin(); MAX_ORDER];
-        let mut alfs = [T::zero(); MAX_ORDER];
-        let mut kind = ph + 1;
-        let mut r: isize = -1;
-        let mut a = p;
-        let mut b = p + 1;
-        let mut cind = 1;
-        let mut ua = u[0];
-        qw[0] = pw[0];
-        for x in uh.iter_mut().take(ph + 1) {
-            *x = ua;
-        }
-        bpts[..=p].copy_from_slice(&pw[..=p]);
-        while b < m {
-            let i0 = b;
-            while b < m && u[b] == u[b + 1] {
-                b += 1;
-            }
-            let mul = b - i0 + 1;
-            let ub = u[b];
-            let oldr = r;
-            r = p as isize - mul as isize;
-            let lbz = if oldr > 0 { (oldr as usize + 2) / 2 } else { 1 };
-            let rbz = if r > 0 {
-                ph - (r as usize).div_ceil(2)
-            } else {
-                ph
-            };
-            if r > 0 {
-                // Insert u_b r times into the current Bézier segment.
-                let numer = ub - ua;
-                for k in (mul + 1..=p).rev() {
-                    alfs[k - mul - 1] = numer / (u[a + k] - ua);
-                }
-                for j in 1..=r as usize {
-                    let save = r as usize - j;
-                    let s = mul + j;
-                    for k in (s..=p).rev() {
-                        bpts[k] = bpts[k] * alfs[k - s] + bpts[k - 1] * (T::one() - alfs[k - s]);
-                    }
-                    next_bpts[save] = bpts[p];
-                }
-            }
-            // Elevate the Bézier segment.
-            for i in lbz..=ph {
-                let mut acc = P::origin();
-                for j in i.saturating_sub(t)..=p.min(i) {
-                    acc += bpts[j] * bezalfs[i][j];
-                }
-                ebpts[i] = acc;
-            }
-            if oldr > 1 {
-                // Remove knot u_a oldr − 1 times.
-                let oldr = oldr as usize;
-                let mut first = kind - 2;
-                let mut last = kind;
-                let den = ub - ua;
-                let bet = (ub - uh[kind - 1]) / den;
-                for tr in 1..oldr {
-                    let mut i = first;
-                    let mut j = last;
-                    let mut kj = j - kind + 1;
-                    while j - i > tr {
-                        if i < cind {
-                            let alf = (ub - uh[i]) / (ua - uh[i]);
-                            qw[i] = qw[i] * alf + qw[i - 1] * (T::one() - alf);
-                        }
-                        if j >= lbz {
-                            if j - tr <= kind - ph + oldr {
-                                let gam = (ub - uh[j - tr]) / den;
-                                ebpts[kj] = ebpts[kj] * gam + ebpts[kj + 1] * (T::one() - gam);
-                            } else {
-                                ebpts[kj] = ebpts[kj] * bet + ebpts[kj + 1] * (T::one() - bet);
-                            }
-                        }
-                        i += 1;
-                        j -= 1;
-                        kj = kj.wrapping_sub(1);
-                    }
-                    first -= 1;
-                    last += 1;
-                }
-            }
-            if a != p {
-                let count = (ph as isize - oldr) as usize;
-                for _ in 0..count {
-                    uh[kind] = ua;
-                    kind += 1;
-                }
-            }
-            for j in lbz..=rbz {
-                qw[cind] = ebpts[j];
-                cind += 1;
-            }
-            if b < m {
-                let rr = r.max(0) as usize;
-                bpts[..rr].copy_from_slice(&next_bpts[..rr]);
-                for j in rr..=p {
-                    bpts[j] = pw[b - p + j];
-                }
-                a = b;
-                b += 1;
-                ua = ub;
-            } else {
-                for i in 0..=ph {
-                    uh[kind + i] = ub;
-                }
-            }
-        }
-        debug_assert!(uh.iter().zip(target.knots()).all(|(x, y)| x == y));
-        debug_assert_eq!(cind, qw.len());
-        Ok(Self::new_unchecked(target, qw))
-    }
+/// The scale that turns a relative removal tolerance into an absolute one: the largest of
+/// the control points' coordinate magnitudes, or 1 if that is smaller.
+pub(crate) fn relative_scale<T: Scalar>(magnitudes: impl IntoIterator<Item = T>) -> T {
+    magnitudes.into_iter().fold(T::one(), |m, x| m.max(x))
+}
 
-    /// The curve on the same domain with clamped knots (`p + 1` copies of each domain end),
-    /// so that it interpolates its first and last control points. Clamped curves are
-    /// returned unchanged.
-    ///
-    /// # Panics
-    /// Never (the domain of a valid knot vector is not empty).
-    #[must_use]
-    pub fn clamped(&self) -> Self {
-        let (a, b) = self.domain();
-        let p = self.degree();
-        let mut curve = self.clone();
-        let knots = curve.knots().knots();
-        if knots[0] != a || curve.knots().multiplicity(a) < p + 1 {
-            curve = curve.cut(a).1.expect("a < b");
-        }
-        let knots = curve.knots().knots();
-        if knots[knots.len() - 1] != b || curve.knots().multiplicity(b) < p + 1 {
-            curve = curve.cut(b).0.expect("a < b");
-        }
-        curve
-    }
-
-    /// Inserts `u` (in the domain) up to multiplicity `p + 1` and cuts there. The part left
-    /// of `u` exists unless `u = a`, the part right of it unless `u = b`.
-    fn cut(&self, u: T) -> (Option<Self>, Option<Self>) {
-        let p = self.degree();
-        let mut full = self.clone();
-        for _ in self.knots().multiplicity(u)..=p {
-            full = full.insert_once(u);
-        }
-        let knots = full.knots().knots();
-        let points = full.control_points();
-        let at = knots.partition_point(|&k| k < u);
-        let (a, b) = self.domain();
-        let left = (u > a).then(|| {
-            Self::new_unchecked(
-                KnotVector::new_unchecked(p, knots[..at + p + 1].to_vec()),
-                points[..at].to_vec(),
-            )
-        });
-        let right = (u < b).then(|| {
-            Self::new_unchecked(
-                KnotVector::new_unchecked(p, knots[at..].to_vec()),
-                points[at..].to_vec(),
-            )
-        });
-        (left, right)
-    }
-
-    /// Splits the curve at `u` (seed 000 FIG. 5; seed 004 (8.6)–(8.7)) into two curves, both
-    /// clamped at `u` (`p + 1` copies of `u`), whose domains are `[a, u]` and `[u, b]`.
-    ///
-    /// # Errors
-    /// [`ErrorKind::NonFinite`]; [`ErrorKind::OutOfDomain`] unless `a < u < b`.
-    ///
-    /// # Panics
-    /// Never: both parts exist once `a < u < b` is checked.
-    pub fn split(&self, u: T) -> Result<(Self, Self)> {
-        self.knots().check_param(u)?;
-        let (a, b) = self.domain();
-        if !(u > a && u < b) {
-            return Err(Error::new(
-                ErrorKind::OutOfDomain,
-                format!(
-                    "split parameter {} must lie strictly inside the domain [{}, {}]",
-                    to_f64(u),
-                    to_f64(a),
-                    to_f64(b)
-                ),
-            ));
-        }
-        let (left, right) = self.cut(u);
-        Ok((left.expect("u > a"), right.expect("u < b")))
-    }
-
-    /// The Bézier segments of the curve, one per non-empty knot span of the domain, each on
-    /// its own parameter interval (interior knots raised to multiplicity `p` by refinement).
-    ///
-    /// # Panics
-    /// Never: the refinement only inserts interior knots up to multiplicity `p`.
-    #[must_use]
-    pub fn bezier_segments(&self) -> Vec<Bezier<T, P>> {
-        let clamped = self.clamped();
-        let p = self.degree();
-        let mut extra = Vec::new();
-        for (k, m) in clamped.knots().interior_breakpoints() {
-            extra.extend(std::iter::repeat_n(k, p.saturating_sub(m)));
-        }
-        let full = clamped
-            .refine(&extra)
-            .expect("interior knots up to multiplicity p");
-        let knots = full.knots().knots();
-        let n = full.control_points().len();
-        (p..n)
-            .filter(|&k| knots[k] < knots[k + 1])
-            .map(|k| {
-                Bezier::new_unchecked(
-                    full.control_points()[k - p..=k].to_vec(),
-                    knots[k],
-                    knots[k + 1],
-                )
-            })
-            .collect()
-    }
-
-    /// The same curve traversed backwards on the same domain: $\tilde C(u) = C(a + b - u)$.
-    #[must_use]
-    pub fn reversed(&self) -> Self {
-        let mut points = self.control_points().to_vec();
-        points.reverse();
-        Self::new_unchecked(self.knots().reversed(), points)
-    }
-
-    /// The same curve on the domain `[a, b]` (affine change of parameter).
-    ///
-    /// # Errors
-    /// [`ErrorKind::EmptyDomain`] unless `a < b`; [`ErrorKind::NonFinite`].
-    pub fn reparametrized(&self, a: T, b: T) -> Result<Self> {
-        Ok(Self::new_unchecked(
-            self.knots().reparametrized(a, b)?,
-            self.control_points().to_vec(),
+/// [`ErrorKind::InvalidTolerance`] unless the tolerance is non-negative.
+pub(crate) fn check_tolerance<T: Scalar>(tolerance: T) -> Result<()> {
+    if tolerance >= T::zero() {
+        Ok(())
+    } else {
+        Err(Error::invalid_tolerance(
+            "tolerance",
+            "non-negative",
+            to_f64(tolerance),
         ))
     }
+}
+
+/// [`ErrorKind::ToleranceExceeded`] for a removal that moves the shape by `bound` (`None`:
+/// it would make a weight non-positive).
+pub(crate) fn tolerance_exceeded<T: Scalar>(
+    u: T,
+    times: usize,
+    bound: Option<T>,
+    tolerance: T,
+) -> Error {
+    let what = match bound {
+        Some(b) => format!("by up to {:.3e}", to_f64(b)),
+        None => "and make a weight non-positive".to_owned(),
+    };
+    let mut e = Error::new(
+        ErrorKind::ToleranceExceeded,
+        format!(
+            "removing knot {} {times} time(s) would move the shape {what}, more than the tolerance {:.3e}",
+            to_f64(u),
+            to_f64(tolerance)
+        ),
+    );
+    if let Some(b) = bound {
+        e = e.with_value(to_f64(b));
+    }
+    e
 }

@@ -768,3 +768,39 @@ proptest! {
         prop_assert_eq!(curve.derivatives(b, 2).unwrap()[0], last);
     }
 }
+
+/// Issue 9's open item: degree 15 with two knots 0.0004 apart. The NURBS Book A5.9 divides
+/// by differences of those knots and moved this curve by about 199; elevation by blossoming
+/// never does, so the elevated curve is the same curve to the conditioning of a degree-16
+/// B-spline basis (about 2^16 ulps of the control points).
+#[test]
+fn elevation_at_high_degree_with_close_knots_is_exact() {
+    let p = 15;
+    let mut knots = vec![0.0; p + 1];
+    knots.extend([0.3, 0.5, 0.5004, 0.7]);
+    knots.extend(vec![1.0; p + 1]);
+    let n = knots.len() - p - 1;
+    let points: Vec<Vector2<f64>> = (0..n)
+        .map(|i| {
+            let t = i as f64;
+            Vector2::new(t, (1.7 * t).sin() + 0.3 * (t * t).cos())
+        })
+        .collect();
+    let curve = BSpline::from_knots(p, knots, points).unwrap();
+    let scale = curve
+        .control_points()
+        .iter()
+        .fold(0.0f64, |m, q| m.max(q.amax()));
+    for times in 1..=3 {
+        let elevated = curve.elevate_degree(times).unwrap();
+        assert_eq!(elevated.degree(), p + times);
+        for j in 0..=400 {
+            let u = f64::from(j) / 400.0;
+            let moved = (elevated.eval(u).unwrap() - curve.eval(u).unwrap()).amax();
+            assert!(
+                moved <= 1e-10 * scale,
+                "elevation by {times} moved the curve by {moved:e} at u = {u}"
+            );
+        }
+    }
+}

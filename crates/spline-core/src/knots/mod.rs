@@ -1,5 +1,7 @@
 //! Knot vectors: validated once at construction, then trusted.
 
+mod rules;
+
 use crate::error::{Error, ErrorKind, Result};
 use crate::scalar::{Scalar, from_count, to_f64};
 
@@ -24,15 +26,16 @@ pub const MAX_DERIVATIVE_ORDER: usize = 1000;
 /// Checks a derivative order against [`MAX_DERIVATIVE_ORDER`].
 ///
 /// # Errors
-/// [`ErrorKind::InvalidArgument`] above the limit.
+/// [`ErrorKind::OrderTooHigh`] above the limit.
 pub fn check_derivative_order(order: usize) -> Result<()> {
     if order > MAX_DERIVATIVE_ORDER {
         return Err(Error::new(
-            ErrorKind::InvalidArgument,
+            ErrorKind::OrderTooHigh,
             format!(
                 "derivative order {order} is above the supported maximum {MAX_DERIVATIVE_ORDER}"
             ),
-        ));
+        )
+        .with_counts(MAX_DERIVATIVE_ORDER, order));
     }
     Ok(())
 }
@@ -338,19 +341,12 @@ impl<T: Scalar> KnotVector<T> {
             return Err(Error::new(
                 ErrorKind::NonFinite,
                 format!("parameter {} is not finite", to_f64(u)),
-            ));
+            )
+            .with_value(to_f64(u)));
         }
         if !self.contains(u) {
             let (a, b) = self.domain();
-            return Err(Error::new(
-                ErrorKind::OutOfDomain,
-                format!(
-                    "parameter {} is outside the domain [{}, {}]",
-                    to_f64(u),
-                    to_f64(a),
-                    to_f64(b)
-                ),
-            ));
+            return Err(Error::out_of_domain(to_f64(u), (to_f64(a), to_f64(b))));
         }
         Ok(())
     }
@@ -477,104 +473,6 @@ impl<T: Scalar> KnotVector<T> {
             })
             .collect()
     }
-
-    /// The knot vector with `u` inserted `times` times.
-    ///
-    /// # Errors
-    /// [`ErrorKind::OutOfDomain`] outside the domain; [`ErrorKind::KnotMultiplicity`] if the
-    /// multiplicity would exceed `p + 1`.
-    pub fn with_inserted(&self, u: T, times: usize) -> Result<Self> {
-        self.check_param(u)?;
-        let present = self.multiplicity(u);
-        if times > self.order() - present.min(self.order()) {
-            return Err(Error::new(
-                ErrorKind::KnotMultiplicity,
-                format!(
-                    "knot {} appears {present} time(s) and a degree-{} spline allows at most {}: it can be inserted at most {} more times, not {times}",
-                    to_f64(u),
-                    self.degree,
-                    self.order(),
-                    self.order() - present.min(self.order())
-                ),
-            ));
-        }
-        let at = self.knots.partition_point(|&k| k <= u);
-        let mut knots = Vec::with_capacity(self.len() + times);
-        knots.extend_from_slice(&self.knots[..at]);
-        knots.extend(std::iter::repeat_n(u, times));
-        knots.extend_from_slice(&self.knots[at..]);
-        Self::new(self.degree, knots)
-    }
-
-    /// The union of two knot vectors of the same degree: every distinct knot with the larger
-    /// of its two multiplicities.
-    ///
-    /// # Errors
-    /// [`ErrorKind::InvalidArgument`] if the degrees differ; the errors of [`KnotVector::new`].
-    pub fn merged(&self, other: &Self) -> Result<Self> {
-        if self.degree != other.degree {
-            return Err(Error::new(
-                ErrorKind::InvalidArgument,
-                format!(
-                    "cannot merge knot vectors of degrees {} and {}",
-                    self.degree, other.degree
-                ),
-            ));
-        }
-        Self::new(self.degree, merge_sorted_max(&self.knots, &other.knots))
-    }
-
-    /// The knot vector of the degree-elevated space: degree `p + times`, every distinct knot
-    /// repeated `times` more times.
-    ///
-    /// # Errors
-    /// [`ErrorKind::DegreeTooHigh`] above [`MAX_DEGREE`] (checked before anything is
-    /// allocated, without overflow for any `times`).
-    pub fn elevated(&self, times: usize) -> Result<Self> {
-        let degree = check_elevated_degree(self.degree, times)?;
-        let mut knots = Vec::with_capacity(self.len() + times * self.len());
-        for (k, m) in self.breakpoints() {
-            knots.extend(std::iter::repeat_n(k, m + times));
-        }
-        Self::new(degree, knots)
-    }
-
-    /// The reversed knot vector `u ↦ a + b − u` (same domain `[a, b]`).
-    #[must_use]
-    pub fn reversed(&self) -> Self {
-        let (a, b) = self.domain();
-        let knots = self.knots.iter().rev().map(|&k| a + b - k).collect();
-        Self::new_unchecked(self.degree, knots)
-    }
-
-    /// The knot vector mapped affinely so that the domain becomes `[a, b]`.
-    ///
-    /// # Errors
-    /// [`ErrorKind::EmptyDomain`] unless `a < b`; [`ErrorKind::NonFinite`].
-    pub fn reparametrized(&self, a: T, b: T) -> Result<Self> {
-        check_interval(a, b)?;
-        let (c, d) = self.domain();
-        let scale = (b - a) / (d - c);
-        let knots = self.knots.iter().map(|&k| a + (k - c) * scale).collect();
-        Self::new(self.degree, knots)
-    }
-
-    /// The knots of the derivative space (degree `p − 1`): the first and last knots dropped.
-    ///
-    /// # Errors
-    /// [`ErrorKind::InvalidArgument`] for degree 0.
-    pub fn derivative_knots(&self) -> Result<Self> {
-        if self.degree == 0 {
-            return Err(Error::new(
-                ErrorKind::InvalidArgument,
-                "a degree-0 spline has no derivative space",
-            ));
-        }
-        Ok(Self::new_unchecked(
-            self.degree - 1,
-            self.knots[1..self.len() - 1].to_vec(),
-        ))
-    }
 }
 
 /// The degree `p + times` of a degree elevation, checked against [`MAX_DEGREE`] without
@@ -593,26 +491,6 @@ pub fn check_elevated_degree(degree: usize, times: usize) -> Result<usize> {
             ),
         )),
     }
-}
-
-/// Sorted union keeping, for each value, the larger multiplicity.
-fn merge_sorted_max<T: Scalar>(a: &[T], b: &[T]) -> Vec<T> {
-    let mut out = Vec::with_capacity(a.len().max(b.len()));
-    let (mut i, mut j) = (0, 0);
-    while i < a.len() || j < b.len() {
-        if j >= b.len() || (i < a.len() && a[i] < b[j]) {
-            out.push(a[i]);
-            i += 1;
-        } else if i >= a.len() || b[j] < a[i] {
-            out.push(b[j]);
-            j += 1;
-        } else {
-            out.push(a[i]);
-            i += 1;
-            j += 1;
-        }
-    }
-    out
 }
 
 fn check_count(degree: usize, count: usize) -> Result<()> {
@@ -634,7 +512,7 @@ fn check_count(degree: usize, count: usize) -> Result<()> {
     Ok(())
 }
 
-fn check_interval<T: Scalar>(a: T, b: T) -> Result<()> {
+pub(crate) fn check_interval<T: Scalar>(a: T, b: T) -> Result<()> {
     if !(a.is_finite() && b.is_finite()) {
         return Err(Error::new(
             ErrorKind::NonFinite,
