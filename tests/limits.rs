@@ -34,14 +34,14 @@ fn absurd_counts_are_errors() {
     for n in ABSURD {
         assert_eq!(
             c.derivatives(1.5, n).unwrap_err().kind(),
-            ErrorKind::InvalidArgument
+            ErrorKind::OrderTooHigh
         );
         assert_eq!(
             c.knots()
                 .dense_basis_derivatives(1.5, n)
                 .unwrap_err()
                 .kind(),
-            ErrorKind::InvalidArgument
+            ErrorKind::OrderTooHigh
         );
         assert_eq!(
             c.insert_knot(1.5, n).unwrap_err().kind(),
@@ -275,7 +275,8 @@ fn degree_zero_surfaces_take_absurd_counts() {
 /// Found by `cargo xtask fuzz` (operations case 0xf5000007cfc2): elevating a NURBS curve
 /// whose weights span 600 orders of magnitude made a weight leave the range of floating point
 /// (a debug assertion, and undefined points in release builds). Now: positive finite weights,
-/// or an `InvalidWeight` error.
+/// or an `InvalidWeight` error. (Since elevation is done by blossoming, which never divides by
+/// differences of close knots, every elevation of this curve succeeds.)
 #[test]
 fn weights_that_leave_the_range_are_an_error() {
     let knots = KnotVector::new(
@@ -305,15 +306,10 @@ fn weights_that_leave_the_range_are_an_error() {
         weights,
     )
     .unwrap();
-    let mut errors = 0;
     for times in 1..=27 {
         match c.elevate_degree(times) {
             Ok(r) => assert!(r.weights().iter().all(|w: &f64| *w > 0.0 && w.is_finite())),
-            Err(e) => {
-                assert_eq!(e.kind(), ErrorKind::InvalidWeight, "{e}");
-                errors += 1;
-            }
+            Err(e) => assert_eq!(e.kind(), ErrorKind::InvalidWeight, "{e}"),
         }
     }
-    assert!(errors > 0);
 }

@@ -256,7 +256,7 @@ proptest! {
             }
             Err(e) => {
                 prop_assert!(k > p || l > q);
-                prop_assert_eq!(e.kind(), ErrorKind::InvalidArgument);
+                prop_assert_eq!(e.kind(), ErrorKind::OrderTooHigh);
             }
         }
     }
@@ -513,7 +513,7 @@ fn bad_nets_and_parameters_are_errors() {
     );
     assert_eq!(
         s.derivative_surface(2, 0).unwrap_err().kind(),
-        ErrorKind::InvalidArgument
+        ErrorKind::OrderTooHigh
     );
     // A flat degenerate surface has no normal.
     assert_eq!(
