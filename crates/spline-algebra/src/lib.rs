@@ -74,6 +74,7 @@ pub use product::{
 };
 pub use roots::{Zero, sign_changes, zeros};
 pub use segment_curvature::{SegmentCurvature, SegmentWorkspace};
+pub use sparse::kron;
 pub use tensor::{
     Partial, QuadraticFunction, TensorMap, TensorProductMap, hessian_determinant, partial,
     partials, ridge_polynomials, tensor_linear_combination, tensor_product,

@@ -212,9 +212,7 @@ impl<T: Scalar> SplineMap<T> {
     /// The errors of `operation`.
     pub fn of(
         source: &KnotVector<T>,
-        operation: impl FnOnce(
-            &BSpline<T, SymbolicPoint<T>>,
-        ) -> Result<BSpline<T, SymbolicPoint<T>>>,
+        operation: impl FnOnce(&BSpline<T, SymbolicPoint<T>>) -> Result<BSpline<T, SymbolicPoint<T>>>,
     ) -> Result<Self> {
         let n = source.num_basis();
         let symbolic = BSpline::new_unchecked(source.clone(), SymbolicPoint::units(n));

@@ -128,8 +128,18 @@ pub(crate) fn add_scaled<T: Scalar>(
         .expect("valid CSR sum")
 }
 
-/// The Kronecker product `a ⊗ b`: entry `(i·rb + k, j·cb + l) = a_ij b_kl` (row-major grids).
-pub(crate) fn kron<T: Scalar>(a: &CsrMatrix<T>, b: &CsrMatrix<T>) -> CsrMatrix<T> {
+/// The Kronecker product `a ⊗ b`: entry `(i·rb + k, j·cb + l) = a_ij b_kl` — the matrix of a
+/// tensor-product map on row-major grids (`x[i · n_b + k]`).
+///
+/// ```
+/// use spline_algebra::{CsrMatrix, kron};
+/// let a = CsrMatrix::identity(2);
+/// let b = CsrMatrix::try_from_csr_data(1, 2, vec![0, 2], vec![0, 1], vec![1.0, 2.0]).unwrap();
+/// let k = kron(&a, &b);
+/// assert_eq!((k.nrows(), k.ncols(), k.nnz()), (2, 4, 4));
+/// ```
+#[must_use]
+pub fn kron<T: Scalar>(a: &CsrMatrix<T>, b: &CsrMatrix<T>) -> CsrMatrix<T> {
     let mut offsets = Vec::with_capacity(a.nrows() * b.nrows() + 1);
     let mut cols = Vec::with_capacity(a.nnz() * b.nnz());
     let mut values = Vec::with_capacity(a.nnz() * b.nnz());

@@ -1,8 +1,9 @@
 //! Bézier interpolation and least squares (seed 003 TD2 and TD3).
 
-use crate::interpolate::{check_degree, interpolate_with_knots, map_to_domain};
+use crate::interpolate::interpolate_with_knots;
 use crate::lsq::LeastSquares;
 use crate::params::{Parametrization, check_points, parametrize};
+use crate::params::{check_degree, map_to_domain};
 use crate::report::Deviation;
 use spline_core::{ControlPoint, Error, ErrorKind, KnotVector, Result, Scalar};
 use spline_geom::Bezier;

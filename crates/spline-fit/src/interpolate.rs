@@ -2,14 +2,17 @@
 
 use crate::banded::{BandLu, Staircase};
 
+// `check_degree` moved to `params` (no import cycle); the old path stays for its users.
+#[allow(unused_imports)]
+pub(crate) use crate::params::check_degree;
 use crate::params::{
-    KnotChoice, Parametrization, check_points, check_strict, knots_for, parametrize,
+    KnotChoice, Parametrization, check_points, check_strict, knots_for, map_to_domain, parametrize,
     parametrize_closed,
 };
 use crate::report::CurveFit;
 use spline_core::{
-    ControlPoint, Error, ErrorKind, KnotVector, MAX_DEGREE, MAX_ORDER, Result, Scalar, SpanBasis,
-    cast, from_count, to_f64,
+    ControlPoint, Error, ErrorKind, KnotVector, MAX_ORDER, Result, Scalar, SpanBasis, cast,
+    from_count, to_f64,
 };
 use spline_geom::BSpline;
 
@@ -166,31 +169,6 @@ fn too_few(degree: usize, points: usize, extra: usize) -> Error {
             }
         ),
     )
-}
-
-pub(crate) fn check_degree(degree: usize) -> Result<()> {
-    if degree > MAX_DEGREE {
-        return Err(Error::new(
-            ErrorKind::DegreeTooHigh,
-            format!("degree {degree} is above the supported maximum {MAX_DEGREE}"),
-        ));
-    }
-    Ok(())
-}
-
-/// Maps parameters normalised to `[u_0, u_m]` affinely onto `[a, b]`.
-pub(crate) fn map_to_domain<T: Scalar>(params: &mut [T], (a, b): (T, T)) {
-    let (Some(&lo), Some(&hi)) = (params.first(), params.last()) else {
-        return;
-    };
-    if lo == a && hi == b {
-        return;
-    }
-    let scale = (b - a) / (hi - lo);
-    let last = params.len() - 1;
-    for (j, u) in params.iter_mut().enumerate() {
-        *u = if j == last { b } else { a + (*u - lo) * scale };
-    }
 }
 
 /// Interpolation on a given knot vector: the control points with $C(\bar u_j) = Q_j$ for

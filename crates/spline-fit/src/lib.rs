@@ -59,9 +59,13 @@ pub use interpolate::{
     InterpolationOptions, interpolate, interpolate_closed, interpolate_function,
     interpolate_with_knots,
 };
-pub use lsq::{LeastSquares, LsqMethod, NormalEquations, approximate};
+pub use lsq::{
+    GridLeastSquares, GridNormalEquations, LeastSquares, LsqMethod, NormalEquations, approximate,
+};
 pub use natural::{natural_cubic, natural_spline};
-pub use params::{KnotChoice, Parametrization, nurbs_book_knots, parametrize, parametrize_closed};
+pub use params::{
+    KnotChoice, Parametrization, nurbs_book_knots, parametrize, parametrize_closed, parametrize_in,
+};
 pub use project::{Projection, closest_point, project_ordered};
 pub use report::{CurveFit, Deviation, deviation};
 pub use surface::{

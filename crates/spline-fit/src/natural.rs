@@ -1,6 +1,7 @@
 //! Natural interpolating splines of even order (seed 004 "Spline naturelle d'interpolation").
 
-use crate::interpolate::{Condition, check_degree, hermite};
+use crate::interpolate::{Condition, hermite};
+use crate::params::check_degree;
 use crate::params::{check_points, check_strict};
 use spline_core::{ControlPoint, Error, ErrorKind, KnotVector, MAX_DEGREE, Result, Scalar};
 use spline_geom::BSpline;

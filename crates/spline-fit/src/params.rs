@@ -1,6 +1,5 @@
 //! Parametrisation of data points and knot placement.
 
-use crate::interpolate::check_degree;
 use spline_core::{
     ControlPoint, Error, ErrorKind, KnotVector, Result, Scalar, cast, check_params, from_count,
     to_f64,
@@ -362,4 +361,58 @@ pub(crate) fn knots_for<T: Scalar>(
             nurbs_book_knots(degree, num_control, params)
         }
     }
+}
+
+/// [`ErrorKind::DegreeTooHigh`] above [`spline_core::MAX_DEGREE`].
+pub(crate) fn check_degree(degree: usize) -> Result<()> {
+    if degree > spline_core::MAX_DEGREE {
+        return Err(Error::new(
+            ErrorKind::DegreeTooHigh,
+            format!(
+                "degree {degree} is above the supported maximum {}",
+                spline_core::MAX_DEGREE
+            ),
+        ));
+    }
+    Ok(())
+}
+
+/// Maps parameters normalised to `[u_0, u_m]` affinely onto `[a, b]`.
+pub(crate) fn map_to_domain<T: Scalar>(params: &mut [T], (a, b): (T, T)) {
+    let (Some(&lo), Some(&hi)) = (params.first(), params.last()) else {
+        return;
+    };
+    if lo == a && hi == b {
+        return;
+    }
+    let scale = (b - a) / (hi - lo);
+    let last = params.len() - 1;
+    for (j, u) in params.iter_mut().enumerate() {
+        *u = if j == last { b } else { a + (*u - lo) * scale };
+    }
+}
+
+/// Parameters for `points` on the domain `[a, b]` of a knot vector: the named choices of
+/// [`parametrize`] (on `[0, 1]`) mapped affinely onto `[a, b]` (the last one exactly `b`);
+/// given parameters are returned as they are.
+///
+/// ```
+/// use spline_fit::{Parametrization, parametrize_in};
+/// let points = [0.0, 1.0, 3.0];
+/// assert_eq!(parametrize_in(&points, &Parametrization::Chordal, (2.0, 5.0))?, vec![2.0, 3.0, 5.0]);
+/// # Ok::<(), spline_core::Error>(())
+/// ```
+///
+/// # Errors
+/// The errors of [`parametrize`].
+pub fn parametrize_in<T: Scalar, P: ControlPoint<T>>(
+    points: &[P],
+    parametrization: &Parametrization<T>,
+    domain: (T, T),
+) -> Result<Vec<T>> {
+    let mut params = parametrize(points, parametrization)?;
+    if !matches!(parametrization, Parametrization::Given(_)) {
+        map_to_domain(&mut params, domain);
+    }
+    Ok(params)
 }

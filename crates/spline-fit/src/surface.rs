@@ -8,8 +8,9 @@
 #![allow(clippy::needless_range_loop)]
 
 use crate::banded::BandCholesky;
-use crate::interpolate::{check_degree, interpolate_with_knots};
+use crate::interpolate::interpolate_with_knots;
 use crate::lsq::LeastSquares;
+use crate::params::check_degree;
 use crate::params::{KnotChoice, Parametrization, check_given, knots_for, parametrize};
 use crate::report::Deviation;
 use spline_core::gauss_legendre;

@@ -241,7 +241,6 @@ impl<T: Scalar, P: ControlPoint<T>> Bezier<T, P> {
     }
 }
 
-
 impl<T: Scalar, V: VectorSpace<T>> BSpline<T, V> {
     /// The Bézier segments of the curve, one per non-empty knot span of the domain, each on
     /// its own parameter interval ([`BSpline::to_bernstein`], cut into segments).

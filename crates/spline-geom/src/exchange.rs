@@ -125,10 +125,7 @@ pub fn points_from_rows<T: Scalar, P: ControlPoint<T>>(rows: &[Vec<f64>]) -> Res
 /// In the exchange format a Bézier curve is the clamped B-spline of one segment: knots
 /// `p + 1` copies of `a`, then `p + 1` copies of `b`.
 impl<T: Scalar, P: ControlPoint<T>> Serialize for Bezier<T, P> {
-    fn serialize<S: Serializer>(
-        &self,
-        serializer: S,
-    ) -> std::result::Result<S::Ok, S::Error> {
+    fn serialize<S: Serializer>(&self, serializer: S) -> std::result::Result<S::Ok, S::Error> {
         let n = self.degree();
         CurveRecord {
             degree: n,
@@ -147,9 +144,7 @@ impl<T: Scalar, P: ControlPoint<T>> Serialize for Bezier<T, P> {
 }
 
 impl<'de, T: Scalar, P: ControlPoint<T>> Deserialize<'de> for Bezier<T, P> {
-    fn deserialize<D: Deserializer<'de>>(
-        deserializer: D,
-    ) -> std::result::Result<Self, D::Error> {
+    fn deserialize<D: Deserializer<'de>>(deserializer: D) -> std::result::Result<Self, D::Error> {
         use serde::de::Error as _;
         let curve: BSpline<T, P> = BSpline::deserialize(deserializer)?;
         let (a, b) = curve.domain();

@@ -9,8 +9,8 @@
 use crate::bspline::BSpline;
 use crate::transfer::{reduce_points, refine_points};
 use spline_core::{
-    ControlPoint, Error, ErrorKind, KnotVector, Result, Scalar, VectorSpace, binomial,
-    from_count, to_f64,
+    ControlPoint, Error, ErrorKind, KnotVector, Result, Scalar, VectorSpace, binomial, from_count,
+    to_f64,
 };
 
 /// The default relative tolerance of [`BSpline::remove_knot`]: `1e-9` times the size of the

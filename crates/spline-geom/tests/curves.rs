@@ -618,10 +618,7 @@ fn errors() {
         ErrorKind::OutOfDomain
     );
     assert_eq!(c.eval(f64::NAN).unwrap_err().kind(), ErrorKind::NonFinite);
-    assert_eq!(
-        c.derivative(4).unwrap_err().kind(),
-        ErrorKind::OrderTooHigh
-    );
+    assert_eq!(c.derivative(4).unwrap_err().kind(), ErrorKind::OrderTooHigh);
     assert_eq!(c.split(0.0).unwrap_err().kind(), ErrorKind::OutOfDomain);
     assert_eq!(c.split(3.0).unwrap_err().kind(), ErrorKind::OutOfDomain);
     assert_eq!(

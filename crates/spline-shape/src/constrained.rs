@@ -36,10 +36,9 @@
 
 use crate::barrier::{BarrierOptions, BarrierReport};
 use crate::problem::{
-    ApproximationProblem, LeastSquares, Sign, check_interval, collocation, derived_map,
+    ApproximationProblem, LeastSquaresObjective, Sign, check_interval, derived_map,
     normalized_rows, solve, vstack,
 };
-use nalgebra::DVector;
 use nalgebra_sparse::{CooMatrix, CsrMatrix};
 use spline_algebra::SplineMap;
 use spline_core::{Error, ErrorKind, KnotVector, Result};
@@ -325,8 +324,7 @@ impl FunctionApproximation {
                 format!("value {j} is not finite"),
             ));
         }
-        let a = collocation(&self.knots, params)?;
-        let lsq = LeastSquares::new(a, DVector::from_column_slice(values));
+        let lsq = LeastSquaresObjective::function(&self.knots, params, values)?;
         let n = self.knots.num_basis();
         let mut fixed = Vec::new();
         let mut changes: Vec<Vec<CsrMatrix<f64>>> = Vec::new();
@@ -473,7 +471,7 @@ impl FunctionApproximation {
             };
             out.push(ConstraintCheck {
                 violation,
-                sign_changes: count_sign_changes(&values),
+                sign_changes: spline_geom::sign_changes(&values),
                 samples: values.len(),
             });
         }
@@ -551,19 +549,4 @@ pub(crate) fn span_samples(knots: &KnotVector<f64>, a: f64, b: f64, per_span: us
     }
     out.push(b);
     out
-}
-
-/// Strict sign changes of a sequence, zeros skipped.
-pub(crate) fn count_sign_changes(values: &[f64]) -> usize {
-    let mut last = 0.0f64;
-    let mut count = 0;
-    for &v in values {
-        if v != 0.0 {
-            if last != 0.0 && (v > 0.0) != (last > 0.0) {
-                count += 1;
-            }
-            last = v;
-        }
-    }
-    count
 }

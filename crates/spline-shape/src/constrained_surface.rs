@@ -35,7 +35,7 @@
 use crate::barrier::{BarrierOptions, BarrierReport};
 use crate::constrained::{ConstraintCheck, span_samples, uniform_samples};
 use crate::problem::{
-    ApproximationProblem, LeastSquares, Sign, check_interval, collocation, derived_map,
+    ApproximationProblem, LeastSquaresObjective, Sign, check_interval, derived_map,
     furthest_feasible, normalized_rows, refined, solve, strictly_feasible, vstack,
 };
 use nalgebra::{DVector, Matrix2, Matrix6, Vector6};
@@ -72,7 +72,7 @@ pub enum SurfaceConstraint {
 
 /// The result of [`SurfaceApproximation::fit_grid`].
 #[derive(Clone, Debug)]
-pub struct SurfaceFit {
+pub struct ConstrainedSurfaceFit {
     /// The constrained least-squares surface (a function: scalar control points).
     pub surface: Surface<f64, f64>,
     /// The unconstrained least-squares surface on the same knots.
@@ -325,9 +325,7 @@ impl SurfaceApproximation {
                 format!("value {j} is not finite"),
             ));
         }
-        let au = collocation(&self.knots_u, us).map_err(|e| e.context("u"))?;
-        let av = collocation(&self.knots_v, vs).map_err(|e| e.context("v"))?;
-        let lsq = LeastSquares::new(kron(&au, &av), DVector::from_column_slice(values));
+        let lsq = LeastSquaresObjective::grid((&self.knots_u, &self.knots_v), us, vs, values)?;
         let n = self.knots_u.num_basis() * self.knots_v.num_basis();
         let mut linear = Vec::new();
         let mut quadratic: Option<SparseBilinear<f64>> = None;
@@ -365,7 +363,12 @@ impl SurfaceApproximation {
     /// The errors of [`SurfaceApproximation::problem`]; [`ErrorKind::SchoenbergWhitney`] if
     /// the grid does not determine every coefficient; [`ErrorKind::NoConvergence`] if no
     /// strictly feasible point is found or the barrier method does not converge.
-    pub fn fit_grid(&self, us: &[f64], vs: &[f64], values: &[f64]) -> Result<SurfaceFit> {
+    pub fn fit_grid(
+        &self,
+        us: &[f64],
+        vs: &[f64],
+        values: &[f64],
+    ) -> Result<ConstrainedSurfaceFit> {
         let problem = self.problem(us, vs, values)?;
         let x_ls = problem.unconstrained_solution()?;
         let unconstrained_objective = problem.least_squares().value(&x_ls);
@@ -390,7 +393,7 @@ impl SurfaceApproximation {
                 x.as_slice().to_vec(),
             )
         };
-        Ok(SurfaceFit {
+        Ok(ConstrainedSurfaceFit {
             surface: surface(&solution.x)?,
             unconstrained: surface(&x_ls)?,
             objective: solution.report.objective,
@@ -413,7 +416,7 @@ impl SurfaceApproximation {
         &self,
         counts: (usize, usize),
         f: impl Fn(f64, f64) -> f64,
-    ) -> Result<SurfaceFit> {
+    ) -> Result<ConstrainedSurfaceFit> {
         let us = uniform_samples(self.knots_u.domain(), counts.0)?;
         let vs = uniform_samples(self.knots_v.domain(), counts.1)?;
         let values: Vec<f64> = us
@@ -484,7 +487,7 @@ impl SurfaceApproximation {
                     .map(move |&v| basis(u, v).iter().zip(&q).map(|(b, c)| b * c).sum())
             }),
         );
-        problem.least_squares().solve_for(&grid)
+        problem.least_squares().solve_for(grid.as_slice())
     }
 
     /// Checks the constraints on any surface of the domain by dense sampling (with
@@ -542,17 +545,6 @@ impl SurfaceApproximation {
         }
         Ok(out)
     }
-}
-
-/// The Kronecker product of two sparse matrices on row-major grids.
-fn kron(a: &CsrMatrix<f64>, b: &CsrMatrix<f64>) -> CsrMatrix<f64> {
-    let mut coo = CooMatrix::new(a.nrows() * b.nrows(), a.ncols() * b.ncols());
-    for (i, j, &x) in a.triplet_iter() {
-        for (k, l, &y) in b.triplet_iter() {
-            coo.push(i * b.nrows() + k, j * b.ncols() + l, x * y);
-        }
-    }
-    CsrMatrix::from(&coo)
 }
 
 /// The quadratic constraints `−½ xᵀ H_k x / c_k < 0` from forms `H_k` (row `k`), with

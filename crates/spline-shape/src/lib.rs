@@ -28,7 +28,9 @@ pub use barrier::{
 pub use constrained::{
     ConstraintCheck, FunctionApproximation, FunctionConstraint, FunctionFit, MAX_SIGN_PATTERNS,
 };
-pub use constrained_surface::{Region, SurfaceApproximation, SurfaceConstraint, SurfaceFit};
+pub use constrained_surface::{
+    ConstrainedSurfaceFit, Region, SurfaceApproximation, SurfaceConstraint,
+};
 pub use eraser::{
     CurvatureExtremum, Extremum, ExtremumKind, Objective, SampledExtremum, SmoothedCurve,
     SmoothingOptions, sampled_curvature_extrema, smooth, smooth_to_tolerance,

@@ -7,7 +7,7 @@ use nalgebra::DVector;
 use nalgebra_sparse::CsrMatrix;
 use spline_core::ErrorKind;
 use spline_geom::Surface;
-use spline_shape::{BarrierProblem, Sign, SurfaceApproximation, SurfaceFit};
+use spline_shape::{BarrierProblem, ConstrainedSurfaceFit, Sign, SurfaceApproximation};
 use std::f64::consts::PI;
 
 const FOUR_PI: f64 = 4.0 * PI;
@@ -33,7 +33,7 @@ fn sample(surface: &Surface<f64, f64>) -> Vec<Vec<Vec<f64>>> {
         .collect()
 }
 
-fn check_costs(fit: &SurfaceFit) {
+fn check_costs(fit: &ConstrainedSurfaceFit) {
     assert!(fit.objective >= fit.unconstrained_objective - 1e-9);
     assert!(fit.report.max_constraint < 0.0);
 }

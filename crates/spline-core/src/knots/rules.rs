@@ -6,9 +6,9 @@
 //! knot vectors from here and nowhere else.
 
 use super::{KnotVector, check_elevated_degree, check_interval};
+use crate::Short;
 use crate::error::{Error, ErrorKind, Result};
 use crate::scalar::{Scalar, to_f64};
-use crate::Short;
 
 impl<T: Scalar> KnotVector<T> {
     /// The knot vector with `u` inserted `times` times.

@@ -3,10 +3,13 @@
 //! linear sign constraints `G x < 0` and quadratic ones `½ xᵀ H_k x < 0` with constant
 //! Hessians, as a [`BarrierProblem`].
 
+mod objective;
+
+pub(crate) use objective::LeastSquaresObjective;
+
 use crate::barrier::{BarrierOptions, BarrierProblem, BarrierReport, find_feasible, minimize};
 use nalgebra::DVector;
-use nalgebra_sparse::factorization::CscCholesky;
-use nalgebra_sparse::{CooMatrix, CscMatrix, CsrMatrix};
+use nalgebra_sparse::{CooMatrix, CsrMatrix};
 use spline_algebra::{SparseBilinear, SplineMap};
 use spline_core::{Error, ErrorKind, KnotVector, Result};
 
@@ -43,91 +46,6 @@ impl Sign {
             Self::NonPositive => Self::NonNegative,
         }
     }
-}
-
-/// The least-squares objective $\tfrac12\|Ax - b\|^2$ with $A^TA$ and $A^Tb$ formed once.
-#[derive(Clone, Debug)]
-pub(crate) struct LeastSquares {
-    a: CsrMatrix<f64>,
-    b: DVector<f64>,
-    ata: CsrMatrix<f64>,
-    atb: DVector<f64>,
-}
-
-impl LeastSquares {
-    pub(crate) fn new(a: CsrMatrix<f64>, b: DVector<f64>) -> Self {
-        let at = a.transpose();
-        let ata = &at * &a;
-        let atb = &at * &b;
-        Self { a, b, ata, atb }
-    }
-
-    pub(crate) fn dimension(&self) -> usize {
-        self.a.ncols()
-    }
-
-    /// $\tfrac12\|Ax - b\|^2$, from the residual (no cancellation).
-    pub(crate) fn value(&self, x: &DVector<f64>) -> f64 {
-        let r = &self.a * x - &self.b;
-        0.5 * r.norm_squared()
-    }
-
-    pub(crate) fn gradient(&self, x: &DVector<f64>) -> DVector<f64> {
-        &self.ata * x - &self.atb
-    }
-
-    pub(crate) fn hessian(&self) -> &CsrMatrix<f64> {
-        &self.ata
-    }
-
-    /// The unconstrained minimiser, $x = (A^TA)^{-1} A^Tb$ by a sparse Cholesky factorisation.
-    pub(crate) fn solve(&self) -> Result<DVector<f64>> {
-        self.solve_normal(&self.atb)
-    }
-
-    /// The least-squares coefficients for other data `b` on the same samples.
-    pub(crate) fn solve_for(&self, b: &DVector<f64>) -> Result<DVector<f64>> {
-        self.solve_normal(&(self.a.transpose() * b))
-    }
-
-    fn solve_normal(&self, rhs: &DVector<f64>) -> Result<DVector<f64>> {
-        let factor = CscCholesky::factor(&CscMatrix::from(&self.ata)).map_err(|_| {
-            Error::new(
-                ErrorKind::SchoenbergWhitney,
-                "the samples do not determine every coefficient (a basis function has no sample in its support)",
-            )
-        })?;
-        let x = factor.solve(rhs);
-        let x = DVector::from_column_slice(x.as_slice());
-        if x.iter().all(|v| v.is_finite()) {
-            Ok(x)
-        } else {
-            Err(Error::new(
-                ErrorKind::SingularSystem,
-                "the normal equations are too ill-conditioned to solve",
-            ))
-        }
-    }
-}
-
-/// The sparse collocation matrix $A_{ji} = N_i(u_j)$ of a knot vector at parameters in its
-/// domain.
-pub(crate) fn collocation(knots: &KnotVector<f64>, params: &[f64]) -> Result<CsrMatrix<f64>> {
-    let p = knots.degree();
-    let mut coo = CooMatrix::new(params.len(), knots.num_basis());
-    let mut values = vec![0.0; p + 1];
-    for (j, &u) in params.iter().enumerate() {
-        let span = knots
-            .find_span(u)
-            .map_err(|e| e.context(format_args!("parameter {j}")))?;
-        knots.basis_values(span, u, &mut values);
-        for (r, &v) in values.iter().enumerate() {
-            if v != 0.0 {
-                coo.push(j, span - p + r, v);
-            }
-        }
-    }
-    Ok(CsrMatrix::from(&coo))
 }
 
 /// Scales every row of `m` by `factor / ‖row‖₂` (empty rows are dropped): a constraint
@@ -206,7 +124,7 @@ pub(crate) fn vstack(ncols: usize, blocks: &[CsrMatrix<f64>]) -> CsrMatrix<f64> 
 /// ```
 #[derive(Clone, Debug)]
 pub struct ApproximationProblem {
-    lsq: LeastSquares,
+    lsq: LeastSquaresObjective,
     linear: CsrMatrix<f64>,
     quadratic: Option<SparseBilinear<f64>>,
     pattern: Option<HessianPattern>,
@@ -274,7 +192,7 @@ impl HessianPattern {
 
 impl ApproximationProblem {
     pub(crate) fn new(
-        lsq: LeastSquares,
+        lsq: LeastSquaresObjective,
         linear: CsrMatrix<f64>,
         quadratic: Option<SparseBilinear<f64>>,
     ) -> Self {
@@ -289,7 +207,7 @@ impl ApproximationProblem {
         }
     }
 
-    pub(crate) fn least_squares(&self) -> &LeastSquares {
+    pub(crate) fn least_squares(&self) -> &LeastSquaresObjective {
         &self.lsq
     }
 

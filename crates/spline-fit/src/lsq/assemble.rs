@@ -1,0 +1,292 @@
+//! Assembly of the least-squares system: normal equations (with unrolled kernels for low
+//! degrees) or Givens QR, fixed control points moved to the right-hand side, the smoothing
+//! term, and the streaming Schoenberg–Whitney check.
+
+// Index loops mirror the formulas (basis index ↔ control-point index).
+#![allow(clippy::needless_range_loop)]
+
+use super::{LeastSquares, LsqMethod};
+use crate::banded::{BandCholesky, BandQr};
+use spline_core::{
+    ControlPoint, Error, ErrorKind, KnotVector, MAX_ORDER, Result, Scalar, SpanBasis, cast,
+    gauss_legendre, to_f64,
+};
+
+impl<T: Scalar, P: ControlPoint<T>> LeastSquares<'_, T, P> {
+    /// Accumulates the system for the control points flagged in `free` (the others taking
+    /// `values`), with the compressed column of each free control point.
+    pub(super) fn assemble_group(
+        &self,
+        free: &[bool],
+        values: &[P],
+    ) -> Result<(Sink<T, P>, Vec<usize>)> {
+        let knots = &self.knots;
+        let n = knots.num_basis();
+        let p = knots.degree();
+        let width = p + 1;
+        let all_free = free.iter().all(|&f| f);
+        // Compressed column of each free control point.
+        let mut column = vec![usize::MAX; n];
+        let mut unknowns = 0;
+        for i in 0..n {
+            if free[i] {
+                column[i] = unknowns;
+                unknowns += 1;
+            }
+        }
+        if unknowns == 0 {
+            return Err(Error::new(
+                ErrorKind::InvalidArgument,
+                "every control point is fixed: nothing to fit",
+            ));
+        }
+        let mut sink = match self.method {
+            LsqMethod::NormalEquations => Sink::Normal(
+                BandCholesky::zeros(unknowns, p),
+                vec![P::origin(); unknowns],
+            ),
+            LsqMethod::Qr => Sink::Qr(BandQr::new(unknowns, p)),
+        };
+        let mut basis = [T::zero(); MAX_ORDER];
+        let mut compressed = [T::zero(); MAX_ORDER];
+        // A row `row` on the basis functions first, first + 1, … with right-hand side
+        // `target`: the fixed control points move to the right-hand side, the entries of
+        // the free ones are compressed to their columns.
+        let mut add_constrained =
+            |sink: &mut Sink<T, P>, first: usize, row: &[T], w: T, mut target: P| {
+                let mut start = None;
+                let mut len = 0;
+                for (a, &b) in row.iter().enumerate() {
+                    let i = first + a;
+                    if free[i] {
+                        start.get_or_insert(column[i]);
+                        compressed[len] = b;
+                        len += 1;
+                    } else {
+                        target -= values[i] * b;
+                    }
+                }
+                if let Some(s) = start {
+                    sink.add(s, &mut compressed[..len], w, target);
+                }
+            };
+        // Streaming Schoenberg–Whitney check (greedy assignment of data to free basis
+        // functions in order).
+        let check = self.check_sw && self.smoothing == T::zero();
+        // Unrolled accumulation of the normal equations for the common case.
+        let fast = match (&mut sink, all_free) {
+            (Sink::Normal(matrix, rhs), true) => {
+                let data = matrix.data_mut();
+                let (params, points, weights) = (self.params, self.points, self.weights);
+                let run = match p {
+                    0 => normal_kernel::<T, P, 1>(knots, params, points, weights, check, data, rhs),
+                    1 => normal_kernel::<T, P, 2>(knots, params, points, weights, check, data, rhs),
+                    2 => normal_kernel::<T, P, 3>(knots, params, points, weights, check, data, rhs),
+                    3 => normal_kernel::<T, P, 4>(knots, params, points, weights, check, data, rhs),
+                    4 => normal_kernel::<T, P, 5>(knots, params, points, weights, check, data, rhs),
+                    5 => normal_kernel::<T, P, 6>(knots, params, points, weights, check, data, rhs),
+                    _ => None,
+                };
+                match run {
+                    Some(Err(i)) => return Err(self.sw_error(i)),
+                    Some(Ok(())) => true,
+                    None => false,
+                }
+            }
+            _ => false,
+        };
+        let mut next = if fast {
+            None
+        } else {
+            (0..n).find(|&i| free[i])
+        };
+        let mut last_assigned: Option<T> = None;
+        let mut span = p;
+        let mut evaluator = SpanBasis::new();
+        let data_rows = if fast { 0 } else { self.params.len() };
+        for (j, (&u, &q)) in self
+            .params
+            .iter()
+            .zip(self.points)
+            .enumerate()
+            .take(data_rows)
+        {
+            span = knots.span_in_domain_from(u, span);
+            evaluator.eval(knots, span, u, &mut basis[..width]);
+            let f = span - p;
+            if check {
+                if let Some(i) = next {
+                    if span > i + p {
+                        return Err(self.sw_error(i));
+                    }
+                    if span >= i && basis[i - f] != T::zero() && last_assigned.is_none_or(|l| u > l)
+                    {
+                        last_assigned = Some(u);
+                        next = (i + 1..n).find(|&i| free[i]);
+                    }
+                }
+            }
+            let w = self.weights.map_or_else(T::one, |w| w[j]);
+            if all_free {
+                sink.add(f, &mut basis[..width], w, q);
+            } else {
+                add_constrained(&mut sink, f, &basis[..width], w, q);
+            }
+        }
+        if check {
+            if let Some(i) = next {
+                return Err(self.sw_error(i));
+            }
+        }
+        if self.smoothing > T::zero() && p >= 2 {
+            let rule = gauss_legendre::<T>(p - 1);
+            let k = knots.knots();
+            let mut table = [T::zero(); 3 * MAX_ORDER];
+            let half: T = cast(0.5);
+            for s in p..n {
+                let (a, b) = (k[s], k[s + 1]);
+                if !(a < b) {
+                    continue;
+                }
+                let (mid, rad) = ((a + b) * half, (b - a) * half);
+                for &(x, wq) in &rule {
+                    let u = mid + rad * x;
+                    knots.basis_derivatives(s, u, 2, &mut table[..3 * width]);
+                    let row = &table[2 * width..3 * width];
+                    let w = (self.smoothing * wq * rad).sqrt();
+                    add_constrained(&mut sink, s - p, row, w, P::origin());
+                }
+            }
+        }
+        Ok((sink, column))
+    }
+
+    fn sw_error(&self, i: usize) -> Error {
+        let k = self.knots.knots();
+        let p = self.knots.degree();
+        let mut message = format!(
+            "Schoenberg–Whitney conditions fail: no data parameter is left for basis function N_{i} (support [{}, {}])",
+            to_f64(k[i]),
+            to_f64(k[i + p + 1])
+        );
+        let (_, end) = self.knots.domain();
+        let n = self.knots.num_basis();
+        for s in i.max(p)..=(i + p).min(n - 1) {
+            let (a, b) = (k[s], k[s + 1]);
+            if a < b
+                && !self
+                    .params
+                    .iter()
+                    .any(|&u| u >= a && (u < b || (b == end && u <= b)))
+            {
+                message.push_str(&format!(
+                    "; knot span [{}, {}] holds no data",
+                    to_f64(a),
+                    to_f64(b)
+                ));
+                break;
+            }
+        }
+        Error::new(ErrorKind::SchoenbergWhitney, message)
+    }
+}
+
+/// Accumulates the normal equations of the data rows for degree `W − 1` known at compile
+/// time (loops unrolled), with the streaming Schoenberg–Whitney check when `check`:
+/// `Err(i)` names the basis function left without data. `None` is never returned (the
+/// `Option` lets the caller fall back for other degrees).
+#[allow(clippy::unnecessary_wraps)]
+fn normal_kernel<T: Scalar, P: ControlPoint<T>, const W: usize>(
+    knots: &KnotVector<T>,
+    params: &[T],
+    points: &[P],
+    weights: Option<&[T]>,
+    check: bool,
+    band: &mut [T],
+    rhs: &mut [P],
+) -> Option<std::result::Result<(), usize>> {
+    let p = W - 1;
+    let n = knots.num_basis();
+    let k = knots.knots();
+    let mut span = p;
+    let mut cached = usize::MAX;
+    // 1/(u_{s+r+1} − u_{s+1+r−j}) for the current span s, j = 1 … p, r < j.
+    let mut inverse = [[T::zero(); W]; W];
+    let mut next = if check { 0 } else { n };
+    let mut last_assigned = T::zero();
+    for (j, (&u, &q)) in params.iter().zip(points).enumerate() {
+        span = knots.span_in_domain_from(u, span);
+        if span != cached {
+            for jj in 1..W {
+                for r in 0..jj {
+                    inverse[jj][r] = T::one() / (k[span + r + 1] - k[span + 1 + r - jj]);
+                }
+            }
+            cached = span;
+        }
+        let mut left = [T::zero(); W];
+        let mut right = [T::zero(); W];
+        let mut basis = [T::zero(); W];
+        basis[0] = T::one();
+        for jj in 1..W {
+            left[jj] = u - k[span + 1 - jj];
+            right[jj] = k[span + jj] - u;
+            let mut saved = T::zero();
+            for r in 0..jj {
+                let temp = basis[r] * inverse[jj][r];
+                basis[r] = saved + right[r + 1] * temp;
+                saved = left[jj - r] * temp;
+            }
+            basis[jj] = saved;
+        }
+        let f = span - p;
+        if next < n {
+            if span > next + p {
+                return Some(Err(next));
+            }
+            if span >= next && basis[next - f] != T::zero() && (next == 0 || u > last_assigned) {
+                last_assigned = u;
+                next += 1;
+            }
+        }
+        let w2 = weights.map_or_else(T::one, |w| w[j] * w[j]);
+        for a in 0..W {
+            let s = basis[a] * w2;
+            rhs[f + a] += q * s;
+            let row = &mut band[(f + a) * W..(f + a) * W + W];
+            for c in 0..=a {
+                row[a - c] += s * basis[c];
+            }
+        }
+    }
+    if next < n {
+        return Some(Err(next));
+    }
+    Some(Ok(()))
+}
+
+pub(super) enum Sink<T, P> {
+    Normal(BandCholesky<T>, Vec<P>),
+    Qr(BandQr<T, P>),
+}
+
+impl<T: Scalar, P: ControlPoint<T>> Sink<T, P> {
+    #[inline]
+    fn add(&mut self, first: usize, row: &mut [T], weight: T, target: P) {
+        match self {
+            Self::Normal(matrix, rhs) => {
+                let w2 = weight * weight;
+                matrix.add_outer(first, row, w2);
+                for (slot, &v) in rhs[first..first + row.len()].iter_mut().zip(row.iter()) {
+                    *slot += target * (v * w2);
+                }
+            }
+            Self::Qr(qr) => {
+                for v in row.iter_mut() {
+                    *v *= weight;
+                }
+                qr.add_row(first, row, target * weight);
+            }
+        }
+    }
+}
