@@ -343,7 +343,7 @@ fn operation(
                     finite([k])?;
                 }
                 if let Ok(e) = n.elevate_degree(count(rng)) {
-                    finite(e.weights())?;
+                    finite(e.weights().iter().copied())?;
                 }
             }
         }
@@ -377,7 +377,7 @@ fn operation(
             let sweep = *rng.pick(&[std::f64::consts::TAU, 1.0, 0.0, -3.0, 1e-19]);
             let piece = *rng.pick(&[1.5, 1e-19, 1e-6, 3.0, f64::NAN]);
             if let Ok(arc) = NurbsCurve::arc_with_max_piece(&frame, 1.0, 0.0, sweep, piece) {
-                finite(arc.weights())?;
+                finite(arc.weights().iter().copied())?;
             }
         }
         12 => {

@@ -5,11 +5,10 @@
 use crate::bilinear::SparseBilinear;
 use crate::maps::SplineMap;
 use crate::product::{bernstein_product, product_knots};
-use crate::roots::{sign_changes, zeros};
 use crate::sparse::{add_scaled, interleave_columns, matmul};
 use nalgebra::Vector2;
 use nalgebra_sparse::CsrMatrix;
-use spline_core::{Error, ErrorKind, KnotVector, Result, Scalar, cast, to_f64};
+use spline_core::{Error, ErrorKind, KnotVector, Result, Scalar, cast};
 use spline_geom::BSpline;
 
 /// The four products of derivatives of a planar curve `c(u)` that make up its curvature
@@ -451,95 +450,4 @@ impl<T: Scalar> PlanarInvariants<T> {
             Form::BSpline => h.then(self.g_removal.matrix())?,
         })
     }
-}
-
-/// The inflections and curvature extrema of a planar curve.
-#[derive(Clone, Debug, PartialEq)]
-pub struct PlanarFeatures<T> {
-    /// Parameters where the signed curvature changes sign (zeros of `h4` with a sign change).
-    pub inflections: Vec<T>,
-    /// Parameters where the signed curvature has a local extremum (zeros of `g` with a sign
-    /// change).
-    pub curvature_extrema: Vec<T>,
-}
-
-/// The inflections and curvature extrema of a regular planar curve of degree at least 2,
-/// located to `accuracy` (absolute, in parameter units) by [`crate::zeros`]:
-///
-/// - inflections are the zeros of $h_4 = c' \wedge c''$ where it changes sign (a double zero,
-///   as at the flat point of `(u, u⁴)`, is not an inflection);
-/// - curvature extrema are the zeros of $g = h_1 h_2 - 3 h_3 h_4$ where it changes sign
-///   (`κ' = g / h_1^{5/2}`), and the knots where `g` jumps across zero: a cubic with simple
-///   knots is only `C²`, its `κ′` is discontinuous at the knots, and a jump of `κ′` from one
-///   sign to the other is a (corner) extremum of `κ` ([`crate::sign_changes`]).
-///
-/// Where `h4` or `g` vanishes on a whole piece (a straight segment, a circular arc) and
-/// changes sign across it, the middle of the piece is reported. Zeros at the ends of the
-/// domain are not reported (the sign is known on one side only).
-///
-/// ```
-/// use nalgebra::Vector2;
-/// use spline_geom::BSpline;
-/// // The graph (u, u³ − u) on [−1, 1] as a cubic Bézier curve: one inflection, at u = 0.
-/// let curve = BSpline::from_knots(3, vec![-1.0f64, -1., -1., -1., 1., 1., 1., 1.], vec![
-///     Vector2::new(-1.0, 0.0), Vector2::new(-1.0 / 3.0, 4.0 / 3.0),
-///     Vector2::new(1.0 / 3.0, -4.0 / 3.0), Vector2::new(1.0, 0.0)])?;
-/// let features = spline_algebra::planar_features(&curve, 1e-12)?;
-/// assert_eq!(features.inflections.len(), 1);
-/// assert!(features.inflections[0].abs() < 1e-12);
-/// # Ok::<(), spline_core::Error>(())
-/// ```
-///
-/// # Errors
-/// [`ErrorKind::InvalidArgument`] for degree below 2 or a bad accuracy;
-/// [`ErrorKind::DegenerateGeometry`] if the velocity vanishes somewhere (the curve is not
-/// regular, curvature is undefined there).
-pub fn planar_features<T: Scalar>(
-    curve: &BSpline<T, Vector2<T>>,
-    accuracy: T,
-) -> Result<PlanarFeatures<T>> {
-    let algebra = PlanarInvariants::new(curve.knots())?;
-    // The features do not change when the curve is scaled: the invariants (products of up to
-    // six coordinates of derivatives) are formed on control points divided by a power of two
-    // near the size of the control polygon's legs, so coordinates of 1e±150 neither overflow
-    // nor underflow.
-    let legs = curve
-        .control_points()
-        .windows(2)
-        .fold(0.0f64, |m, w| m.max(to_f64((w[1] - w[0]).amax())));
-    let scale: T = cast(spline_core::power_of_two_scale(legs));
-    let points: Vec<Vector2<T>> = curve.control_points().iter().map(|p| p / scale).collect();
-    let points = points.as_slice();
-    let h1 = algebra.invariant_value(Invariant::H1, points, Form::Bernstein)?;
-    if let Some(z) = zeros(&h1, accuracy)?.first() {
-        return Err(Error::new(
-            ErrorKind::DegenerateGeometry,
-            format!(
-                "the curve is not regular: its velocity vanishes at u = {}",
-                to_f64(z.at())
-            ),
-        ));
-    }
-    let h4 = algebra.invariant_value(Invariant::H4, points, Form::Bernstein)?;
-    let g = algebra.g_value(points, Form::Bernstein)?;
-    Ok(PlanarFeatures {
-        inflections: sign_changes(&h4, accuracy)?,
-        curvature_extrema: sign_changes(&g, accuracy)?,
-    })
-}
-
-/// The inflections of a planar curve ([`planar_features`]).
-///
-/// # Errors
-/// As [`planar_features`].
-pub fn inflections<T: Scalar>(curve: &BSpline<T, Vector2<T>>, accuracy: T) -> Result<Vec<T>> {
-    Ok(planar_features(curve, accuracy)?.inflections)
-}
-
-/// The curvature extrema of a planar curve ([`planar_features`]).
-///
-/// # Errors
-/// As [`planar_features`].
-pub fn curvature_extrema<T: Scalar>(curve: &BSpline<T, Vector2<T>>, accuracy: T) -> Result<Vec<T>> {
-    Ok(planar_features(curve, accuracy)?.curvature_extrema)
 }

@@ -17,14 +17,14 @@
 //!   exactly what spline-geom computes. Tensor-product versions act as `A_u ⊗ A_v`.
 //! - Products: [`product_knots`] (minimal multiplicities), [`ProductMap`] (per-segment
 //!   Bernstein product (5.38), exact conversion to the minimal space by blossoming),
-//!   [`dot`], [`wedge`], [`square`], [`sum`], [`difference`], [`linear_combination`].
+//!   [`dot_product`], [`wedge_product`], [`square`], [`sum`], [`difference`], [`linear_combination`].
 //! - Planar curves: [`PlanarInvariants`] for `h1 … h4` and `g = h1 h2 − 3 h3 h4` in B-spline
 //!   or per-segment Bernstein [`Form`]; [`planar_features`] (inflections, curvature extrema).
 //! - Bivariate functions ([`spline_geom::Surface`]s with scalar control points; maps act on
 //!   their row-major nets as `A_u ⊗ A_v`): [`partials`], [`tensor_product`],
 //!   [`hessian_determinant`] (`s_uu s_vv − s_uv²` with gradient and constant Hessian),
 //!   [`ridge_polynomials`].
-//! - Roots: [`zeros`] and [`sign_changes`] of any B-spline function.
+//! - Roots: [`zeros`] and [`sign_change_params`] of any B-spline function.
 //!
 //! Everything is generic over [`spline_core::Scalar`], so the same code runs on dual numbers
 //! (the tests check every Jacobian and Hessian that way).
@@ -54,6 +54,7 @@
 
 mod bilinear;
 mod curves;
+mod features;
 mod maps;
 mod product;
 mod roots;
@@ -62,17 +63,18 @@ mod sparse;
 mod tensor;
 
 pub use bilinear::SparseBilinear;
-pub use curves::{
-    Differentiated, Form, Invariant, PlanarFeatures, PlanarInvariants, curvature_extrema,
-    inflections, planar_features,
+pub use curves::{Differentiated, Form, Invariant, PlanarInvariants};
+pub use features::{
+    CurveFeatures, PlanarFeatures, curvature_extrema, inflections, planar_features,
 };
 pub use maps::SplineMap;
 pub use nalgebra_sparse::CsrMatrix;
 pub use product::{
-    ProductJacobians, ProductMap, Square, bernstein_product, common_space, difference, dot,
-    linear_combination, product, product_knots, product_with_jacobians, scale, square, sum, wedge,
+    ProductJacobians, ProductMap, Square, bernstein_product, common_space, difference, dot_product,
+    linear_combination, product, product_knots, product_with_jacobians, scale, square, sum,
+    wedge_product,
 };
-pub use roots::{Zero, sign_changes, zeros};
+pub use roots::{Zero, sign_change_params, zeros};
 pub use segment_curvature::{SegmentCurvature, SegmentWorkspace};
 pub use sparse::kron;
 pub use tensor::{

@@ -414,7 +414,7 @@ fn coordinates<T: Scalar, P: ControlPoint<T>>(points: &[P], c: usize) -> Vec<T> 
 ///
 /// # Errors
 /// As [`product_knots`].
-pub fn dot<T: Scalar, const D: usize>(
+pub fn dot_product<T: Scalar, const D: usize>(
     a: &BSpline<T, SVector<T, D>>,
     b: &BSpline<T, SVector<T, D>>,
 ) -> Result<ProductJacobians<T>> {
@@ -427,7 +427,7 @@ pub fn dot<T: Scalar, const D: usize>(
 ///
 /// # Errors
 /// As [`product_knots`].
-pub fn wedge<T: Scalar>(
+pub fn wedge_product<T: Scalar>(
     a: &BSpline<T, Vector2<T>>,
     b: &BSpline<T, Vector2<T>>,
 ) -> Result<ProductJacobians<T>> {

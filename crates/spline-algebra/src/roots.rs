@@ -202,7 +202,7 @@ impl<T: Scalar> Isolator<T> {
 /// about `ε ‖f‖ / |f′(r)|`, so asking for more than that gains nothing. Whether a zero is a crossing is decided from
 /// the signs of the function between consecutive zeros and discontinuities. At a
 /// discontinuity (a knot where the pieces do not meet) a jump across zero is not a zero;
-/// [`sign_changes`] reports those too.
+/// [`sign_change_params`] reports those too.
 ///
 /// ```
 /// use spline_geom::BSpline;
@@ -361,7 +361,7 @@ struct Analysis<T> {
 /// // A piecewise-constant function −1 on [0, 1), +1 on [1, 2]: a sign change at the jump.
 /// let f = BSpline::from_knots(0, vec![0.0, 1.0, 2.0], vec![-1.0, 1.0])?;
 /// assert!(spline_algebra::zeros(&f, 1e-12)?.is_empty());
-/// assert_eq!(spline_algebra::sign_changes(&f, 1e-12)?, vec![1.0]);
+/// assert_eq!(spline_algebra::sign_change_params(&f, 1e-12)?, vec![1.0]);
 /// # Ok::<(), spline_core::Error>(())
 /// ```
 ///
@@ -370,7 +370,7 @@ struct Analysis<T> {
 ///
 /// # Panics
 /// Never: parameters are finite, so they compare.
-pub fn sign_changes<T: Scalar>(f: &BSpline<T, T>, accuracy: T) -> Result<Vec<T>> {
+pub fn sign_change_params<T: Scalar>(f: &BSpline<T, T>, accuracy: T) -> Result<Vec<T>> {
     let analysis = analyse(f, accuracy)?;
     let mut out: Vec<T> = analysis
         .zeros

@@ -13,8 +13,8 @@ use common::{Rng, assert_close_rel, dense, parameters, random_knots, random_pool
 use nalgebra::Vector2;
 use num_dual::{Dual64, HyperDual64};
 use spline_algebra::{
-    ProductMap, difference, dot, linear_combination, product, product_knots,
-    product_with_jacobians, square, sum, wedge,
+    ProductMap, difference, dot_product, linear_combination, product, product_knots,
+    product_with_jacobians, square, sum, wedge_product,
 };
 use spline_core::KnotVector;
 use spline_geom::BSpline;
@@ -272,8 +272,8 @@ fn dot_wedge_sum_square() {
             .collect();
         let a = BSpline::new(ka.clone(), pa).unwrap();
         let b = BSpline::new(kb.clone(), pb).unwrap();
-        let d = dot(&a, &b).unwrap();
-        let w = wedge(&a, &b).unwrap();
+        let d = dot_product(&a, &b).unwrap();
+        let w = wedge_product(&a, &b).unwrap();
         let s = sum(&a, &b).unwrap();
         let diff = difference(&a, &b).unwrap();
         let fa = a.map_control_points(|v| v.x);
@@ -312,7 +312,7 @@ fn dot_wedge_sum_square() {
             let bump = |s: f64| {
                 let mut pts = a.control_points().to_vec();
                 pts[j / 2][j % 2] += s;
-                dot(&BSpline::new(ka.clone(), pts).unwrap(), &b)
+                dot_product(&BSpline::new(ka.clone(), pts).unwrap(), &b)
                     .unwrap()
                     .product
             };
@@ -333,7 +333,7 @@ fn dot_wedge_sum_square() {
             let bump = |s: f64| {
                 let mut pts = b.control_points().to_vec();
                 pts[j / 2][j % 2] += s;
-                wedge(&a, &BSpline::new(kb.clone(), pts).unwrap())
+                wedge_product(&a, &BSpline::new(kb.clone(), pts).unwrap())
                     .unwrap()
                     .product
             };

@@ -6,7 +6,7 @@
 mod common;
 
 use common::{Rng, random_knots, random_pool};
-use spline_algebra::{SplineMap, product, sign_changes, zeros};
+use spline_algebra::{SplineMap, product, sign_change_params, zeros};
 use spline_core::KnotVector;
 use spline_geom::BSpline;
 
@@ -63,7 +63,7 @@ fn known_simple_roots_with_interior_knots() {
                     assert!(f.eval(lo.max(0.0)).unwrap() * f.eval(hi.min(1.0)).unwrap() <= 0.0);
                 }
             }
-            assert_eq!(sign_changes(&f, accuracy).unwrap().len(), roots.len());
+            assert_eq!(sign_change_params(&f, accuracy).unwrap().len(), roots.len());
         }
     }
 }
@@ -76,7 +76,7 @@ fn double_roots_ends_and_knots() {
     assert_eq!(z.len(), 2, "{z:?}");
     assert!((z[0].at() - 0.3).abs() < 1e-6 && !z[0].sign_change);
     assert!((z[1].at() - 0.7).abs() < 1e-12 && z[1].sign_change);
-    assert_eq!(sign_changes(&f, 1e-12).unwrap().len(), 1);
+    assert_eq!(sign_change_params(&f, 1e-12).unwrap().len(), 1);
     // (u − 0.5)⁴: one touching zero.
     let f = from_roots(&[0.5, 0.5, 0.5, 0.5]);
     let z = zeros(&f, 1e-12).unwrap();
@@ -109,7 +109,7 @@ fn identically_zero_pieces_and_jumps() {
     assert_eq!(z.len(), 1, "{z:?}");
     assert!(z[0].is_interval() && z[0].sign_change);
     assert_eq!((z[0].start, z[0].end), (0.4, 0.6));
-    assert_eq!(sign_changes(&f, 1e-12).unwrap(), vec![0.5]);
+    assert_eq!(sign_change_params(&f, 1e-12).unwrap(), vec![0.5]);
     // The same with the same sign on both sides: not a crossing.
     let knots = vec![0., 0., 0., 0., 0.4, 0.4, 0.4, 0.6, 0.6, 0.6, 1., 1., 1., 1.];
     let f = BSpline::from_knots(3, knots, vec![1., 2., 0.5, 0., 0., 0., 0., 1., 0.5, 2.]).unwrap();
@@ -129,7 +129,10 @@ fn identically_zero_pieces_and_jumps() {
     assert_eq!(z.len(), 2, "{z:?}");
     assert!(z.iter().all(|z| z.sign_change));
     assert!((z[0].at() - 0.25).abs() < 1e-12 && (z[1].at() - 0.75).abs() < 1e-12);
-    assert_eq!(sign_changes(&f, 1e-12).unwrap(), vec![0.25, 0.5, 0.75]);
+    assert_eq!(
+        sign_change_params(&f, 1e-12).unwrap(),
+        vec![0.25, 0.5, 0.75]
+    );
 }
 
 #[test]

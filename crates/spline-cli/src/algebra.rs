@@ -1,17 +1,13 @@
-//! Spline-algebra subcommands: `product` (with `--jacobian`), `curvature`, `features`; and
-//! the features of `plot --features`.
+//! The spline-algebra subcommand `product` (with `--jacobian`).
 
-use crate::curves::{ObjectArgs, planar};
-use crate::io::{self, Curve, Object};
+use crate::io;
+use crate::objects::{Object, read_object};
 use clap::Args;
 use serde_json::{Value, json};
 use spline_algebra::{CsrMatrix, ProductMap};
 use spline_core::{Error, ErrorKind, Result};
 use spline_geom::BSpline;
 use spline_geom::exchange::CurveRecord;
-
-/// Root accuracy of `features`, relative to the length of the domain.
-const RELATIVE_ACCURACY: f64 = 1e-12;
 
 #[derive(Args)]
 pub struct ProductArgs {
@@ -26,60 +22,25 @@ pub struct ProductArgs {
     jacobian: bool,
 }
 
-#[derive(Args)]
-pub struct CurvatureArgs {
-    /// A planar curve (JSON; B-spline or NURBS), or - for standard input.
-    object: String,
-    /// Parameters as a JSON array.
-    #[arg(long)]
-    at: String,
-}
-
-/// Parameters of the inflections and curvature extrema of a planar curve.
-pub struct PlanarFeatures {
-    /// Parameters of the inflections.
-    pub inflections: Vec<f64>,
-    /// Parameters of the curvature extrema.
-    pub curvature_extrema: Vec<f64>,
-}
-
-/// Finds inflections and curvature extrema (located to `1e-12` times the domain length).
-pub fn planar_features(curve: &spline_geom::Curve2) -> Result<PlanarFeatures> {
-    let (a, b) = curve.domain();
-    let features = spline_algebra::planar_features(curve, RELATIVE_ACCURACY * (b - a))?;
-    Ok(PlanarFeatures {
-        inflections: features.inflections,
-        curvature_extrema: features.curvature_extrema,
-    })
-}
-
 /// A scalar B-spline function from an object file.
 fn read_function(path: &str) -> Result<BSpline<f64, f64>> {
-    match io::read_object(path)? {
-        Object::Curve(Curve { curve, dim: 1 }) => Ok(curve.map_control_points(|p| p[0])),
-        Object::Curve(Curve { dim, .. }) => Err(Error::new(
+    match read_object(path)? {
+        Object::Curve(c) if c.dim == 1 => Ok(c.value.map_control_points(|p| p[0])),
+        Object::Curve(c) => Err(Error::new(
             ErrorKind::DimensionMismatch,
             format!(
-                "{path}: product needs B-spline functions (1-D control points), got {dim}-D points"
+                "{path}: product needs B-spline functions (1-D control points), got {}-D points",
+                c.dim
             ),
         )),
         Object::Nurbs(_) => Err(Error::new(
             ErrorKind::InvalidArgument,
             format!("{path}: product needs non-rational B-spline functions, got a NURBS curve"),
         )),
-        Object::Surface(_) => Err(Error::new(
+        Object::Surface(_) | Object::NurbsSurface(_) => Err(Error::new(
             ErrorKind::InvalidArgument,
             format!("{path}: product needs B-spline functions, got a surface"),
         )),
-    }
-}
-
-fn function_record(f: &BSpline<f64, f64>) -> CurveRecord {
-    CurveRecord {
-        degree: f.degree(),
-        knots: f.knots().knots().to_vec(),
-        control_points: f.control_points().iter().map(|&c| vec![c]).collect(),
-        weights: None,
     }
 }
 
@@ -97,82 +58,16 @@ pub fn product(args: &ProductArgs) -> Result<()> {
     let b = read_function(&args.b)?;
     let map = ProductMap::new(a.knots(), b.knots())?;
     let c = map.product(&a, &b)?;
+    let record = CurveRecord::from_bspline(&c);
     if args.jacobian {
         let ja = map.jacobian_left(b.control_points())?;
         let jb = map.jacobian_right(a.control_points())?;
         io::print_json(&json!({
-            "product": function_record(&c),
+            "product": record,
             "jacobian_a": matrix_json(&ja),
             "jacobian_b": matrix_json(&jb),
         }))
     } else {
-        io::print_json(&function_record(&c))
+        io::print_json(&record)
     }
-}
-
-pub fn curvature(args: &CurvatureArgs) -> Result<()> {
-    let params: Vec<f64> = io::parse_arg("--at", &args.at)?;
-    let values = match io::read_object(&args.object)? {
-        Object::Curve(curve) => {
-            let c = planar(&curve).map_err(|e| e.context(&args.object))?;
-            params
-                .iter()
-                .enumerate()
-                .map(|(i, &u)| {
-                    c.signed_curvature(u)
-                        .map_err(|e| e.context(format_args!("--at entry {i}")))
-                })
-                .collect::<Result<Vec<f64>>>()?
-        }
-        Object::Nurbs(nurbs) => {
-            let c = nurbs.planar().map_err(|e| e.context(&args.object))?;
-            params
-                .iter()
-                .enumerate()
-                .map(|(i, &u)| {
-                    c.signed_curvature(u)
-                        .map_err(|e| e.context(format_args!("--at entry {i}")))
-                })
-                .collect::<Result<Vec<f64>>>()?
-        }
-        Object::Surface(_) => {
-            return Err(Error::new(
-                ErrorKind::InvalidArgument,
-                format!(
-                    "{}: curvature needs a planar curve, got a surface",
-                    args.object
-                ),
-            ));
-        }
-    };
-    io::print_json(&values)
-}
-
-pub fn features(args: &ObjectArgs) -> Result<()> {
-    let curve = match io::read_object(&args.object)? {
-        Object::Curve(curve) => planar(&curve).map_err(|e| e.context(&args.object))?,
-        Object::Nurbs(_) => {
-            return Err(Error::new(
-                ErrorKind::InvalidArgument,
-                format!(
-                    "{}: features of NURBS curves are not supported (only non-rational B-spline curves)",
-                    args.object
-                ),
-            ));
-        }
-        Object::Surface(_) => {
-            return Err(Error::new(
-                ErrorKind::InvalidArgument,
-                format!(
-                    "{}: features need a planar curve, got a surface",
-                    args.object
-                ),
-            ));
-        }
-    };
-    let features = planar_features(&curve).map_err(|e| e.context(&args.object))?;
-    io::print_json(&json!({
-        "inflections": features.inflections,
-        "curvature_extrema": features.curvature_extrema,
-    }))
 }

@@ -1,14 +1,15 @@
 //! Fitting subcommands: interpolate, natural, approximate (`docs/exchange-format.md`,
 //! "Fitting conventions").
 
-use crate::io::{Curve, Pt, pad, parse_arg, print_json, read_points};
+use crate::io::{Pt, pad, parse_arg, print_json, read_points, write_stdout};
+use crate::objects::Sized;
 use clap::{Args, ValueEnum};
 use serde_json::{Value, json};
 use spline_core::{Error, ErrorKind, KnotVector, Result};
 use spline_fit::{
     CorrectionOptions, CurveFit, InterpolationOptions, KnotChoice, LeastSquares, LsqMethod,
     Parametrization, correct_parameters, interpolate_closed, natural_spline, nurbs_book_knots,
-    parametrize,
+    parametrize, parametrize_in,
 };
 
 #[derive(Args)]
@@ -180,13 +181,13 @@ fn output(
     report: bool,
     extra: Option<Value>,
 ) -> Result<()> {
-    let record = Curve {
-        curve: fit.curve.map_control_points(|p| p * scale),
+    let record = Sized {
+        value: fit.curve.map_control_points(|p| p * scale),
         dim,
     }
-    .to_record();
+    .json()?;
     if !report {
-        return print_json(&record);
+        return write_stdout(record.get().as_bytes());
     }
     let mut value = json!({
         "curve": record,
@@ -257,7 +258,7 @@ pub fn natural(args: &NaturalArgs) -> Result<()> {
     }
     let values = rows.iter().map(|r| pad(r)).collect::<Result<Vec<Pt>>>()?;
     let curve = natural_spline(&x, &values, args.order)?;
-    print_json(&Curve { curve, dim }.to_record())
+    write_stdout(Sized { value: curve, dim }.json()?.get().as_bytes())
 }
 
 fn fixes(text: &str, dim: usize) -> Result<Vec<(usize, usize, f64)>> {
@@ -285,11 +286,13 @@ fn fixes(text: &str, dim: usize) -> Result<Vec<(usize, usize, f64)>> {
 
 pub fn approximate(args: &ApproximateArgs) -> Result<()> {
     let (points, dim, scale) = read_padded(&args.points)?;
-    let mut params = parametrize(&points, &parametrization(&args.parametrization)?)?;
+    let parametrization = parametrization(&args.parametrization)?;
     let knots = match (&args.knots, args.control_points) {
         (Some(text), _) => KnotVector::new(args.degree, parse_arg("--knots", text)?)
             .map_err(|e| e.context("--knots"))?,
-        (None, Some(n)) => nurbs_book_knots(args.degree, n, &params)?,
+        (None, Some(n)) => {
+            nurbs_book_knots(args.degree, n, &parametrize(&points, &parametrization)?)?
+        }
         (None, None) => {
             return Err(Error::new(
                 ErrorKind::InvalidArgument,
@@ -297,21 +300,9 @@ pub fn approximate(args: &ApproximateArgs) -> Result<()> {
             ));
         }
     };
-    if !args.parametrization.trim().starts_with('[') {
-        remap(&mut params, knots.domain());
-    }
+    // Named parametrisations on [0, 1] are mapped onto the domain of the knots.
+    let params = parametrize_in(&points, &parametrization, knots.domain())?;
     solve(args, &points, &params, knots, (dim, scale))
-}
-
-/// Maps parameters normalised to [0, 1] onto the domain of given knots.
-fn remap(params: &mut [f64], (a, b): (f64, f64)) {
-    if (a, b) == (0.0, 1.0) {
-        return;
-    }
-    let last = params.len().saturating_sub(1);
-    for (j, u) in params.iter_mut().enumerate() {
-        *u = if j == last { b } else { a + *u * (b - a) };
-    }
 }
 
 fn solve(

@@ -6,8 +6,7 @@ use serde::de::DeserializeOwned;
 use serde_json::Value;
 use serde_json::value::RawValue;
 use spline_core::{Error, ErrorKind, Result};
-use spline_geom::BSpline;
-use spline_geom::exchange::{CurveRecord, parse_points};
+use spline_geom::exchange::parse_points;
 use std::io::{Read, Write};
 use std::sync::atomic::{AtomicBool, Ordering};
 
@@ -23,13 +22,12 @@ pub type Pt = SVector<f64, MAX_DIM>;
 pub fn read_text(path: &str) -> Result<String> {
     if path == "-" {
         let mut text = String::new();
-        std::io::stdin().read_to_string(&mut text).map_err(|e| {
-            Error::new(ErrorKind::Parse, format!("cannot read standard input: {e}"))
-        })?;
+        std::io::stdin()
+            .read_to_string(&mut text)
+            .map_err(|e| Error::io("read standard input", e))?;
         Ok(text)
     } else {
-        std::fs::read_to_string(path)
-            .map_err(|e| Error::new(ErrorKind::Parse, format!("cannot read {path}: {e}")))
+        std::fs::read_to_string(path).map_err(|e| Error::io(format_args!("read {path}"), e))
     }
 }
 
@@ -164,7 +162,7 @@ pub fn output_closed() -> bool {
 /// drops everything written, which would lose the output and still exit with 0.
 ///
 /// # Errors
-/// [`ErrorKind::InvalidArgument`] when standard output is closed.
+/// [`ErrorKind::Io`] when standard output is closed.
 ///
 /// The Rust runtime reopens a standard descriptor that was closed at start-up on
 /// `/dev/null` for reading and writing; a shell redirection (`> /dev/null`) opens it for
@@ -173,7 +171,7 @@ pub fn check_stdout_open() -> Result<()> {
     use std::os::fd::AsFd;
     let closed = || {
         Error::new(
-            ErrorKind::InvalidArgument,
+            ErrorKind::Io,
             "standard output is closed; nothing can be printed",
         )
     };
@@ -201,7 +199,7 @@ pub fn check_stdout_open() -> Result<()> {
 /// failure (a full disk) is an error.
 ///
 /// # Errors
-/// [`ErrorKind::InvalidArgument`] when the output cannot be written.
+/// [`ErrorKind::Io`] when the output cannot be written.
 pub fn write_stdout(bytes: &[u8]) -> Result<()> {
     write_stdout_stream(|write| write(bytes))
 }
@@ -211,54 +209,40 @@ pub fn write_stdout(bytes: &[u8]) -> Result<()> {
 /// `produce` after some pieces were written leaves them written.
 ///
 /// # Errors
-/// The errors of `produce`; [`ErrorKind::InvalidArgument`] when the output cannot be
-/// written.
+/// The errors of `produce`; [`ErrorKind::Io`] when the output cannot be written.
 pub fn write_stdout_stream(
     produce: impl FnOnce(&mut dyn FnMut(&[u8]) -> Result<()>) -> Result<()>,
 ) -> Result<()> {
     let stdout = std::io::stdout().lock();
     let mut out = std::io::BufWriter::with_capacity(1 << 16, stdout);
-    let failed = |e: &std::io::Error| {
+    let failed = |e: std::io::Error| {
         if e.kind() == std::io::ErrorKind::BrokenPipe {
             OUTPUT_CLOSED.store(true, Ordering::Relaxed);
         }
-        Error::new(
-            ErrorKind::InvalidArgument,
-            format!("cannot write to standard output: {e}"),
-        )
+        Error::io("write to standard output", e)
     };
-    produce(&mut |bytes: &[u8]| out.write_all(bytes).map_err(|e| failed(&e)))?;
+    produce(&mut |bytes: &[u8]| out.write_all(bytes).map_err(failed))?;
     out.write_all(b"\n")
         .and_then(|()| out.flush())
-        .map_err(|e| failed(&e))
+        .map_err(failed)
 }
 
 /// Writes a whole file opened earlier; a full disk is a one-line error that names the file.
 ///
 /// # Errors
-/// [`ErrorKind::InvalidArgument`] when the file cannot be written.
+/// [`ErrorKind::Io`] when the file cannot be written.
 pub fn write_file(mut file: std::fs::File, path: &str, bytes: &[u8]) -> Result<()> {
     file.write_all(bytes)
         .and_then(|()| file.flush())
-        .map_err(|e| {
-            Error::new(
-                ErrorKind::InvalidArgument,
-                format!("cannot write {path}: {e}"),
-            )
-        })
+        .map_err(|e| Error::io(format_args!("write {path}"), e))
 }
 
 /// Creates an output file before the work that fills it, so that a bad path fails at once.
 ///
 /// # Errors
-/// [`ErrorKind::InvalidArgument`] when the file cannot be created.
+/// [`ErrorKind::Io`] when the file cannot be created.
 pub fn create_file(path: &str) -> Result<std::fs::File> {
-    std::fs::File::create(path).map_err(|e| {
-        Error::new(
-            ErrorKind::InvalidArgument,
-            format!("cannot write {path}: {e}"),
-        )
-    })
+    std::fs::File::create(path).map_err(|e| Error::io(format_args!("write {path}"), e))
 }
 
 /// A JSON formatter that refuses to write `null`: the exchange format has no nulls, and
@@ -366,93 +350,6 @@ pub fn unpad(p: &Pt, dim: usize) -> Vec<f64> {
     p.as_slice()[..dim].to_vec()
 }
 
-/// A B-spline curve of run-time dimension.
-#[derive(Clone, Debug)]
-pub struct Curve {
-    /// The curve with padded control points.
-    pub curve: BSpline<f64, Pt>,
-    /// The number of meaningful coordinates.
-    pub dim: usize,
-}
-
-impl Curve {
-    /// Validates a record (without weights).
-    pub fn from_record(record: &CurveRecord) -> Result<Self> {
-        let dim = record.dimension()?;
-        let points = record
-            .control_points
-            .iter()
-            .map(|r| pad(r))
-            .collect::<Result<Vec<_>>>()?;
-        Ok(Self {
-            curve: BSpline::from_knots(record.degree, record.knots.clone(), points)?,
-            dim,
-        })
-    }
-
-    /// A curve of the same dimension.
-    pub fn with(&self, curve: BSpline<f64, Pt>) -> Self {
-        Self {
-            curve,
-            dim: self.dim,
-        }
-    }
-
-    /// The exchange-format record.
-    pub fn to_record(&self) -> CurveRecord {
-        CurveRecord {
-            degree: self.curve.degree(),
-            knots: self.curve.knots().knots().to_vec(),
-            control_points: self
-                .curve
-                .control_points()
-                .iter()
-                .map(|p| unpad(p, self.dim))
-                .collect(),
-            weights: None,
-        }
-    }
-}
-
-/// What an object file holds, validated.
-pub enum Object {
-    /// A non-rational curve.
-    Curve(Curve),
-    /// A NURBS curve (a record with weights).
-    Nurbs(crate::surfaces::NurbsObject),
-    /// A tensor-product surface (rational or not).
-    Surface(crate::surfaces::SurfaceObject),
-}
-
-/// Reads an object file and tells curves, NURBS curves and surfaces apart: a surface has a
-/// pair of degrees, a NURBS curve has weights. Every error names the file.
-pub fn read_object(path: &str) -> Result<Object> {
-    let value = read_json(path)?;
-    classify(value).map_err(|e| e.context(path))
-}
-
-/// Classifies and validates a JSON object (see [`read_object`]).
-pub fn classify(value: Value) -> Result<Object> {
-    if !value.is_object() {
-        return Err(Error::new(
-            ErrorKind::Parse,
-            format!(
-                "expected a JSON object with degree, knots and control_points, got {}",
-                json_kind(&value)
-            ),
-        ));
-    }
-    if value.get("degree").is_some_and(Value::is_array) {
-        return Ok(Object::Surface(crate::surfaces::surface_from_value(value)?));
-    }
-    let record: CurveRecord = from_value("curve", value)?;
-    if record.weights.is_some() {
-        Ok(Object::Nurbs(crate::surfaces::nurbs_from_record(&record)?))
-    } else {
-        Ok(Object::Curve(Curve::from_record(&record)?))
-    }
-}
-
 /// What kind of JSON value this is, for messages.
 pub fn json_kind(value: &Value) -> &'static str {
     match value {
@@ -467,7 +364,9 @@ pub fn json_kind(value: &Value) -> &'static str {
 
 /// Reads a point file (JSON array of arrays, or text; see
 /// [`spline_geom::exchange::parse_points`]).
-#[allow(dead_code)] // used by the fitting subcommands
+///
+/// # Errors
+/// [`ErrorKind::Io`] for an unreadable file; the errors of `parse_points`, naming the file.
 pub fn read_points(path: &str) -> Result<Vec<Vec<f64>>> {
     parse_points(&read_text(path)?).map_err(|e| e.context(path))
 }

@@ -7,11 +7,15 @@
 #![allow(unreachable_pub)]
 
 mod algebra;
-mod curves;
+mod eval;
 mod fitting;
 mod io;
+mod make;
+mod mesh;
+mod objects;
+mod plot;
 mod shape;
-mod surfaces;
+mod structural;
 
 use clap::{Parser, Subcommand};
 use std::process::ExitCode;
@@ -27,31 +31,31 @@ struct Cli {
 #[derive(Subcommand)]
 enum Command {
     /// All basis functions N_i^(k)(u) at the parameters: [param][k][i].
-    Basis(curves::BasisArgs),
+    Basis(eval::BasisArgs),
     /// Evaluate a curve ([param][k][coord]) or surface ([param][k][l][coord]) with derivatives.
-    Eval(curves::EvalArgs),
+    Eval(eval::EvalArgs),
     /// Insert a knot (times R) without changing the shape.
-    Insert(curves::InsertArgs),
+    Insert(structural::InsertArgs),
     /// Insert many knots at once (knot refinement).
-    Refine(curves::RefineArgs),
+    Refine(structural::RefineArgs),
     /// Remove a knot if the shape moves by at most the tolerance.
-    Remove(curves::RemoveArgs),
+    Remove(structural::RemoveArgs),
     /// Raise the degree; every distinct knot's multiplicity rises by the same amount.
-    Elevate(curves::ElevateArgs),
+    Elevate(structural::ElevateArgs),
     /// Split at a parameter into [left, right], both clamped there.
-    Split(curves::SplitArgs),
+    Split(structural::SplitArgs),
     /// The Bézier segments of a curve, each clamped on its span.
-    Bezier(curves::ObjectArgs),
+    Bezier(structural::ObjectArgs),
     /// The derivative curve of order K (degree p - K).
-    Derivative(curves::DerivativeArgs),
+    Derivative(structural::DerivativeArgs),
     /// Draw curves with their control polygons as SVG.
-    Plot(curves::PlotArgs),
+    Plot(plot::PlotArgs),
     /// Product of two B-spline functions, optionally with Jacobians.
     Product(algebra::ProductArgs),
     /// Signed curvature of a planar curve at parameters.
-    Curvature(algebra::CurvatureArgs),
+    Curvature(plot::CurvatureArgs),
     /// Inflections and curvature extrema of a planar curve.
-    Features(curves::ObjectArgs),
+    Features(structural::ObjectArgs),
     /// Interpolate points with a B-spline curve.
     Interpolate(fitting::InterpolateArgs),
     /// The natural cubic spline function through (x, y) data.
@@ -63,33 +67,33 @@ enum Command {
     /// Shape optimisation with adaptive parametrisation (seed 000 §3): minimise perimeter²/area.
     Optimize(shape::OptimizeArgs),
     /// Build circles, arcs, conics, extrusions, ruled, conical, revolved surfaces, spheres, tori.
-    Make(surfaces::MakeArgs),
+    Make(make::MakeArgs),
     /// Triangulate a surface into an OBJ or OFF mesh.
-    Mesh(surfaces::MeshArgs),
+    Mesh(mesh::MeshArgs),
 }
 
 fn run(command: Command) -> spline_core::Result<()> {
     match command {
-        Command::Basis(args) => curves::basis(&args),
-        Command::Eval(args) => curves::eval(&args),
-        Command::Insert(args) => curves::insert(&args),
-        Command::Refine(args) => curves::refine(&args),
-        Command::Remove(args) => curves::remove(&args),
-        Command::Elevate(args) => curves::elevate(&args),
-        Command::Split(args) => curves::split(&args),
-        Command::Bezier(args) => curves::bezier(&args),
-        Command::Derivative(args) => curves::derivative(&args),
-        Command::Plot(args) => curves::plot(&args),
+        Command::Basis(args) => eval::basis(&args),
+        Command::Eval(args) => eval::eval(&args),
+        Command::Insert(args) => structural::insert(&args),
+        Command::Refine(args) => structural::refine(&args),
+        Command::Remove(args) => structural::remove(&args),
+        Command::Elevate(args) => structural::elevate(&args),
+        Command::Split(args) => structural::split(&args),
+        Command::Bezier(args) => structural::bezier(&args),
+        Command::Derivative(args) => structural::derivative(&args),
+        Command::Plot(args) => plot::plot(&args),
         Command::Product(args) => algebra::product(&args),
-        Command::Curvature(args) => algebra::curvature(&args),
-        Command::Features(args) => algebra::features(&args),
+        Command::Curvature(args) => plot::curvature(&args),
+        Command::Features(args) => plot::features(&args),
         Command::Interpolate(args) => fitting::interpolate(&args),
         Command::Natural(args) => fitting::natural(&args),
         Command::Approximate(args) => fitting::approximate(&args),
         Command::Smooth(args) => shape::smooth(&args),
         Command::Optimize(args) => shape::optimize(&args),
-        Command::Make(args) => surfaces::make(&args),
-        Command::Mesh(args) => surfaces::mesh(&args),
+        Command::Make(args) => make::make(&args),
+        Command::Mesh(args) => mesh::mesh(&args),
     }
 }
 

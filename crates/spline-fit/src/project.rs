@@ -1,7 +1,7 @@
 //! Closest point on a curve: subdivision with bounds, then a safeguarded Newton iteration.
 
 use spline_core::{ControlPoint, Error, ErrorKind, Result, Scalar, cast};
-use spline_geom::{BSpline, Bezier};
+use spline_geom::{Bezier, ParamCurve};
 
 /// The point of a curve closest to a given point.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -46,11 +46,13 @@ fn box_diagonal<T: Scalar, P: ControlPoint<T>>(points: &[P]) -> T {
     sum.sqrt()
 }
 
-/// The point of `curve` closest to `target`, with its parameter and distance.
+/// The point of `curve` (any kind: B-spline, Bézier or NURBS, [`ParamCurve`]) closest to
+/// `target`, with its parameter and distance.
 ///
 /// Robust for points far away, near cusps and equidistant from several arcs: the curve is
-/// cut into its Bézier segments, pieces are subdivided (de Casteljau) while the distance to
-/// the bounding box of their control points — a lower bound by the convex hull property —
+/// cut into its Bézier pieces, pieces are subdivided (de Casteljau, in homogeneous space for
+/// rational curves) while the distance to the bounding box of their control points — a
+/// lower bound by the convex hull property —
 /// can still beat the best distance found, down to pieces a thousandth of the curve's size;
 /// then on every surviving piece a Newton iteration on
 /// $g(u) = \langle C(u) - Q, C'(u) \rangle$ is run, safeguarded to stay in the piece and to
@@ -73,18 +75,23 @@ fn box_diagonal<T: Scalar, P: ControlPoint<T>>(points: &[P]) -> T {
 ///
 /// # Errors
 /// [`ErrorKind::NonFinite`] if `target` is not finite.
-pub fn closest_point<T: Scalar, P: ControlPoint<T>>(
-    curve: &BSpline<T, P>,
-    target: P,
-) -> Result<Projection<T, P>> {
+pub fn closest_point<T: Scalar, C: ParamCurve<T>>(
+    curve: &C,
+    target: C::Point,
+) -> Result<Projection<T, C::Point>> {
     if !target.all_finite() {
         return Err(Error::new(
             ErrorKind::NonFinite,
             "the point to project is not finite",
         ));
     }
-    let segments: Vec<Bezier<T, P>> = curve.bezier_segments();
-    let size = box_diagonal(curve.control_points());
+    let project = |cp: &[C::Coefficient]| cp.iter().map(C::project).collect::<Vec<_>>();
+    let segments: Vec<Bezier<T, C::Coefficient>> = curve
+        .bezier_pieces()
+        .into_iter()
+        .map(|(lo, hi, cp)| Bezier::with_interval(cp, lo, hi))
+        .collect::<Result<_>>()?;
+    let size = box_diagonal(&curve.control_polygon());
     let min_size = size * cast::<T>(1e-3);
     let (a, _) = curve.domain();
     let start = curve.eval(a)?;
@@ -93,7 +100,7 @@ pub fn closest_point<T: Scalar, P: ControlPoint<T>>(
         point: start,
         distance: (start - target).length(),
     };
-    let consider = |best: &mut Projection<T, P>, param: T, point: P| {
+    let consider = |best: &mut Projection<T, C::Point>, param: T, point: C::Point| {
         let d = (point - target).length();
         if d < best.distance || (d == best.distance && param < best.param) {
             *best = Projection {
@@ -106,21 +113,22 @@ pub fn closest_point<T: Scalar, P: ControlPoint<T>>(
     for s in &segments {
         let (lo, hi) = s.interval();
         let cp = s.control_points();
-        consider(&mut best, lo, cp[0]);
-        consider(&mut best, hi, cp[cp.len() - 1]);
+        consider(&mut best, lo, C::project(&cp[0]));
+        consider(&mut best, hi, C::project(&cp[cp.len() - 1]));
     }
     // Branch and bound over the pieces.
-    let mut stack: Vec<(Bezier<T, P>, usize)> = segments.into_iter().map(|s| (s, 0)).collect();
+    let mut stack: Vec<(Bezier<T, C::Coefficient>, usize)> =
+        segments.into_iter().map(|s| (s, 0)).collect();
     let mut leaves: Vec<(T, T, T)> = Vec::new();
     let half: T = cast(0.5);
     while let Some((piece, depth)) = stack.pop() {
-        let cp = piece.control_points();
-        let bound = box_distance(cp, &target);
+        let cp = project(piece.control_points());
+        let bound = box_distance(&cp, &target);
         if bound > best.distance {
             continue;
         }
         let (lo, hi) = piece.interval();
-        if box_diagonal(cp) <= min_size || depth >= 40 || !(lo < hi) {
+        if box_diagonal(&cp) <= min_size || depth >= 40 || !(lo < hi) {
             leaves.push((bound, lo, hi));
             continue;
         }
@@ -131,7 +139,7 @@ pub fn closest_point<T: Scalar, P: ControlPoint<T>>(
         }
         let (left, right) = piece.subdivide(mid)?;
         let lcp = left.control_points();
-        consider(&mut best, mid, lcp[lcp.len() - 1]);
+        consider(&mut best, mid, C::project(&lcp[lcp.len() - 1]));
         stack.push((right, depth + 1));
         stack.push((left, depth + 1));
     }
@@ -167,9 +175,9 @@ pub fn closest_point<T: Scalar, P: ControlPoint<T>>(
 /// [`ErrorKind::UnsortedKnots`] for decreasing parameters; [`ErrorKind::OutOfDomain`] for
 /// parameters outside the curve's domain; [`ErrorKind::NonFinite`] for points that are not
 /// finite.
-pub fn project_ordered<T: Scalar, P: ControlPoint<T>>(
-    curve: &BSpline<T, P>,
-    points: &[P],
+pub fn project_ordered<T: Scalar, C: ParamCurve<T>>(
+    curve: &C,
+    points: &[C::Point],
     params: &[T],
 ) -> Result<Vec<T>> {
     if points.len() != params.len() {
@@ -179,11 +187,14 @@ pub fn project_ordered<T: Scalar, P: ControlPoint<T>>(
         ));
     }
     spline_core::check_params(params)?;
-    for (k, &u) in params.iter().enumerate() {
-        curve
-            .knots()
-            .check_param(u)
-            .map_err(|e| e.context(format_args!("data point {k}")))?;
+    let (a, b) = curve.domain();
+    if let Some(k) = params.iter().position(|&u| !(u >= a && u <= b)) {
+        return Err(Error::out_of_domain(
+            spline_core::to_f64(params[k]),
+            (spline_core::to_f64(a), spline_core::to_f64(b)),
+        )
+        .with_index(k)
+        .context(format_args!("data point {k}")));
     }
     if let Some(k) = points.iter().position(|q| !q.all_finite()) {
         return Err(Error::new(
@@ -191,7 +202,6 @@ pub fn project_ordered<T: Scalar, P: ControlPoint<T>>(
             format!("data point {k} is not finite"),
         ));
     }
-    let (a, b) = curve.domain();
     let mut out = params.to_vec();
     for k in 0..points.len() {
         let lo = if k == 0 { a } else { out[k - 1] };
@@ -207,21 +217,21 @@ pub fn project_ordered<T: Scalar, P: ControlPoint<T>>(
 }
 
 /// Safeguarded Newton iteration for the closest point on `[lo, hi]`.
-fn newton<T: Scalar, P: ControlPoint<T>>(
-    curve: &BSpline<T, P>,
-    target: &P,
+fn newton<T: Scalar, C: ParamCurve<T>>(
+    curve: &C,
+    target: &C::Point,
     lo: T,
     hi: T,
-) -> Result<(T, P)> {
+) -> Result<(T, C::Point)> {
     let half: T = cast(0.5);
-    let mut ders = [P::origin(); 3];
-    let dist2 = |ders: &[P; 3]| (ders[0] - *target).length_squared();
+    let mut ders = [C::Point::origin(); 3];
+    let dist2 = |ders: &[C::Point; 3]| (ders[0] - *target).length_squared();
     // Start at the better of the two ends and the middle.
     let mut t = lo;
     curve.derivatives_into(t, &mut ders)?;
     let mut f = dist2(&ders);
     for cand in [(lo + hi) * half, hi] {
-        let mut d = [P::origin(); 3];
+        let mut d = [C::Point::origin(); 3];
         curve.derivatives_into(cand, &mut d)?;
         let fc = dist2(&d);
         if fc < f {
@@ -233,16 +243,16 @@ fn newton<T: Scalar, P: ControlPoint<T>>(
 }
 
 /// Safeguarded Newton iteration for the closest point on `[lo, hi]` from `t`.
-fn newton_from<T: Scalar, P: ControlPoint<T>>(
-    curve: &BSpline<T, P>,
-    target: &P,
+fn newton_from<T: Scalar, C: ParamCurve<T>>(
+    curve: &C,
+    target: &C::Point,
     start: T,
     lo: T,
     hi: T,
-) -> Result<(T, P)> {
+) -> Result<(T, C::Point)> {
     let half: T = cast(0.5);
-    let mut ders = [P::origin(); 3];
-    let dist2 = |ders: &[P; 3]| (ders[0] - *target).length_squared();
+    let mut ders = [C::Point::origin(); 3];
+    let dist2 = |ders: &[C::Point; 3]| (ders[0] - *target).length_squared();
     let mut t = start;
     curve.derivatives_into(t, &mut ders)?;
     let mut f = dist2(&ders);
@@ -269,7 +279,7 @@ fn newton_from<T: Scalar, P: ControlPoint<T>>(
             if cand == t {
                 break;
             }
-            let mut d = [P::origin(); 3];
+            let mut d = [C::Point::origin(); 3];
             curve.derivatives_into(cand, &mut d)?;
             let fc = dist2(&d);
             // A full Newton step is taken unless it clearly increases the distance (near

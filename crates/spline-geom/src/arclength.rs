@@ -1,9 +1,8 @@
-//! Adaptive arc length.
+//! Adaptive arc length (the quadrature behind [`crate::ParamCurve::arc_length`]).
 
-use crate::bspline::BSpline;
-use spline_core::{ControlPoint, Error, ErrorKind, Result, Scalar, cast, gauss_legendre, to_f64};
+use spline_core::{Error, ErrorKind, Result, Scalar, cast, gauss_legendre, to_f64};
 
-/// The default absolute accuracy of [`BSpline::arc_length`].
+/// The default absolute accuracy of [`crate::ParamCurve::arc_length`].
 pub const DEFAULT_ACCURACY: f64 = 1e-9;
 
 struct Quadrature<T> {
@@ -28,71 +27,25 @@ impl<T: Scalar> Quadrature<T> {
     }
 }
 
-impl<T: Scalar, P: ControlPoint<T>> BSpline<T, P> {
-    /// The arc length of the whole curve to the absolute `accuracy`.
-    ///
-    /// # Errors
-    /// As [`BSpline::arc_length_between`].
-    pub fn arc_length(&self, accuracy: T) -> Result<T> {
-        let (a, b) = self.domain();
-        self.arc_length_between(a, b, accuracy)
+/// $\int \lVert C'(u) \rVert\,du$ over the pieces between consecutive `breaks` (the speed
+/// is smooth inside each), by adaptive Gauss–Legendre quadrature to the absolute `accuracy`
+/// shared among the pieces.
+///
+/// # Errors
+/// [`ErrorKind::NoConvergence`] if a piece cannot reach its share of the accuracy.
+pub(crate) fn adaptive_length<T: Scalar>(
+    breaks: &[T],
+    accuracy: T,
+    speed: impl Fn(T) -> T,
+) -> Result<T> {
+    let rule = Quadrature::<T>::new(8);
+    let pieces = breaks.len().saturating_sub(1).max(1);
+    let tol_piece = accuracy / spline_core::from_count::<T>(pieces);
+    let mut total = T::zero();
+    for w in breaks.windows(2) {
+        total += adaptive(&rule, w[0], w[1], &speed, tol_piece, 0)?;
     }
-
-    /// The arc length between parameters `a ≤ b` to the absolute `accuracy`:
-    /// $\int_a^b \lVert C'(u) \rVert\,du$ by adaptive Gauss–Legendre quadrature on each knot
-    /// span (the speed is smooth inside a span), bisecting where two estimates differ.
-    ///
-    /// ```
-    /// use nalgebra::Vector2;
-    /// use spline_geom::BSpline;
-    /// // The parabola y = x², 0 ≤ x ≤ 1: length √5/2 + asinh(2)/4.
-    /// let c = BSpline::from_knots(2, vec![0.0, 0.0, 0.0, 1.0, 1.0, 1.0],
-    ///     vec![Vector2::new(0.0, 0.0), Vector2::new(0.5, 0.0), Vector2::new(1.0, 1.0)])?;
-    /// let exact = 5f64.sqrt() / 2.0 + 2f64.asinh() / 4.0;
-    /// assert!((c.arc_length(1e-12)? - exact).abs() < 1e-12);
-    /// # Ok::<(), spline_core::Error>(())
-    /// ```
-    ///
-    /// # Errors
-    /// [`ErrorKind::NonFinite`]/[`ErrorKind::OutOfDomain`] for the bounds;
-    /// [`ErrorKind::InvalidArgument`] if `a > b` or the accuracy is not positive;
-    /// [`ErrorKind::NoConvergence`] if the requested accuracy cannot be reached (it is far
-    /// below rounding of the result).
-    pub fn arc_length_between(&self, a: T, b: T, accuracy: T) -> Result<T> {
-        self.knots().check_param(a)?;
-        self.knots().check_param(b)?;
-        if a > b {
-            return Err(Error::new(
-                ErrorKind::InvalidArgument,
-                format!(
-                    "arc length from {} to {}: bounds in decreasing order",
-                    to_f64(a),
-                    to_f64(b)
-                ),
-            ));
-        }
-        if !(accuracy > T::zero()) {
-            return Err(Error::new(
-                ErrorKind::InvalidArgument,
-                format!("accuracy must be positive, got {}", to_f64(accuracy)),
-            ));
-        }
-        let rule = Quadrature::<T>::new(8);
-        let speed = |u: T| {
-            let span = self.knots().span_in_domain(u);
-            let mut d = [P::origin(); 2];
-            self.derivatives_in_span(span, u, &mut d);
-            d[1].length()
-        };
-        let breaks = self.knots().breaks_between(a, b);
-        let pieces = breaks.len().saturating_sub(1).max(1);
-        let tol_piece = accuracy / spline_core::from_count::<T>(pieces);
-        let mut total = T::zero();
-        for w in breaks.windows(2) {
-            total += adaptive(&rule, w[0], w[1], &speed, tol_piece, 0)?;
-        }
-        Ok(total)
-    }
+    Ok(total)
 }
 
 fn adaptive<T: Scalar>(

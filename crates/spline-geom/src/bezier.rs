@@ -257,3 +257,18 @@ impl<T: Scalar, V: VectorSpace<T>> BSpline<T, V> {
             .collect()
     }
 }
+
+/// A Bézier segment of a valid B-spline as a clamped B-spline on its interval (its degree
+/// is at most [`spline_core::MAX_DEGREE`], so no check is needed).
+pub(crate) fn bezier_as_bspline<T: Scalar, P: VectorSpace<T>>(
+    segment: &Bezier<T, P>,
+) -> BSpline<T, P> {
+    let (a, b) = segment.interval();
+    let p = segment.degree();
+    let mut knots = vec![a; p + 1];
+    knots.extend(std::iter::repeat_n(b, p + 1));
+    BSpline::new_unchecked(
+        KnotVector::new_unchecked(p, knots),
+        segment.control_points().to_vec(),
+    )
+}

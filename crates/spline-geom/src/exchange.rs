@@ -270,7 +270,7 @@ impl CurveRecord {
             degree: curve.degree(),
             knots: curve.knots().knots().iter().map(|&k| to_f64(k)).collect(),
             control_points: curve.control_points().iter().map(row_of::<T, _>).collect(),
-            weights: Some(curve.weights().into_iter().map(to_f64).collect()),
+            weights: Some(curve.weights().iter().map(|&w| to_f64(w)).collect()),
         }
     }
 

@@ -1,28 +1,16 @@
 //! Export: gnuplot `.dat` files (seed 000's `drawCurve` and `drawPoly`) and SVG pictures of
 //! planar curves with their control polygons, curvature combs and marked points.
 
-use crate::bspline::BSpline;
+use crate::param::{ParamCurve, PlanarCurve};
 use nalgebra::Vector2;
-use spline_core::{ControlPoint, Scalar, from_count, to_f64};
+use spline_core::{ControlPoint, Scalar, to_f64};
 use std::fmt::Write;
 
-/// Parameters covering the domain: `per_span` equal steps in every non-empty knot span, so
-/// that every knot is a sample.
+/// Parameters covering the domain: `per_span` equal steps in every piece, so that every
+/// knot is a sample ([`ParamCurve::sample_params`]).
 #[must_use]
-pub fn sample_params<T: Scalar, P: ControlPoint<T>>(
-    curve: &BSpline<T, P>,
-    per_span: usize,
-) -> Vec<T> {
-    let per_span = per_span.max(1);
-    let breaks = curve.knots().domain_breaks();
-    let mut params = Vec::with_capacity((breaks.len() - 1) * per_span + 1);
-    for w in breaks.windows(2) {
-        for j in 0..per_span {
-            params.push(w[0] + (w[1] - w[0]) * from_count::<T>(j) / from_count::<T>(per_span));
-        }
-    }
-    params.push(curve.domain().1);
-    params
+pub fn sample_params<T: Scalar, C: ParamCurve<T>>(curve: &C, per_span: usize) -> Vec<T> {
+    curve.sample_params(per_span)
 }
 
 fn row<T: Scalar, P: ControlPoint<T>>(p: &P) -> String {
@@ -38,20 +26,17 @@ fn row<T: Scalar, P: ControlPoint<T>>(p: &P) -> String {
 /// # Panics
 /// Never: the samples lie in the domain.
 #[must_use]
-pub fn gnuplot_curve<T: Scalar, P: ControlPoint<T>>(
-    curve: &BSpline<T, P>,
-    per_span: usize,
-) -> String {
-    let params = sample_params(curve, per_span);
+pub fn gnuplot_curve<T: Scalar, C: ParamCurve<T>>(curve: &C, per_span: usize) -> String {
+    let params = curve.sample_params(per_span);
     let points = curve.eval_many(&params).expect("samples lie in the domain");
     points.iter().map(|p| row(p) + "\n").collect()
 }
 
 /// The control polygon for gnuplot: one control point per line.
 #[must_use]
-pub fn gnuplot_polygon<T: Scalar, P: ControlPoint<T>>(curve: &BSpline<T, P>) -> String {
+pub fn gnuplot_polygon<T: Scalar, C: ParamCurve<T>>(curve: &C) -> String {
     curve
-        .control_points()
+        .control_polygon()
         .iter()
         .map(|p| row(p) + "\n")
         .collect()
@@ -139,8 +124,9 @@ impl SvgPlot {
         });
     }
 
-    /// Draws a planar curve (class `curve`) with its control polygon and control points.
-    pub fn add_curve(&mut self, curve: &BSpline<f64, Vector2<f64>>) {
+    /// Draws a planar curve of any kind (class `curve`) with its control polygon and
+    /// control points.
+    pub fn add_curve<C: PlanarCurve<f64>>(&mut self, curve: &C) {
         self.add_curve_styled(curve, "curve");
     }
 
@@ -148,18 +134,19 @@ impl SvgPlot {
     ///
     /// # Panics
     /// Never: the samples lie in the domain.
-    pub fn add_curve_styled(&mut self, curve: &BSpline<f64, Vector2<f64>>, class: &str) {
-        self.add_polyline(curve.control_points(), "polygon");
-        self.add_markers(curve.control_points(), "control");
-        let params = sample_params(curve, 64);
+    pub fn add_curve_styled<C: PlanarCurve<f64>>(&mut self, curve: &C, class: &str) {
+        let polygon = curve.control_polygon();
+        self.add_polyline(&polygon, "polygon");
+        self.add_markers(&polygon, "control");
+        let params = curve.sample_params(64);
         let points = curve.eval_many(&params).expect("samples lie in the domain");
         self.add_polyline(&points, class);
     }
 
-    /// Draws the curvature comb: at `samples` parameters, a tooth along the normal of length
-    /// proportional to the signed curvature, scaled so the longest tooth is a fifth of the
-    /// picture; the teeth's ends are joined.
-    pub fn add_curvature_comb(&mut self, curve: &BSpline<f64, Vector2<f64>>, samples: usize) {
+    /// Draws the curvature comb of a planar curve of any kind: at `samples` parameters, a
+    /// tooth along the normal of length proportional to the signed curvature, scaled so the
+    /// longest tooth is a fifth of the picture; the teeth's ends are joined.
+    pub fn add_curvature_comb<C: PlanarCurve<f64>>(&mut self, curve: &C, samples: usize) {
         let (a, b) = curve.domain();
         let mut teeth = Vec::new();
         for j in 0..=samples.max(1) {
@@ -178,7 +165,7 @@ impl SvgPlot {
         if max == 0.0 || teeth.is_empty() {
             return;
         }
-        let (lo, hi) = bounds(curve.control_points());
+        let (lo, hi) = bounds(&curve.control_polygon());
         // A tooth of length 0.2 · size · |κ| / max|κ|, formed without overflow.
         let size = (hi * 0.5 - lo * 0.5).amax() * 2.0;
         // Teeth point away from the centre of curvature.

@@ -2,9 +2,10 @@
 //! of seed 000) and shaded SVG pictures.
 
 use crate::nurbs::NurbsSurface;
+use crate::param::ParamSurface;
 use crate::surface::Surface;
 use nalgebra::Vector3;
-use spline_core::{ControlPoint, Error, ErrorKind, KnotVector, Result, Scalar, from_count, to_f64};
+use spline_core::{ControlPoint, Error, ErrorKind, Result, Scalar, from_count, to_f64};
 use std::collections::HashMap;
 use std::fmt::Write;
 
@@ -400,9 +401,9 @@ struct Face {
 /// the knots.
 pub const MAX_MESH_SEGMENTS: usize = 1000;
 
-/// Parameters for tessellation: `segments` equal steps over the domain, plus every interior
-/// knot (so that creases at knots of high multiplicity are kept).
-fn mesh_params<T: Scalar>(knots: &KnotVector<T>, segments: usize) -> Result<Vec<T>> {
+/// Parameters for tessellation: `segments` equal steps over the domain (the first and last
+/// breaks), plus every interior break.
+fn mesh_params<T: Scalar>(breaks: &[T], segments: usize) -> Result<Vec<T>> {
     if segments == 0 {
         return Err(Error::new(
             ErrorKind::InvalidArgument,
@@ -417,11 +418,11 @@ fn mesh_params<T: Scalar>(knots: &KnotVector<T>, segments: usize) -> Result<Vec<
             ),
         ));
     }
-    let (a, b) = knots.domain();
+    let (a, b) = (breaks[0], breaks[breaks.len() - 1]);
     let mut params: Vec<T> = (0..=segments)
         .map(|k| a + (b - a) * from_count::<T>(k) / from_count::<T>(segments))
         .collect();
-    params.extend(knots.interior_breakpoints().into_iter().map(|(k, _)| k));
+    params.extend_from_slice(&breaks[1..breaks.len() - 1]);
     params.sort_by(|x, y| x.partial_cmp(y).expect("finite parameters"));
     params.dedup_by(|x, y| to_f64(*x - *y).abs() <= 1e-12 * to_f64(b - a));
     *params.last_mut().expect("at least two parameters") = b;
@@ -432,53 +433,66 @@ fn to_vector3<T: Scalar, P: ControlPoint<T>>(p: &P) -> Vector3<f64> {
     Vector3::from_fn(|i, _| if i < P::DIM { to_f64(p.coord(i)) } else { 0.0 })
 }
 
-fn check_mesh_dimension(dim: usize) -> Result<()> {
-    if (1..=3).contains(&dim) {
-        Ok(())
-    } else {
-        Err(Error::new(
-            ErrorKind::DimensionMismatch,
-            format!("meshes are built from surfaces with 1 to 3 coordinates, got {dim}"),
-        ))
-    }
-}
-
-impl<T: Scalar, P: ControlPoint<T>> Surface<T, P> {
-    /// A triangle mesh of the surface: `segments_u × segments_v` equal parameter steps,
-    /// refined at every interior knot, evaluated with the tensor fast path
-    /// ([`Surface::eval_grid`]) and welded (see [`TriangleMesh::from_grid`]). Points with
-    /// fewer than 3 coordinates are padded with zeros.
+impl TriangleMesh {
+    /// A triangle mesh of any surface ([`ParamSurface`]): `segments_u × segments_v` equal
+    /// parameter steps, refined at every interior knot (so that creases at knots of high
+    /// multiplicity are kept), evaluated on the grid ([`ParamSurface::eval_grid`], the
+    /// tensor fast path for B-spline and NURBS surfaces) and welded (see
+    /// [`TriangleMesh::from_grid`]). Points with fewer than 3 coordinates are padded with
+    /// zeros.
+    ///
+    /// ```
+    /// use nalgebra::Vector3;
+    /// use spline_geom::{NurbsSurface, TriangleMesh};
+    /// let sphere = NurbsSurface::sphere(Vector3::new(0.0, 0.0, 0.0), 1.0)?;
+    /// let mesh = TriangleMesh::from_surface(&sphere, 16, 8)?;
+    /// assert_eq!(mesh.euler_characteristic(), 2); // a closed sphere
+    /// # Ok::<(), spline_core::Error>(())
+    /// ```
     ///
     /// # Errors
     /// [`ErrorKind::DimensionMismatch`] for points of more than 3 coordinates;
     /// [`ErrorKind::InvalidArgument`] for zero segments or more than [`MAX_MESH_SEGMENTS`].
-    pub fn tessellate(&self, segments_u: usize, segments_v: usize) -> Result<TriangleMesh> {
-        check_mesh_dimension(P::DIM)?;
-        let us = mesh_params(self.knots_u(), segments_u)?;
-        let vs = mesh_params(self.knots_v(), segments_v)?;
-        let points: Vec<Vector3<f64>> = self
+    pub fn from_surface<T: Scalar, S: ParamSurface<T>>(
+        surface: &S,
+        segments_u: usize,
+        segments_v: usize,
+    ) -> Result<Self> {
+        let dim = <S::Point as ControlPoint<T>>::DIM;
+        if !(1..=3).contains(&dim) {
+            return Err(Error::new(
+                ErrorKind::DimensionMismatch,
+                format!("meshes are built from surfaces with 1 to 3 coordinates, got {dim}"),
+            ));
+        }
+        let (breaks_u, breaks_v) = surface.breaks();
+        let us = mesh_params(&breaks_u, segments_u)?;
+        let vs = mesh_params(&breaks_v, segments_v)?;
+        let points: Vec<Vector3<f64>> = surface
             .eval_grid(&us, &vs)?
             .iter()
-            .map(to_vector3::<T, P>)
+            .map(to_vector3::<T, S::Point>)
             .collect();
-        TriangleMesh::from_grid(us.len(), vs.len(), &points)
+        Self::from_grid(us.len(), vs.len(), &points)
+    }
+}
+
+impl<T: Scalar, P: ControlPoint<T>> Surface<T, P> {
+    /// A triangle mesh of the surface ([`TriangleMesh::from_surface`]).
+    ///
+    /// # Errors
+    /// As [`TriangleMesh::from_surface`].
+    pub fn tessellate(&self, segments_u: usize, segments_v: usize) -> Result<TriangleMesh> {
+        TriangleMesh::from_surface(self, segments_u, segments_v)
     }
 }
 
 impl<T: Scalar, const D: usize> NurbsSurface<T, D> {
-    /// A triangle mesh of the surface (see [`Surface::tessellate`]).
+    /// A triangle mesh of the surface ([`TriangleMesh::from_surface`]).
     ///
     /// # Errors
-    /// As [`Surface::tessellate`].
+    /// As [`TriangleMesh::from_surface`].
     pub fn tessellate(&self, segments_u: usize, segments_v: usize) -> Result<TriangleMesh> {
-        check_mesh_dimension(D)?;
-        let us = mesh_params(self.knots_u(), segments_u)?;
-        let vs = mesh_params(self.knots_v(), segments_v)?;
-        let points: Vec<Vector3<f64>> = self
-            .eval_grid(&us, &vs)?
-            .iter()
-            .map(|p| Vector3::from_fn(|i, _| if i < D { to_f64(p[i]) } else { 0.0 }))
-            .collect();
-        TriangleMesh::from_grid(us.len(), vs.len(), &points)
+        TriangleMesh::from_surface(self, segments_u, segments_v)
     }
 }

@@ -6,10 +6,11 @@
 //! rule (The NURBS Book A4.2 and A4.4); every structural algorithm (insertion, refinement,
 //! removal, elevation, splitting) runs unchanged on the homogeneous container.
 
+use crate::bezier::bezier_as_bspline;
 use crate::bspline::BSpline;
 use crate::homogeneous::{Homogeneous, check_weight, check_weights};
 use crate::structural::relative_scale;
-use crate::surface::{Direction, Surface, bezier_as_bspline, flatten_net};
+use crate::surface::{Direction, Surface, flatten_net};
 use nalgebra::{RealField, SVector};
 use spline_core::{
     ControlPoint, Error, ErrorKind, KnotVector, MAX_ORDER, Result, Scalar, cast, from_count, to_f64,
@@ -41,6 +42,11 @@ use spline_core::{
 #[derive(Clone, Debug, PartialEq)]
 pub struct NurbsCurve<T, const D: usize> {
     curve: BSpline<T, Homogeneous<T, D>>,
+    /// The Cartesian control points $P_i$ (a view of `curve`, kept so that
+    /// [`NurbsCurve::control_points`] is a slice as for every other container).
+    points: Vec<SVector<T, D>>,
+    /// The weights $w_i$ (likewise).
+    weights: Vec<T>,
 }
 
 /// A planar NURBS curve.
@@ -310,9 +316,7 @@ impl<T: Scalar, const D: usize> NurbsCurve<T, D> {
         weights: Vec<T>,
     ) -> Result<Self> {
         let points = weighted_points(control_points, weights, |i| i.to_string())?;
-        Ok(Self {
-            curve: BSpline::new(knots, points)?,
-        })
+        Ok(Self::wrap(BSpline::new(knots, points)?))
     }
 
     /// A NURBS curve from a degree, raw knots, Cartesian control points and weights.
@@ -334,20 +338,27 @@ impl<T: Scalar, const D: usize> NurbsCurve<T, D> {
     /// [`ErrorKind::InvalidWeight`] unless every weight is positive and finite.
     pub fn from_homogeneous(curve: BSpline<T, Homogeneous<T, D>>) -> Result<Self> {
         check_weights(curve.control_points().iter().map(|h| h.weight))?;
-        Ok(Self { curve })
+        Ok(Self::wrap(curve))
+    }
+
+    /// The curve of a homogeneous container with positive weights, with its views.
+    fn wrap(curve: BSpline<T, Homogeneous<T, D>>) -> Self {
+        Self {
+            points: cartesian(curve.control_points()),
+            weights: weights_of(curve.control_points()),
+            curve,
+        }
     }
 
     /// A non-rational B-spline curve as a NURBS curve with unit weights.
     #[must_use]
     pub fn from_bspline(curve: &BSpline<T, SVector<T, D>>) -> Self {
-        Self {
-            curve: curve.map_control_points(|p| Homogeneous::new(*p, T::one())),
-        }
+        Self::wrap(curve.map_control_points(|p| Homogeneous::new(*p, T::one())))
     }
 
     pub(crate) fn new_unchecked(curve: BSpline<T, Homogeneous<T, D>>) -> Self {
         debug_assert!(curve.control_points().iter().all(|h| h.weight > T::zero()));
-        Self { curve }
+        Self::wrap(curve)
     }
 
     /// The result of a structural operation in homogeneous space: positive weights in theory
@@ -355,7 +366,7 @@ impl<T: Scalar, const D: usize> NurbsCurve<T, D> {
     /// magnitude can underflow to zero.
     fn checked(curve: BSpline<T, Homogeneous<T, D>>) -> Result<Self> {
         check_result_weights(curve.control_points())?;
-        Ok(Self { curve })
+        Ok(Self::wrap(curve))
     }
 
     /// The homogeneous B-spline curve (6.4) whose projection this curve is.
@@ -408,14 +419,14 @@ impl<T: Scalar, const D: usize> NurbsCurve<T, D> {
 
     /// The Cartesian control points $P_i$.
     #[must_use]
-    pub fn control_points(&self) -> Vec<SVector<T, D>> {
-        cartesian(self.curve.control_points())
+    pub fn control_points(&self) -> &[SVector<T, D>] {
+        &self.points
     }
 
     /// The weights $w_i$.
     #[must_use]
-    pub fn weights(&self) -> Vec<T> {
-        weights_of(self.curve.control_points())
+    pub fn weights(&self) -> &[T] {
+        &self.weights
     }
 
     /// Whether all weights are equal: the curve is then a polynomial B-spline curve.
@@ -516,38 +527,6 @@ impl<T: Scalar, const D: usize> NurbsCurve<T, D> {
         let mut out = vec![SVector::zeros(); order + 1];
         self.derivatives_into(u, &mut out)?;
         Ok(out)
-    }
-
-    /// The speed $\lVert R'(u) \rVert$.
-    ///
-    /// # Errors
-    /// [`ErrorKind::NonFinite`] or [`ErrorKind::OutOfDomain`].
-    pub fn speed(&self, u: T) -> Result<T> {
-        let mut d = [SVector::zeros(); 2];
-        self.derivatives_into(u, &mut d)?;
-        Ok(d[1].norm())
-    }
-
-    /// The unit tangent $R'(u) / \lVert R'(u) \rVert$.
-    ///
-    /// # Errors
-    /// [`ErrorKind::DegenerateGeometry`] where the velocity vanishes; the errors of
-    /// [`NurbsCurve::eval`].
-    pub fn unit_tangent(&self, u: T) -> Result<SVector<T, D>> {
-        let mut d = [SVector::zeros(); 2];
-        self.derivatives_into(u, &mut d)?;
-        crate::planar::unit(d[1]).ok_or_else(|| zero_velocity(u))
-    }
-
-    /// The unsigned curvature in any dimension,
-    /// $\kappa = \sqrt{\lVert R'\rVert^2 \lVert R''\rVert^2 - (R'\cdot R'')^2} / \lVert R'\rVert^3$.
-    ///
-    /// # Errors
-    /// As [`NurbsCurve::unit_tangent`].
-    pub fn curvature_magnitude(&self, u: T) -> Result<T> {
-        let mut d = [SVector::zeros(); 3];
-        self.derivatives_into(u, &mut d)?;
-        crate::planar::scaled_curvature(&d[1], &d[2], u, crate::planar::magnitude_formula)
     }
 
     /// Inserts the knot `u` `times` times, in homogeneous space; the curve is unchanged.
@@ -652,30 +631,6 @@ impl<T: Scalar, const D: usize> NurbsCurve<T, D> {
     }
 }
 
-use crate::planar::zero_velocity;
-
-impl<T: Scalar> NurbsCurve<T, 2> {
-    /// The signed curvature $\kappa = \frac{R' \wedge R''}{\lVert R' \rVert^3}$ of a planar
-    /// curve (positive when it turns left).
-    ///
-    /// # Errors
-    /// As [`NurbsCurve::unit_tangent`].
-    pub fn signed_curvature(&self, u: T) -> Result<T> {
-        let mut d = [SVector::zeros(); 3];
-        self.derivatives_into(u, &mut d)?;
-        crate::planar::scaled_curvature(&d[1], &d[2], u, crate::planar::signed_formula)
-    }
-
-    /// The unit normal: the unit tangent turned by +90°.
-    ///
-    /// # Errors
-    /// As [`NurbsCurve::unit_tangent`].
-    pub fn unit_normal(&self, u: T) -> Result<SVector<T, 2>> {
-        let t = self.unit_tangent(u)?;
-        Ok(SVector::<T, 2>::new(-t.y, t.x))
-    }
-}
-
 /// A NURBS surface in $\mathbb{R}^D$ (seed 004 (6.11), (6.14)):
 ///
 /// $$ S(u, v) = \frac{\sum_{i,j} N_{i,p}(u) N_{j,q}(v)\, w_{ij} P_{ij}}
@@ -694,6 +649,10 @@ impl<T: Scalar> NurbsCurve<T, 2> {
 #[derive(Clone, Debug, PartialEq)]
 pub struct NurbsSurface<T, const D: usize> {
     surface: Surface<T, Homogeneous<T, D>>,
+    /// The Cartesian control net, row-major (a view of `surface`).
+    points: Vec<SVector<T, D>>,
+    /// The weights, row-major (likewise).
+    weights: Vec<T>,
 }
 
 /// A NURBS surface in space.
@@ -716,9 +675,7 @@ impl<T: Scalar, const D: usize> NurbsSurface<T, D> {
         let points = weighted_points(control_points, weights, |k| {
             format!("({}, {})", k / nv, k % nv)
         })?;
-        Ok(Self {
-            surface: Surface::new(knots_u, knots_v, points)?,
-        })
+        Ok(Self::wrap(Surface::new(knots_u, knots_v, points)?))
     }
 
     /// A NURBS surface from a net of rows `net[i][j]` and weights `weights[i][j]`.
@@ -743,15 +700,22 @@ impl<T: Scalar, const D: usize> NurbsSurface<T, D> {
     /// [`ErrorKind::InvalidWeight`] unless every weight is positive and finite.
     pub fn from_homogeneous(surface: Surface<T, Homogeneous<T, D>>) -> Result<Self> {
         check_weights(surface.control_points().iter().map(|h| h.weight))?;
-        Ok(Self { surface })
+        Ok(Self::wrap(surface))
+    }
+
+    /// The surface of a homogeneous container with positive weights, with its views.
+    fn wrap(surface: Surface<T, Homogeneous<T, D>>) -> Self {
+        Self {
+            points: cartesian(surface.control_points()),
+            weights: weights_of(surface.control_points()),
+            surface,
+        }
     }
 
     /// A non-rational surface as a NURBS surface with unit weights.
     #[must_use]
     pub fn from_surface(surface: &Surface<T, SVector<T, D>>) -> Self {
-        Self {
-            surface: surface.map_control_points(|p| Homogeneous::new(*p, T::one())),
-        }
+        Self::wrap(surface.map_control_points(|p| Homogeneous::new(*p, T::one())))
     }
 
     pub(crate) fn new_unchecked(surface: Surface<T, Homogeneous<T, D>>) -> Self {
@@ -761,13 +725,13 @@ impl<T: Scalar, const D: usize> NurbsSurface<T, D> {
                 .iter()
                 .all(|h| h.weight > T::zero())
         );
-        Self { surface }
+        Self::wrap(surface)
     }
 
     /// See [`NurbsCurve::checked`].
     fn checked(surface: Surface<T, Homogeneous<T, D>>) -> Result<Self> {
         check_result_weights(surface.control_points())?;
-        Ok(Self { surface })
+        Ok(Self::wrap(surface))
     }
 
     /// The homogeneous surface whose projection this surface is.
@@ -834,14 +798,14 @@ impl<T: Scalar, const D: usize> NurbsSurface<T, D> {
 
     /// The Cartesian control points, row-major.
     #[must_use]
-    pub fn control_points(&self) -> Vec<SVector<T, D>> {
-        cartesian(self.surface.control_points())
+    pub fn control_points(&self) -> &[SVector<T, D>] {
+        &self.points
     }
 
     /// The weights, row-major.
     #[must_use]
-    pub fn weights(&self) -> Vec<T> {
-        weights_of(self.surface.control_points())
+    pub fn weights(&self) -> &[T] {
+        &self.weights
     }
 
     /// The Cartesian control point $P_{ij}$.

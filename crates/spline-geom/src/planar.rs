@@ -1,7 +1,7 @@
-//! Differential geometry of curves: unit tangent, normal, signed curvature (planar), curvature
-//! magnitude (any dimension), speed.
+//! The scale-invariant formulas of differential geometry behind [`crate::ParamCurve`] and
+//! [`crate::PlanarCurve`]: unit vectors, signed curvature (planar), curvature magnitude (any
+//! dimension).
 
-use crate::bspline::BSpline;
 use nalgebra::Vector2;
 use spline_core::{ControlPoint, Error, ErrorKind, Result, Scalar, to_f64};
 
@@ -102,84 +102,8 @@ pub(crate) fn zero_velocity<T: Scalar>(u: T) -> Error {
     degenerate(to_f64(u))
 }
 
-impl<T: Scalar, P: ControlPoint<T>> BSpline<T, P> {
-    /// The speed $\lVert C'(u) \rVert$.
-    ///
-    /// # Errors
-    /// [`ErrorKind::NonFinite`] or [`ErrorKind::OutOfDomain`].
-    pub fn speed(&self, u: T) -> Result<T> {
-        let mut d = [P::origin(); 2];
-        self.derivatives_into(u, &mut d)?;
-        Ok(d[1].length())
-    }
-
-    /// The unit tangent $C'(u) / \lVert C'(u) \rVert$.
-    ///
-    /// # Errors
-    /// [`ErrorKind::DegenerateGeometry`] where the velocity vanishes; the errors of
-    /// [`BSpline::eval`].
-    pub fn unit_tangent(&self, u: T) -> Result<P> {
-        let mut d = [P::origin(); 2];
-        self.derivatives_into(u, &mut d)?;
-        unit(d[1]).ok_or_else(|| degenerate(to_f64(u)))
-    }
-
-    /// The unsigned curvature in any dimension,
-    /// $\kappa = \frac{\sqrt{\lVert C'\rVert^2 \lVert C''\rVert^2 - (C'\cdot C'')^2}}{\lVert C'\rVert^3}$.
-    ///
-    /// Computed on the derivatives divided by their largest coordinates, so that the result
-    /// does not depend on the scale of the coordinates (no overflow or underflow of the
-    /// powers).
-    ///
-    /// # Errors
-    /// As [`BSpline::unit_tangent`]; [`ErrorKind::NonFinite`] when the curvature is out of
-    /// the range of the scalar type.
-    pub fn curvature_magnitude(&self, u: T) -> Result<T> {
-        let mut d = [P::origin(); 3];
-        self.derivatives_into(u, &mut d)?;
-        scaled_curvature(&d[1], &d[2], u, magnitude_formula)
-    }
-}
-
 /// The wedge product $a \wedge b = a_x b_y - a_y b_x$ of planar vectors.
 #[inline]
 pub fn wedge<T: Scalar>(a: &Vector2<T>, b: &Vector2<T>) -> T {
     a.x * b.y - a.y * b.x
-}
-
-impl<T: Scalar> BSpline<T, Vector2<T>> {
-    /// The unit normal: the unit tangent turned by +90°, so that it points to the centre of
-    /// curvature where the signed curvature is positive.
-    ///
-    /// # Errors
-    /// As [`BSpline::unit_tangent`].
-    pub fn unit_normal(&self, u: T) -> Result<Vector2<T>> {
-        let t = self.unit_tangent(u)?;
-        Ok(Vector2::new(-t.y, t.x))
-    }
-
-    /// The signed curvature $\kappa = \frac{C' \wedge C''}{\lVert C' \rVert^3}$ (positive
-    /// when the curve turns left).
-    ///
-    /// ```
-    /// use nalgebra::Vector2;
-    /// use spline_geom::BSpline;
-    /// // y = x² at x = 0 has curvature 2.
-    /// let parabola = BSpline::from_knots(2, vec![-1.0, -1.0, -1.0, 1.0, 1.0, 1.0],
-    ///     vec![Vector2::new(-1.0, 1.0), Vector2::new(0.0, -1.0), Vector2::new(1.0, 1.0)])?;
-    /// assert!((parabola.signed_curvature(0.0)? - 2.0f64).abs() < 1e-14);
-    /// # Ok::<(), spline_core::Error>(())
-    /// ```
-    ///
-    /// Scale-invariant: computed on the derivatives divided by their largest coordinates (see
-    /// [`BSpline::curvature_magnitude`]), so coordinates near `1e±300` give the exact scaled
-    /// answer.
-    ///
-    /// # Errors
-    /// As [`BSpline::curvature_magnitude`].
-    pub fn signed_curvature(&self, u: T) -> Result<T> {
-        let mut d = [Vector2::zeros(); 3];
-        self.derivatives_into(u, &mut d)?;
-        scaled_curvature(&d[1], &d[2], u, signed_formula)
-    }
 }

@@ -7,7 +7,7 @@
 //! knot inserted in `u` is inserted into each of the `n_v` curves formed by a column
 //! $P_{0j}, …, P_{n_u - 1, j}$ of the net. Nothing is implemented twice.
 
-use crate::bezier::Bezier;
+use crate::bezier::bezier_as_bspline;
 use crate::bspline::BSpline;
 use crate::structural::relative_scale;
 use spline_core::{ControlPoint, Error, ErrorKind, KnotVector, MAX_ORDER, Result, Scalar, to_f64};
@@ -941,21 +941,6 @@ impl<T: Scalar, P: ControlPoint<T>> Surface<T, P> {
             .map(|strip| strip.bezier_strips(Direction::V))
             .collect()
     }
-}
-
-/// A Bézier segment of a valid B-spline as a clamped B-spline on its interval (its degree
-/// is at most [`spline_core::MAX_DEGREE`], so no check is needed).
-pub(crate) fn bezier_as_bspline<T: Scalar, P: ControlPoint<T>>(
-    segment: &Bezier<T, P>,
-) -> BSpline<T, P> {
-    let (a, b) = segment.interval();
-    let p = segment.degree();
-    let mut knots = vec![a; p + 1];
-    knots.extend(std::iter::repeat_n(b, p + 1));
-    BSpline::new_unchecked(
-        KnotVector::new_unchecked(p, knots),
-        segment.control_points().to_vec(),
-    )
 }
 
 /// de Boor's triangular scheme on the `p + 1` points of span `span`, in place.

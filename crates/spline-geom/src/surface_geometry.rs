@@ -1,8 +1,6 @@
 //! Differential geometry of surfaces in space: normal, first and second fundamental forms,
 //! Gaussian, mean and principal curvatures and directions.
 
-use crate::nurbs::NurbsSurface;
-use crate::surface::Surface;
 use nalgebra::Vector3;
 use spline_core::{Error, ErrorKind, Result, Scalar, cast, to_f64};
 
@@ -165,68 +163,5 @@ impl<T: Scalar> LocalProperties<T> {
             ));
         }
         Ok(self.second_form.eval(du, dv) / first)
-    }
-}
-
-/// The local properties from the partial derivatives up to order 2 that `derivatives_into`
-/// writes (`d[k * 3 + l]` $= \partial^{k+l} S / \partial u^k \partial v^l$), polynomial or
-/// rational.
-fn second_order_properties<T: Scalar>(
-    derivatives_into: impl FnOnce(&mut [Vector3<T>]) -> Result<()>,
-) -> Result<LocalProperties<T>> {
-    let mut d = [Vector3::zeros(); 9];
-    derivatives_into(&mut d)?;
-    LocalProperties::from_partials(d[0], d[3], d[1], d[6], d[4], d[2])
-}
-
-impl<T: Scalar> Surface<T, Vector3<T>> {
-    /// The unit normal $S_u \times S_v / \lVert S_u \times S_v \rVert$.
-    ///
-    /// # Errors
-    /// As [`Surface::local_properties`].
-    pub fn normal(&self, u: T, v: T) -> Result<Vector3<T>> {
-        Ok(self.local_properties(u, v)?.normal)
-    }
-
-    /// Normal, fundamental forms and curvatures at `(u, v)` (see [`LocalProperties`]).
-    ///
-    /// ```
-    /// use nalgebra::Vector3;
-    /// use spline_geom::{KnotVector, Surface};
-    /// // z = u v: K = −1/(1 + u² + v²)².
-    /// let s = Surface::bezier(vec![
-    ///     vec![Vector3::new(0.0, 0.0, 0.0), Vector3::new(0.0, 1.0, 0.0)],
-    ///     vec![Vector3::new(1.0, 0.0, 0.0), Vector3::new(1.0, 1.0, 1.0)],
-    /// ])?;
-    /// let props = s.local_properties(0.5, 0.5)?;
-    /// assert!((props.gaussian_curvature + 1.0 / 1.5f64.powi(2)).abs() < 1e-15);
-    /// # Ok::<(), spline_core::Error>(())
-    /// ```
-    ///
-    /// # Errors
-    /// [`ErrorKind::NonFinite`] or [`ErrorKind::OutOfDomain`]; [`ErrorKind::DegenerateGeometry`]
-    /// at a singular point.
-    pub fn local_properties(&self, u: T, v: T) -> Result<LocalProperties<T>> {
-        second_order_properties(|d| self.derivatives_into(u, v, 2, d))
-    }
-}
-
-impl<T: Scalar> NurbsSurface<T, 3> {
-    /// The unit normal $S_u \times S_v / \lVert S_u \times S_v \rVert$.
-    ///
-    /// # Errors
-    /// As [`NurbsSurface::local_properties`].
-    pub fn normal(&self, u: T, v: T) -> Result<Vector3<T>> {
-        Ok(self.local_properties(u, v)?.normal)
-    }
-
-    /// Normal, fundamental forms and curvatures at `(u, v)` from the rational derivatives
-    /// (see [`LocalProperties`]).
-    ///
-    /// # Errors
-    /// [`ErrorKind::NonFinite`] or [`ErrorKind::OutOfDomain`]; [`ErrorKind::DegenerateGeometry`]
-    /// at a singular point (the poles of a sphere).
-    pub fn local_properties(&self, u: T, v: T) -> Result<LocalProperties<T>> {
-        second_order_properties(|d| self.derivatives_into(u, v, 2, d))
     }
 }

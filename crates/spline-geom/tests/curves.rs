@@ -559,7 +559,7 @@ fn planar_geometry_and_arc_length_against_closed_forms() {
     );
     assert_eq!(
         parabola.arc_length(0.0).unwrap_err().kind(),
-        ErrorKind::InvalidArgument
+        ErrorKind::InvalidTolerance
     );
     assert_eq!(
         parabola

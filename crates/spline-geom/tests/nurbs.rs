@@ -99,7 +99,7 @@ fn lift<T: Scalar, const D: usize>(
         c.degree(),
         c.knots().knots().iter().map(|&k| f(k)).collect(),
         c.control_points().iter().map(|p| p.map(&f)).collect(),
-        c.weights().into_iter().map(&f).collect(),
+        c.weights().iter().map(|&w| f(w)).collect(),
     )
     .unwrap()
 }
@@ -147,7 +147,7 @@ proptest! {
             KnotVector::new(s.degrees().0, s.knots_u().knots().iter().map(|&x| lift(x)).collect()).unwrap(),
             KnotVector::new(s.degrees().1, s.knots_v().knots().iter().map(|&x| lift(x)).collect()).unwrap(),
             s.control_points().iter().map(|p| p.map(lift)).collect(),
-            s.weights().into_iter().map(lift).collect(),
+            s.weights().iter().map(|&w| lift(w)).collect(),
         ).unwrap();
         let mixed = hyper.eval(HyperDual64::new(u, 1.0, 0.0, 0.0), HyperDual64::new(v, 0.0, 1.0, 0.0)).unwrap();
         let uu = hyper.eval(HyperDual64::new(u, 1.0, 1.0, 0.0), lift(v)).unwrap();
