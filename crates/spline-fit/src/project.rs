@@ -165,7 +165,7 @@ pub fn closest_point<T: Scalar, C: ParamCurve<T>>(
 /// let line = BSpline::from_knots(
 ///     1, vec![0.0f64, 0.0, 1.0, 1.0], vec![Vector2::new(0.0, 0.0), Vector2::new(2.0, 0.0)])?;
 /// let points = [Vector2::new(0.2, 1.0), Vector2::new(1.0, -1.0), Vector2::new(1.9, 0.5)];
-/// let params = project_ordered(&line, &points, &[0.0, 0.5, 1.0])?;
+/// let params: Vec<f64> = project_ordered(&line, &points, &[0.0, 0.5, 1.0])?;
 /// assert!((params[0] - 0.1).abs() < 1e-12 && (params[2] - 0.95).abs() < 1e-12);
 /// # Ok::<(), spline_core::Error>(())
 /// ```

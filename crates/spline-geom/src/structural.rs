@@ -386,24 +386,7 @@ impl<T: Scalar, P: ControlPoint<T>> BSpline<T, P> {
     /// NaN; [`ErrorKind::ToleranceExceeded`] (the message gives the deviation) if the curve
     /// would move more than `tolerance`.
     pub fn remove_knot_within(&self, u: T, times: usize, tolerance: T) -> Result<Self> {
-        self.removal_candidate(u, times, tolerance)
-            .and_then(|curve| {
-                let back = curve.insert_knot(u, times)?;
-                let deviation = max_distance(back.control_points(), self.control_points());
-                if deviation <= tolerance {
-                    Ok(curve)
-                } else {
-                    Err(tolerance_exceeded(u, times, Some(deviation), tolerance))
-                }
-            })
-    }
-
-    /// The result of the exact removal ([`BSpline::reduced`]) of `u`, `times` times, after
-    /// checking the arguments; the caller checks the deviation.
-    pub(crate) fn removal_candidate(&self, u: T, times: usize, tolerance: T) -> Result<Self> {
-        check_tolerance(tolerance)?;
-        let target = self.knots().removed(u, times)?;
-        Ok(self.reduced_unchecked(&target))
+        checked_removal(self, u, times, tolerance, |a: &P, b: &P| (*a - *b).length())
     }
 
     /// Removes the interior knot `u` `times` times if the curve moves by at most
@@ -428,11 +411,34 @@ impl<T: Scalar, P: ControlPoint<T>> BSpline<T, P> {
     }
 }
 
-/// The largest distance between corresponding points of two lists.
-pub(crate) fn max_distance<T: Scalar, P: ControlPoint<T>>(a: &[P], b: &[P]) -> T {
-    a.iter()
-        .zip(b)
-        .fold(T::zero(), |m, (x, y)| m.max((*x - *y).length()))
+/// Knot removal within an absolute tolerance, for any point type with a `distance`: the
+/// exact removal ([`BSpline::reduced`]), checked by re-inserting the knots — the largest
+/// distance between the original and the re-inserted control points bounds the change of
+/// the curve (partition of unity).
+///
+/// # Errors
+/// As [`BSpline::remove_knot_within`].
+pub(crate) fn checked_removal<T: Scalar, V: VectorSpace<T>>(
+    curve: &BSpline<T, V>,
+    u: T,
+    times: usize,
+    tolerance: T,
+    distance: impl Fn(&V, &V) -> T,
+) -> Result<BSpline<T, V>> {
+    check_tolerance(tolerance)?;
+    let target = curve.knots().removed(u, times)?;
+    let removed = curve.reduced(&target)?;
+    let back = removed.insert_knot(u, times)?;
+    let deviation = back
+        .control_points()
+        .iter()
+        .zip(curve.control_points())
+        .fold(T::zero(), |m, (x, y)| m.max(distance(x, y)));
+    if deviation <= tolerance {
+        Ok(removed)
+    } else {
+        Err(tolerance_exceeded(u, times, Some(deviation), tolerance))
+    }
 }
 
 /// The scale that turns a relative removal tolerance into an absolute one: the largest of

@@ -473,11 +473,11 @@ fn removing_an_essential_knot_is_refused() {
     assert!((loose.eval(0.5).unwrap() - c.eval(0.5).unwrap()).norm() <= 10.0);
     assert_eq!(
         c.remove_knot_within(0.5, 1, -1.0).unwrap_err().kind(),
-        ErrorKind::InvalidArgument
+        ErrorKind::InvalidTolerance
     );
     assert_eq!(
         c.remove_knot_within(0.5, 1, f64::NAN).unwrap_err().kind(),
-        ErrorKind::InvalidArgument
+        ErrorKind::InvalidTolerance
     );
 }
 

@@ -499,7 +499,7 @@ fn bad_nets_and_parameters_are_errors() {
     );
     assert_eq!(
         s.split(Direction::V, f64::NAN).unwrap_err().kind(),
-        ErrorKind::OutOfDomain
+        ErrorKind::NonFinite
     );
     assert_eq!(
         s.insert_knot(Direction::V, 0.5, 4).unwrap_err().kind(),

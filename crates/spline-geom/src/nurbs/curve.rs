@@ -1,0 +1,378 @@
+//! NURBS curves: the rational view over a B-spline of homogeneous points.
+
+use super::{
+    cartesian, cartesian_scale, check_rational_removal, check_result_weights, mapped,
+    rational_curve_derivatives, weighted_points, weights_of,
+};
+use crate::bezier::bezier_as_bspline;
+use crate::bspline::BSpline;
+use crate::homogeneous::{Homogeneous, check_weights};
+use crate::structural::check_tolerance;
+use nalgebra::SVector;
+use spline_core::{ControlPoint, KnotVector, MAX_ORDER, Result, Scalar};
+
+/// A NURBS curve in $\mathbb{R}^D$ (seed 004 Definition 6.1):
+///
+/// $$ R(u) = \frac{\sum_i N_{i,p}(u)\, w_i P_i}{\sum_i N_{i,p}(u)\, w_i}, \qquad w_i > 0. $$
+///
+/// Stored as a [`BSpline`] of [`Homogeneous`] points `(w_i P_i, w_i)`; the Cartesian control
+/// points and the weights are views. Weights are validated (positive and finite) on
+/// construction, so evaluation never divides by zero.
+///
+/// ```
+/// use nalgebra::Vector2;
+/// use spline_geom::NurbsCurve;
+/// // The quarter circle (6.1) of seed 004: U = [0,0,0,1,1,1], W = [1, 1, 2].
+/// let quarter = NurbsCurve::from_knots(
+///     2,
+///     vec![0.0, 0.0, 0.0, 1.0, 1.0, 1.0],
+///     vec![Vector2::new(1.0, 0.0), Vector2::new(1.0, 1.0), Vector2::new(0.0, 1.0)],
+///     vec![1.0, 1.0, 2.0],
+/// )?;
+/// let t: f64 = 0.5; // C(t) = ((1 − t²)/(1 + t²), 2t/(1 + t²))
+/// let p = quarter.eval(t)?;
+/// assert!((p - Vector2::new((1.0 - t * t) / (1.0 + t * t), 2.0 * t / (1.0 + t * t))).norm() < 1e-15);
+/// # Ok::<(), spline_core::Error>(())
+/// ```
+#[derive(Clone, Debug, PartialEq)]
+pub struct NurbsCurve<T, const D: usize> {
+    curve: BSpline<T, Homogeneous<T, D>>,
+    /// The Cartesian control points $P_i$ (a view of `curve`, kept so that
+    /// [`NurbsCurve::control_points`] is a slice as for every other container).
+    points: Vec<SVector<T, D>>,
+    /// The weights $w_i$ (likewise).
+    weights: Vec<T>,
+}
+
+/// A planar NURBS curve.
+pub type NurbsCurve2<T = f64> = NurbsCurve<T, 2>;
+/// A spatial NURBS curve.
+pub type NurbsCurve3<T = f64> = NurbsCurve<T, 3>;
+
+impl<T: Scalar, const D: usize> NurbsCurve<T, D> {
+    /// A NURBS curve from a knot vector, Cartesian control points and their weights.
+    ///
+    /// # Errors
+    /// [`ErrorKind::InvalidLength`] if the numbers of points, weights and basis functions
+    /// differ; [`ErrorKind::InvalidWeight`] for a zero, negative or non-finite weight;
+    /// [`ErrorKind::NonFinite`] for a non-finite coordinate.
+    pub fn new(
+        knots: KnotVector<T>,
+        control_points: Vec<SVector<T, D>>,
+        weights: Vec<T>,
+    ) -> Result<Self> {
+        let points = weighted_points(control_points, weights, |i| i.to_string())?;
+        Ok(Self::wrap(BSpline::new(knots, points)?))
+    }
+
+    /// A NURBS curve from a degree, raw knots, Cartesian control points and weights.
+    ///
+    /// # Errors
+    /// The errors of [`KnotVector::new`] and [`NurbsCurve::new`].
+    pub fn from_knots(
+        degree: usize,
+        knots: Vec<T>,
+        control_points: Vec<SVector<T, D>>,
+        weights: Vec<T>,
+    ) -> Result<Self> {
+        Self::new(KnotVector::new(degree, knots)?, control_points, weights)
+    }
+
+    /// A NURBS curve from its homogeneous container.
+    ///
+    /// # Errors
+    /// [`ErrorKind::InvalidWeight`] unless every weight is positive and finite.
+    pub fn from_homogeneous(curve: BSpline<T, Homogeneous<T, D>>) -> Result<Self> {
+        check_weights(curve.control_points().iter().map(|h| h.weight))?;
+        Ok(Self::wrap(curve))
+    }
+
+    /// The curve of a homogeneous container with positive weights, with its views.
+    fn wrap(curve: BSpline<T, Homogeneous<T, D>>) -> Self {
+        Self {
+            points: cartesian(curve.control_points()),
+            weights: weights_of(curve.control_points()),
+            curve,
+        }
+    }
+
+    /// A non-rational B-spline curve as a NURBS curve with unit weights.
+    #[must_use]
+    pub fn from_bspline(curve: &BSpline<T, SVector<T, D>>) -> Self {
+        Self::wrap(curve.map_control_points(|p| Homogeneous::new(*p, T::one())))
+    }
+
+    pub(crate) fn new_unchecked(curve: BSpline<T, Homogeneous<T, D>>) -> Self {
+        debug_assert!(curve.control_points().iter().all(|h| h.weight > T::zero()));
+        Self::wrap(curve)
+    }
+
+    /// The result of a structural operation in homogeneous space: positive weights in theory
+    /// (positive combinations of positive weights), but weights spanning hundreds of orders of
+    /// magnitude can underflow to zero.
+    fn checked(curve: BSpline<T, Homogeneous<T, D>>) -> Result<Self> {
+        check_result_weights(curve.control_points())?;
+        Ok(Self::wrap(curve))
+    }
+
+    /// The homogeneous B-spline curve (6.4) whose projection this curve is.
+    #[inline]
+    #[must_use]
+    pub fn homogeneous(&self) -> &BSpline<T, Homogeneous<T, D>> {
+        &self.curve
+    }
+
+    /// Consumes the curve, returning its homogeneous container.
+    #[must_use]
+    pub fn into_homogeneous(self) -> BSpline<T, Homogeneous<T, D>> {
+        self.curve
+    }
+
+    /// The degree `p`.
+    #[inline]
+    #[must_use]
+    pub fn degree(&self) -> usize {
+        self.curve.degree()
+    }
+
+    /// The knot vector.
+    #[inline]
+    #[must_use]
+    pub fn knots(&self) -> &KnotVector<T> {
+        self.curve.knots()
+    }
+
+    /// The parametric domain $[u_p, u_n]$.
+    #[inline]
+    #[must_use]
+    pub fn domain(&self) -> (T, T) {
+        self.curve.domain()
+    }
+
+    /// The number of control points.
+    #[inline]
+    #[must_use]
+    pub fn len(&self) -> usize {
+        self.curve.control_points().len()
+    }
+
+    /// Always `false`: a curve has at least `p + 1` control points.
+    #[inline]
+    #[must_use]
+    pub fn is_empty(&self) -> bool {
+        false
+    }
+
+    /// The Cartesian control points $P_i$.
+    #[must_use]
+    pub fn control_points(&self) -> &[SVector<T, D>] {
+        &self.points
+    }
+
+    /// The weights $w_i$.
+    #[must_use]
+    pub fn weights(&self) -> &[T] {
+        &self.weights
+    }
+
+    /// Whether all weights are equal: the curve is then a polynomial B-spline curve.
+    #[must_use]
+    pub fn is_polynomial(&self) -> bool {
+        let w = self.curve.control_points()[0].weight;
+        self.curve.control_points().iter().all(|h| h.weight == w)
+    }
+
+    /// The non-rational B-spline curve with the same control points, if all weights are
+    /// equal ([`NurbsCurve::is_polynomial`]).
+    #[must_use]
+    pub fn to_bspline(&self) -> Option<BSpline<T, SVector<T, D>>> {
+        self.is_polynomial()
+            .then(|| self.curve.map_control_points(Homogeneous::project))
+    }
+
+    /// Applies an affine map to the Cartesian control points, keeping the weights: by the
+    /// affine invariance of NURBS this maps the curve. (A non-affine `f` gives a curve
+    /// that is not the image of this one.)
+    #[must_use]
+    pub fn map_control_points<const E: usize>(
+        &self,
+        mut f: impl FnMut(&SVector<T, D>) -> SVector<T, E>,
+    ) -> NurbsCurve<T, E> {
+        NurbsCurve::new_unchecked(self.curve.map_control_points(|h| mapped(h, &mut f)))
+    }
+
+    /// The point $R(u)$: de Boor in homogeneous space, then the projection (6.5).
+    ///
+    /// # Errors
+    /// [`ErrorKind::NonFinite`] or [`ErrorKind::OutOfDomain`].
+    #[inline]
+    pub fn eval(&self, u: T) -> Result<SVector<T, D>> {
+        let span = self.curve.knots().find_span(u)?;
+        Ok(self.curve.eval_in_span(span, u).project())
+    }
+
+    /// Evaluates at many parameters (increasing order takes a constant-time span search).
+    ///
+    /// # Errors
+    /// [`ErrorKind::NonFinite`] or [`ErrorKind::OutOfDomain`] for the first bad parameter.
+    pub fn eval_many(&self, params: &[T]) -> Result<Vec<SVector<T, D>>> {
+        let knots = self.curve.knots();
+        for (i, &u) in params.iter().enumerate() {
+            knots
+                .check_param(u)
+                .map_err(|e| e.context(format_args!("parameter {i}")))?;
+        }
+        let mut span = self.degree();
+        Ok(params
+            .iter()
+            .map(|&u| {
+                span = knots.span_in_domain_from(u, span);
+                self.curve.eval_in_span(span, u).project()
+            })
+            .collect())
+    }
+
+    /// $R(u), R'(u), …, R^{(k)}(u)$ with `k = out.len() − 1` (The NURBS Book A4.2), written
+    /// into `out`. Unlike polynomial curves, rational derivatives above the degree are not
+    /// zero; order `k` costs `O(p)` operations (the homogeneous derivatives above the degree
+    /// vanish). No heap allocation.
+    ///
+    /// # Errors
+    /// [`ErrorKind::NonFinite`] or [`ErrorKind::OutOfDomain`] for the parameter;
+    /// [`ErrorKind::NonFinite`] when a derivative is too large for the scalar type (rational
+    /// derivatives of order `k` grow like `k!`; `f64` overflows near order 170).
+    pub fn derivatives_into(&self, u: T, out: &mut [SVector<T, D>]) -> Result<()> {
+        let span = self.curve.knots().find_span(u)?;
+        if out.is_empty() {
+            return Ok(());
+        }
+        let mut stack = [Homogeneous::<T, D>::origin(); MAX_ORDER];
+        let hom = &mut stack[..out.len().min(self.degree() + 1)];
+        self.curve.derivatives_in_span(span, u, hom);
+        rational_curve_derivatives(hom, out)
+    }
+
+    /// The derivatives $R^{(j)}(u)$ for `j = 0 … order`.
+    ///
+    /// ```
+    /// use nalgebra::Vector2;
+    /// use spline_geom::NurbsCurve;
+    /// let quarter = NurbsCurve::from_knots(2, vec![0.0, 0.0, 0.0, 1.0, 1.0, 1.0],
+    ///     vec![Vector2::new(1.0, 0.0), Vector2::new(1.0, 1.0), Vector2::new(0.0, 1.0)],
+    ///     vec![1.0, 1.0, 2.0])?;
+    /// // C'(0) = (0, 2) for C(t) = ((1 − t²)/(1 + t²), 2t/(1 + t²)).
+    /// assert!((quarter.derivatives(0.0, 1)?[1] - Vector2::new(0.0, 2.0)).norm() < 1e-15);
+    /// # Ok::<(), spline_core::Error>(())
+    /// ```
+    ///
+    /// # Errors
+    /// [`ErrorKind::InvalidArgument`] above [`spline_core::MAX_DERIVATIVE_ORDER`]; the errors
+    /// of [`NurbsCurve::derivatives_into`].
+    pub fn derivatives(&self, u: T, order: usize) -> Result<Vec<SVector<T, D>>> {
+        spline_core::check_derivative_order(order)?;
+        let mut out = vec![SVector::zeros(); order + 1];
+        self.derivatives_into(u, &mut out)?;
+        Ok(out)
+    }
+
+    /// Inserts the knot `u` `times` times, in homogeneous space; the curve is unchanged.
+    ///
+    /// # Errors
+    /// As [`BSpline::insert_knot`].
+    pub fn insert_knot(&self, u: T, times: usize) -> Result<Self> {
+        Self::checked(self.curve.insert_knot(u, times)?)
+    }
+
+    /// Inserts many knots at once (knot refinement), in homogeneous space.
+    ///
+    /// # Errors
+    /// As [`BSpline::refine`].
+    pub fn refine(&self, knots: &[T]) -> Result<Self> {
+        Self::checked(self.curve.refine(knots)?)
+    }
+
+    /// Removes the interior knot `u` `times` times if the curve moves by at most `tolerance`
+    /// (absolute, in Cartesian space). The removal runs in homogeneous space; the change of
+    /// the rational curve is then bounded exactly (see [`BSpline::remove_knot_within`]) by
+    /// re-inserting the knots: homogeneous control points within $\delta$ of the original
+    /// ones move the curve by at most $\delta (1 + |P|_{max}) / w_{min}$ (The NURBS Book
+    /// (5.30)).
+    ///
+    /// # Errors
+    /// As [`BSpline::remove_knot_within`]; [`ErrorKind::ToleranceExceeded`] also when the
+    /// removal would make a weight non-positive.
+    pub fn remove_knot_within(&self, u: T, times: usize, tolerance: T) -> Result<Self> {
+        check_tolerance(tolerance)?;
+        let removed = self.curve.reduced(&self.knots().removed(u, times)?)?;
+        let back = removed.insert_knot(u, times)?;
+        check_rational_removal(
+            self.curve.control_points(),
+            removed.control_points(),
+            back.control_points(),
+            (u, times),
+            tolerance,
+        )?;
+        Self::checked(removed)
+    }
+
+    /// [`NurbsCurve::remove_knot_within`] with a tolerance relative to the size of the
+    /// control polygon (its largest Cartesian coordinate magnitude, or 1 if that is smaller).
+    ///
+    /// # Errors
+    /// As [`NurbsCurve::remove_knot_within`].
+    pub fn remove_knot(&self, u: T, times: usize, relative_tolerance: T) -> Result<Self> {
+        let scale = cartesian_scale(self.curve.control_points());
+        self.remove_knot_within(u, times, relative_tolerance * scale)
+    }
+
+    /// Raises the degree by `times`, in homogeneous space.
+    ///
+    /// # Errors
+    /// As [`BSpline::elevate_degree`].
+    pub fn elevate_degree(&self, times: usize) -> Result<Self> {
+        Self::checked(self.curve.elevate_degree(times)?)
+    }
+
+    /// Splits at `u` into two curves clamped at `u`.
+    ///
+    /// # Errors
+    /// As [`BSpline::split`].
+    pub fn split(&self, u: T) -> Result<(Self, Self)> {
+        let (a, b) = self.curve.split(u)?;
+        Ok((Self::checked(a)?, Self::checked(b)?))
+    }
+
+    /// The same curve with clamped knots.
+    #[must_use]
+    pub fn clamped(&self) -> Self {
+        Self::new_unchecked(self.curve.clamped())
+    }
+
+    /// The same curve traversed backwards on the same domain.
+    #[must_use]
+    pub fn reversed(&self) -> Self {
+        Self::new_unchecked(self.curve.reversed())
+    }
+
+    /// The same curve on the domain `[a, b]`.
+    ///
+    /// # Errors
+    /// As [`BSpline::reparametrized`].
+    pub fn reparametrized(&self, a: T, b: T) -> Result<Self> {
+        Ok(Self::new_unchecked(self.curve.reparametrized(a, b)?))
+    }
+
+    /// The rational Bézier segments, one per non-empty knot span, each a clamped NURBS curve
+    /// on its span.
+    ///
+    /// # Errors
+    /// [`ErrorKind::InvalidWeight`] when a weight underflows to zero (weights spanning
+    /// hundreds of orders of magnitude).
+    pub fn bezier_segments(&self) -> Result<Vec<Self>> {
+        self.curve
+            .bezier_segments()
+            .into_iter()
+            .map(|b| Self::checked(bezier_as_bspline(&b)))
+            .collect()
+    }
+}

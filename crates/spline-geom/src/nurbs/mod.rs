@@ -1,0 +1,250 @@
+//! NURBS curves and surfaces: rational views over B-spline containers of homogeneous points.
+//!
+//! A NURBS curve is the central projection of a B-spline curve in $\mathbb{R}^{D+1}$ whose
+//! control points are $(w_i P_i, w_i)$ (seed 004 (6.4)–(6.5)). Evaluation is evaluation in
+//! homogeneous space followed by the projection; rational derivatives follow from Leibniz's
+//! rule (The NURBS Book A4.2 and A4.4); every structural algorithm (insertion, refinement,
+//! removal, elevation, splitting) runs unchanged on the homogeneous container.
+
+use crate::homogeneous::{Homogeneous, check_weight};
+use crate::structural::{relative_scale, tolerance_exceeded};
+use nalgebra::{RealField, SVector};
+use spline_core::{ControlPoint, Error, ErrorKind, Result, Scalar, cast, from_count};
+
+mod curve;
+mod surface;
+
+pub use curve::{NurbsCurve, NurbsCurve2, NurbsCurve3};
+pub use surface::{NurbsSurface, NurbsSurface3};
+
+pub(super) fn check_point<T: Scalar, const D: usize>(
+    p: &SVector<T, D>,
+    what: impl FnOnce() -> String,
+) -> Result<()> {
+    if p.iter().all(nalgebra::ComplexField::is_finite) {
+        Ok(())
+    } else {
+        Err(Error::new(
+            ErrorKind::NonFinite,
+            format!("{} is not finite", what()),
+        ))
+    }
+}
+
+/// The homogeneous points $(w_k P_k, w_k)$ of Cartesian control points and their weights,
+/// checked; `index(k)` names entry `k` in messages (`3` on a curve, `(0, 3)` on a net).
+pub(super) fn weighted_points<T: Scalar, const D: usize>(
+    control_points: Vec<SVector<T, D>>,
+    weights: Vec<T>,
+    index: impl Fn(usize) -> String,
+) -> Result<Vec<Homogeneous<T, D>>> {
+    if weights.len() != control_points.len() {
+        return Err(Error::new(
+            ErrorKind::InvalidLength,
+            format!(
+                "{} control points need {} weights, got {}",
+                control_points.len(),
+                control_points.len(),
+                weights.len()
+            ),
+        ));
+    }
+    for (k, &w) in weights.iter().enumerate() {
+        check_weight(w).map_err(|e| e.context(format_args!("weight {}", index(k))))?;
+    }
+    for (k, p) in control_points.iter().enumerate() {
+        check_point(p, || format!("control point {}", index(k)))?;
+    }
+    Ok(control_points
+        .into_iter()
+        .zip(weights)
+        .map(|(p, w)| Homogeneous::new(p * w, w))
+        .collect())
+}
+
+/// The Cartesian points $P_k$ of homogeneous ones.
+pub(super) fn cartesian<T: Scalar, const D: usize>(
+    points: &[Homogeneous<T, D>],
+) -> Vec<SVector<T, D>> {
+    points.iter().map(Homogeneous::project).collect()
+}
+
+/// The weights $w_k$ of homogeneous points.
+pub(super) fn weights_of<T: Scalar, const D: usize>(points: &[Homogeneous<T, D>]) -> Vec<T> {
+    points.iter().map(|h| h.weight).collect()
+}
+
+/// The homogeneous point of `f(P)` with the weight of `h = (w P, w)`.
+pub(super) fn mapped<T: Scalar, const D: usize, const E: usize>(
+    h: &Homogeneous<T, D>,
+    f: &mut impl FnMut(&SVector<T, D>) -> SVector<T, E>,
+) -> Homogeneous<T, E> {
+    Homogeneous::new(f(&h.project()) * h.weight, h.weight)
+}
+
+/// The scale of a relative removal tolerance: the largest Cartesian coordinate magnitude,
+/// or 1 if that is smaller.
+pub(super) fn cartesian_scale<T: Scalar, const D: usize>(points: &[Homogeneous<T, D>]) -> T {
+    relative_scale(points.iter().map(|h| h.project().amax()))
+}
+
+/// Rational derivatives of a curve from the homogeneous ones (The NURBS Book A4.2):
+/// $C^{(k)} = \big(A^{(k)} - \sum_{i=1}^{k} \binom{k}{i} w^{(i)} C^{(k-i)}\big) / w$.
+///
+/// `hom` holds the homogeneous derivatives of orders `0 … hom.len() − 1`; those above are
+/// zero (orders above the degree), so the sums stop there and order `k` costs `O(p)`.
+///
+/// # Errors
+/// [`ErrorKind::NonFinite`] when a derivative leaves the range of the scalar type (rational
+/// derivatives of order `k` grow like `k!`).
+pub(super) fn rational_curve_derivatives<T: Scalar, const D: usize>(
+    hom: &[Homogeneous<T, D>],
+    out: &mut [SVector<T, D>],
+) -> Result<()> {
+    let w0 = hom[0].weight;
+    let top = hom.len() - 1;
+    for k in 0..out.len() {
+        let mut v = if k <= top {
+            hom[k].point
+        } else {
+            SVector::zeros()
+        };
+        let mut binom = T::one();
+        for i in 1..=k.min(top) {
+            // C(k, i) from C(k, i − 1).
+            binom = binom * from_count::<T>(k - i + 1) / from_count::<T>(i);
+            v -= out[k - i] * (binom * hom[i].weight);
+        }
+        out[k] = v / w0;
+        if !out[k].iter().all(nalgebra::ComplexField::is_finite) {
+            return Err(derivative_overflow(k));
+        }
+    }
+    Ok(())
+}
+
+/// [`ErrorKind::InvalidWeight`] when a weight of a computed NURBS object is not positive and
+/// finite, or a point is not finite (weights spanning too many orders of magnitude).
+pub(super) fn check_result_weights<T: Scalar, const D: usize>(
+    points: &[Homogeneous<T, D>],
+) -> Result<()> {
+    if points.iter().all(|h| {
+        h.weight > T::zero()
+            && h.weight.is_finite()
+            && h.point.iter().all(nalgebra::ComplexField::is_finite)
+    }) {
+        Ok(())
+    } else {
+        Err(Error::new(
+            ErrorKind::InvalidWeight,
+            "a weight of the result is zero or too large for floating point: the weights span too many orders of magnitude",
+        ))
+    }
+}
+
+pub(super) fn derivative_overflow(order: usize) -> Error {
+    Error::new(
+        ErrorKind::NonFinite,
+        format!(
+            "the rational derivative of order {order} is too large for floating point (rational derivatives grow like order!)"
+        ),
+    )
+}
+
+/// Rational partial derivatives of a surface on the square `0 ≤ k, l ≤ order` from the
+/// homogeneous ones (The NURBS Book A4.4). `hom` holds the homogeneous derivatives on the
+/// square `0 ≤ i, j ≤ top` (row-major, rows of `top + 1`; those above are zero); `out` is
+/// row-major with rows of `order + 1`.
+///
+/// # Errors
+/// [`ErrorKind::NonFinite`] when a derivative leaves the range of the scalar type.
+pub(super) fn rational_surface_derivatives<T: Scalar, const D: usize>(
+    hom: &[Homogeneous<T, D>],
+    top: usize,
+    order: usize,
+    out: &mut [SVector<T, D>],
+) -> Result<()> {
+    let w = order + 1;
+    let hw = top + 1;
+    let weight = |i: usize, j: usize| hom[i * hw + j].weight;
+    let w00 = weight(0, 0);
+    for k in 0..=order {
+        for l in 0..=order {
+            let mut v = if k <= top && l <= top {
+                hom[k * hw + l].point
+            } else {
+                SVector::zeros()
+            };
+            let mut blj = T::one();
+            for j in 1..=l.min(top) {
+                blj = blj * from_count::<T>(l - j + 1) / from_count::<T>(j);
+                v -= out[k * w + l - j] * (blj * weight(0, j));
+            }
+            let mut bki = T::one();
+            for i in 1..=k.min(top) {
+                bki = bki * from_count::<T>(k - i + 1) / from_count::<T>(i);
+                v -= out[(k - i) * w + l] * (bki * weight(i, 0));
+                let mut mixed = SVector::<T, D>::zeros();
+                let mut blj = T::one();
+                for j in 1..=l.min(top) {
+                    blj = blj * from_count::<T>(l - j + 1) / from_count::<T>(j);
+                    mixed += out[(k - i) * w + l - j] * (blj * weight(i, j));
+                }
+                v -= mixed * bki;
+            }
+            out[k * w + l] = v / w00;
+            if !out[k * w + l].iter().all(nalgebra::ComplexField::is_finite) {
+                return Err(derivative_overflow(k + l));
+            }
+        }
+    }
+    Ok(())
+}
+
+/// The largest homogeneous distance between two lists of homogeneous points, turned into a
+/// bound on the distance between the rational shapes (The NURBS Book (5.30)): if
+/// $|P^w_i - Q^w_i| \le \delta$ for all `i`, then $|C(u) - C'(u)| \le \delta (1 + |P|_{max}) /
+/// w'_{min}$, since $C' - C = (\Delta A - C \Delta w) / w'$.
+pub(super) fn rational_deviation_bound<T: Scalar, const D: usize>(
+    original: &[Homogeneous<T, D>],
+    changed: &[Homogeneous<T, D>],
+) -> Option<T> {
+    let delta = original
+        .iter()
+        .zip(changed)
+        .fold(T::zero(), |m, (a, b)| m.max((*a - *b).length()));
+    let pmax = original
+        .iter()
+        .fold(T::zero(), |m, h| m.max(h.project().norm()));
+    let wmin = changed.iter().map(|h| h.weight).reduce(RealField::min)?;
+    (wmin > T::zero()).then(|| delta * (T::one() + pmax) / wmin)
+}
+
+/// Accepts a knot removal done in homogeneous space if the rational shape moves by at most
+/// `tolerance` and every weight stays positive: `back` is `removed` with the knots
+/// re-inserted, compared with `original` by [`rational_deviation_bound`].
+pub(super) fn check_rational_removal<T: Scalar, const D: usize>(
+    original: &[Homogeneous<T, D>],
+    removed: &[Homogeneous<T, D>],
+    back: &[Homogeneous<T, D>],
+    (t, times): (T, usize),
+    tolerance: T,
+) -> Result<()> {
+    let bound = rational_deviation_bound(original, back);
+    let weights_ok = removed.iter().all(|h| check_weight(h.weight).is_ok());
+    match bound {
+        Some(b) if b <= tolerance && weights_ok => Ok(()),
+        _ => Err(tolerance_exceeded(
+            t,
+            times,
+            bound.filter(|_| weights_ok),
+            tolerance,
+        )),
+    }
+}
+
+/// A tolerance so large that the homogeneous removal never refuses: the rational check is
+/// done afterwards.
+pub(super) fn unbounded<T: Scalar>() -> T {
+    T::max_value().unwrap_or_else(|| cast(f64::MAX))
+}

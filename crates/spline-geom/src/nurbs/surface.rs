@@ -1,0 +1,414 @@
+//! NURBS surfaces: the rational view over a tensor-product surface of homogeneous points.
+
+use super::{
+    NurbsCurve, cartesian, cartesian_scale, check_rational_removal, check_result_weights, mapped,
+    rational_surface_derivatives, unbounded, weighted_points, weights_of,
+};
+use crate::homogeneous::{Homogeneous, check_weights};
+use crate::structural::check_tolerance;
+use crate::surface::{Direction, Surface, flatten_net};
+use nalgebra::SVector;
+use spline_core::{ControlPoint, KnotVector, Result, Scalar};
+
+/// A NURBS surface in $\mathbb{R}^D$ (seed 004 (6.11), (6.14)):
+///
+/// $$ S(u, v) = \frac{\sum_{i,j} N_{i,p}(u) N_{j,q}(v)\, w_{ij} P_{ij}}
+///                   {\sum_{i,j} N_{i,p}(u) N_{j,q}(v)\, w_{ij}}, \qquad w_{ij} > 0. $$
+///
+/// Stored as a [`Surface`] of [`Homogeneous`] points; the net is row-major, `i` along `u`.
+///
+/// ```
+/// use nalgebra::Vector3;
+/// use spline_geom::NurbsSurface;
+/// let sphere = NurbsSurface::sphere(Vector3::new(1.0f64, 2.0, 3.0), 2.0)?;
+/// let p = sphere.eval(0.3, 0.8)?;
+/// assert!(((p - Vector3::new(1.0, 2.0, 3.0)).norm() - 2.0).abs() < 1e-14);
+/// # Ok::<(), spline_core::Error>(())
+/// ```
+#[derive(Clone, Debug, PartialEq)]
+pub struct NurbsSurface<T, const D: usize> {
+    surface: Surface<T, Homogeneous<T, D>>,
+    /// The Cartesian control net, row-major (a view of `surface`).
+    points: Vec<SVector<T, D>>,
+    /// The weights, row-major (likewise).
+    weights: Vec<T>,
+}
+
+/// A NURBS surface in space.
+pub type NurbsSurface3<T = f64> = NurbsSurface<T, 3>;
+
+impl<T: Scalar, const D: usize> NurbsSurface<T, D> {
+    /// A NURBS surface from two knot vectors, the row-major Cartesian control net
+    /// (`[i * n_v + j]` is $P_{ij}$) and the weights in the same layout.
+    ///
+    /// # Errors
+    /// [`ErrorKind::InvalidLength`] if the sizes do not match; [`ErrorKind::InvalidWeight`];
+    /// [`ErrorKind::NonFinite`].
+    pub fn new(
+        knots_u: KnotVector<T>,
+        knots_v: KnotVector<T>,
+        control_points: Vec<SVector<T, D>>,
+        weights: Vec<T>,
+    ) -> Result<Self> {
+        let nv = knots_v.num_basis();
+        let points = weighted_points(control_points, weights, |k| {
+            format!("({}, {})", k / nv, k % nv)
+        })?;
+        Ok(Self::wrap(Surface::new(knots_u, knots_v, points)?))
+    }
+
+    /// A NURBS surface from a net of rows `net[i][j]` and weights `weights[i][j]`.
+    ///
+    /// # Errors
+    /// [`ErrorKind::InvalidLength`] if the net or the weights do not have `n_u` rows of `n_v`
+    /// entries; the errors of [`NurbsSurface::new`].
+    pub fn from_net(
+        knots_u: KnotVector<T>,
+        knots_v: KnotVector<T>,
+        net: Vec<Vec<SVector<T, D>>>,
+        weights: Vec<Vec<T>>,
+    ) -> Result<Self> {
+        let points = flatten_net(&knots_u, &knots_v, net, "control points")?;
+        let weights = flatten_net(&knots_u, &knots_v, weights, "weights")?;
+        Self::new(knots_u, knots_v, points, weights)
+    }
+
+    /// A NURBS surface from its homogeneous container.
+    ///
+    /// # Errors
+    /// [`ErrorKind::InvalidWeight`] unless every weight is positive and finite.
+    pub fn from_homogeneous(surface: Surface<T, Homogeneous<T, D>>) -> Result<Self> {
+        check_weights(surface.control_points().iter().map(|h| h.weight))?;
+        Ok(Self::wrap(surface))
+    }
+
+    /// The surface of a homogeneous container with positive weights, with its views.
+    fn wrap(surface: Surface<T, Homogeneous<T, D>>) -> Self {
+        Self {
+            points: cartesian(surface.control_points()),
+            weights: weights_of(surface.control_points()),
+            surface,
+        }
+    }
+
+    /// A non-rational surface as a NURBS surface with unit weights.
+    #[must_use]
+    pub fn from_surface(surface: &Surface<T, SVector<T, D>>) -> Self {
+        Self::wrap(surface.map_control_points(|p| Homogeneous::new(*p, T::one())))
+    }
+
+    pub(crate) fn new_unchecked(surface: Surface<T, Homogeneous<T, D>>) -> Self {
+        debug_assert!(
+            surface
+                .control_points()
+                .iter()
+                .all(|h| h.weight > T::zero())
+        );
+        Self::wrap(surface)
+    }
+
+    /// See [`NurbsCurve::checked`].
+    fn checked(surface: Surface<T, Homogeneous<T, D>>) -> Result<Self> {
+        check_result_weights(surface.control_points())?;
+        Ok(Self::wrap(surface))
+    }
+
+    /// The homogeneous surface whose projection this surface is.
+    #[inline]
+    #[must_use]
+    pub fn homogeneous(&self) -> &Surface<T, Homogeneous<T, D>> {
+        &self.surface
+    }
+
+    /// Consumes the surface, returning its homogeneous container.
+    #[must_use]
+    pub fn into_homogeneous(self) -> Surface<T, Homogeneous<T, D>> {
+        self.surface
+    }
+
+    /// The degrees `(p, q)`.
+    #[inline]
+    #[must_use]
+    pub fn degrees(&self) -> (usize, usize) {
+        self.surface.degrees()
+    }
+
+    /// The degree in one direction.
+    #[inline]
+    #[must_use]
+    pub fn degree(&self, direction: Direction) -> usize {
+        self.surface.degree(direction)
+    }
+
+    /// The knot vector in `u`.
+    #[inline]
+    #[must_use]
+    pub fn knots_u(&self) -> &KnotVector<T> {
+        self.surface.knots_u()
+    }
+
+    /// The knot vector in `v`.
+    #[inline]
+    #[must_use]
+    pub fn knots_v(&self) -> &KnotVector<T> {
+        self.surface.knots_v()
+    }
+
+    /// The knot vector in one direction.
+    #[inline]
+    #[must_use]
+    pub fn knots(&self, direction: Direction) -> &KnotVector<T> {
+        self.surface.knots(direction)
+    }
+
+    /// The size `(n_u, n_v)` of the control net.
+    #[inline]
+    #[must_use]
+    pub fn net_size(&self) -> (usize, usize) {
+        self.surface.net_size()
+    }
+
+    /// The parametric domain `((u_min, u_max), (v_min, v_max))`.
+    #[inline]
+    #[must_use]
+    pub fn domain(&self) -> ((T, T), (T, T)) {
+        self.surface.domain()
+    }
+
+    /// The Cartesian control points, row-major.
+    #[must_use]
+    pub fn control_points(&self) -> &[SVector<T, D>] {
+        &self.points
+    }
+
+    /// The weights, row-major.
+    #[must_use]
+    pub fn weights(&self) -> &[T] {
+        &self.weights
+    }
+
+    /// The Cartesian control point $P_{ij}$.
+    ///
+    /// # Panics
+    /// If `i ≥ n_u` or `j ≥ n_v`.
+    #[must_use]
+    pub fn control_point(&self, i: usize, j: usize) -> SVector<T, D> {
+        self.surface.control_point(i, j).project()
+    }
+
+    /// The weight $w_{ij}$.
+    ///
+    /// # Panics
+    /// If `i ≥ n_u` or `j ≥ n_v`.
+    #[must_use]
+    pub fn weight(&self, i: usize, j: usize) -> T {
+        self.surface.control_point(i, j).weight
+    }
+
+    /// Applies an affine map to the Cartesian control points, keeping the weights (this maps
+    /// the surface by affine invariance).
+    #[must_use]
+    pub fn map_control_points<const E: usize>(
+        &self,
+        mut f: impl FnMut(&SVector<T, D>) -> SVector<T, E>,
+    ) -> NurbsSurface<T, E> {
+        NurbsSurface::new_unchecked(self.surface.map_control_points(|h| mapped(h, &mut f)))
+    }
+
+    /// The point $S(u, v)$.
+    ///
+    /// # Errors
+    /// [`ErrorKind::NonFinite`] or [`ErrorKind::OutOfDomain`].
+    #[inline]
+    pub fn eval(&self, u: T, v: T) -> Result<SVector<T, D>> {
+        Ok(self.surface.eval(u, v)?.project())
+    }
+
+    /// All rational partial derivatives $\partial^{k+l} S / \partial u^k \partial v^l$,
+    /// `0 ≤ k, l ≤ order`, into `out[k * (order + 1) + l]` (The NURBS Book A4.4 on the full
+    /// square of orders). The homogeneous derivatives vanish above the degrees, so order
+    /// `(k, l)` costs `O(p q)` operations; the working memory is bounded by the degrees.
+    ///
+    /// # Errors
+    /// [`ErrorKind::InvalidLength`] unless `out.len() = (order + 1)²`;
+    /// [`ErrorKind::NonFinite`] or [`ErrorKind::OutOfDomain`] for the parameters;
+    /// [`ErrorKind::NonFinite`] when a derivative is too large for the scalar type.
+    pub fn derivatives_into(
+        &self,
+        u: T,
+        v: T,
+        order: usize,
+        out: &mut [SVector<T, D>],
+    ) -> Result<()> {
+        let len = crate::bspline::square_len(order)?;
+        crate::bspline::check_same_len(len, out.len())?;
+        let (su, sv) = self.surface.find_spans(u, v)?;
+        let (p, q) = self.surface.degrees();
+        let top = order.min(p.max(q));
+        let mut hom = vec![Homogeneous::<T, D>::origin(); (top + 1) * (top + 1)];
+        self.surface
+            .derivatives_in_spans(su, sv, u, v, top, &mut hom);
+        rational_surface_derivatives(&hom, top, order, out)
+    }
+
+    /// The rational partial derivatives `[k][l]` for `0 ≤ k, l ≤ order`.
+    ///
+    /// # Errors
+    /// [`ErrorKind::InvalidArgument`] above [`spline_core::MAX_DERIVATIVE_ORDER`]; the errors
+    /// of [`NurbsSurface::derivatives_into`].
+    pub fn derivatives(&self, u: T, v: T, order: usize) -> Result<Vec<Vec<SVector<T, D>>>> {
+        spline_core::check_derivative_order(order)?;
+        let mut flat = vec![SVector::zeros(); (order + 1) * (order + 1)];
+        self.derivatives_into(u, v, order, &mut flat)?;
+        Ok(flat.chunks_exact(order + 1).map(<[_]>::to_vec).collect())
+    }
+
+    /// Evaluates on the grid `us × vs` with the tensor fast path of
+    /// [`Surface::eval_grid_into`] in homogeneous space; `[a * vs.len() + b]` $= S(u_a, v_b)$.
+    ///
+    /// # Errors
+    /// As [`Surface::eval_grid_into`].
+    pub fn eval_grid(&self, us: &[T], vs: &[T]) -> Result<Vec<SVector<T, D>>> {
+        Ok(self
+            .surface
+            .eval_grid(us, vs)?
+            .iter()
+            .map(Homogeneous::project)
+            .collect())
+    }
+
+    /// The iso-parametric curve `v ↦ S(u, v)` at fixed `u`, a NURBS curve.
+    ///
+    /// # Errors
+    /// [`ErrorKind::NonFinite`] or [`ErrorKind::OutOfDomain`].
+    pub fn curve_at_u(&self, u: T) -> Result<NurbsCurve<T, D>> {
+        Ok(NurbsCurve::new_unchecked(self.surface.curve_at_u(u)?))
+    }
+
+    /// The iso-parametric curve `u ↦ S(u, v)` at fixed `v`, a NURBS curve.
+    ///
+    /// # Errors
+    /// [`ErrorKind::NonFinite`] or [`ErrorKind::OutOfDomain`].
+    pub fn curve_at_v(&self, v: T) -> Result<NurbsCurve<T, D>> {
+        Ok(NurbsCurve::new_unchecked(self.surface.curve_at_v(v)?))
+    }
+
+    /// Inserts the knot `t` `times` times in `direction`, in homogeneous space.
+    ///
+    /// # Errors
+    /// As [`Surface::insert_knot`].
+    pub fn insert_knot(&self, direction: Direction, t: T, times: usize) -> Result<Self> {
+        Self::checked(self.surface.insert_knot(direction, t, times)?)
+    }
+
+    /// Inserts many knots in `direction`, in homogeneous space.
+    ///
+    /// # Errors
+    /// As [`Surface::refine`].
+    pub fn refine(&self, direction: Direction, knots: &[T]) -> Result<Self> {
+        Self::checked(self.surface.refine(direction, knots)?)
+    }
+
+    /// Removes the interior knot `t` of `direction` `times` times if the surface moves by at
+    /// most `tolerance` (absolute, Cartesian), bounded as in
+    /// [`NurbsCurve::remove_knot_within`].
+    ///
+    /// # Errors
+    /// As [`NurbsCurve::remove_knot_within`].
+    pub fn remove_knot_within(
+        &self,
+        direction: Direction,
+        t: T,
+        times: usize,
+        tolerance: T,
+    ) -> Result<Self> {
+        check_tolerance(tolerance)?;
+        let removed = self
+            .surface
+            .remove_knot_within(direction, t, times, unbounded())?;
+        let back = removed.insert_knot(direction, t, times)?;
+        check_rational_removal(
+            self.surface.control_points(),
+            removed.control_points(),
+            back.control_points(),
+            (t, times),
+            tolerance,
+        )
+        .map_err(|e| e.context(format_args!("direction {direction}")))?;
+        Self::checked(removed)
+    }
+
+    /// [`NurbsSurface::remove_knot_within`] with a tolerance relative to the size of the
+    /// control net.
+    ///
+    /// # Errors
+    /// As [`NurbsCurve::remove_knot_within`].
+    pub fn remove_knot(
+        &self,
+        direction: Direction,
+        t: T,
+        times: usize,
+        relative_tolerance: T,
+    ) -> Result<Self> {
+        let scale = cartesian_scale(self.surface.control_points());
+        self.remove_knot_within(direction, t, times, relative_tolerance * scale)
+    }
+
+    /// Raises the degree in `direction` by `times`, in homogeneous space.
+    ///
+    /// # Errors
+    /// As [`Surface::elevate_degree`].
+    pub fn elevate_degree(&self, direction: Direction, times: usize) -> Result<Self> {
+        Self::checked(self.surface.elevate_degree(direction, times)?)
+    }
+
+    /// Splits at `t` in `direction` into two surfaces clamped at `t`.
+    ///
+    /// # Errors
+    /// As [`Surface::split`].
+    pub fn split(&self, direction: Direction, t: T) -> Result<(Self, Self)> {
+        let (a, b) = self.surface.split(direction, t)?;
+        Ok((Self::checked(a)?, Self::checked(b)?))
+    }
+
+    /// The same surface with clamped knots in both directions.
+    #[must_use]
+    pub fn clamped(&self) -> Self {
+        Self::new_unchecked(self.surface.clamped())
+    }
+
+    /// The same surface traversed backwards in `direction`.
+    #[must_use]
+    pub fn reversed(&self, direction: Direction) -> Self {
+        Self::new_unchecked(self.surface.reversed(direction))
+    }
+
+    /// The same surface with the domain of `direction` mapped onto `[a, b]`.
+    ///
+    /// # Errors
+    /// As [`Surface::reparametrized`].
+    pub fn reparametrized(&self, direction: Direction, a: T, b: T) -> Result<Self> {
+        Ok(Self::new_unchecked(
+            self.surface.reparametrized(direction, a, b)?,
+        ))
+    }
+
+    /// The surface with `u` and `v` exchanged.
+    #[must_use]
+    pub fn transposed(&self) -> Self {
+        Self::new_unchecked(self.surface.transposed())
+    }
+
+    /// The rational Bézier patches, `[a][b]` over the `a`-th non-empty span in `u` and the
+    /// `b`-th in `v`.
+    ///
+    /// # Errors
+    /// As [`NurbsCurve::bezier_segments`].
+    pub fn bezier_patches(&self) -> Result<Vec<Vec<Self>>> {
+        self.surface
+            .bezier_patches()
+            .into_iter()
+            .map(|row| row.into_iter().map(Self::checked).collect())
+            .collect()
+    }
+}
