@@ -35,6 +35,7 @@ mod arclength;
 mod bezier;
 mod bspline;
 mod construct;
+#[cfg(feature = "serde")]
 pub mod exchange;
 pub mod export;
 mod homogeneous;
