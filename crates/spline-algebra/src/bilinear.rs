@@ -6,7 +6,7 @@ use nalgebra_sparse::CsrMatrix;
 use spline_core::{Error, ErrorKind, Result, Scalar};
 
 /// A sparse bilinear map $B : \mathbb R^{m} \times \mathbb R^{n} \to \mathbb R^{r}$,
-/// $B(x, y)_k = \sum_{(j, l)} b_{kjl}\, x_j\, y_l$, stored row by row (one row per output).
+/// $B(x, y)_k = \sum_{(j, l)} b_{kjl}\\, x_j\\, y_l$, stored row by row (one row per output).
 ///
 /// It is the structure of every product in this crate: the product of two splines is
 /// `B(a, b)`, its Jacobians are `B(·, b)` and `B(a, ·)`, and `B` itself is the constant

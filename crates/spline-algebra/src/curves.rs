@@ -44,13 +44,13 @@ impl Invariant {
 pub enum Form {
     /// The B-spline form on the minimal knot vector (products by [`crate::product_knots`]).
     BSpline,
-    /// The per-segment Bernstein form of the thesis ([`crate::bernstein_space`]): one
+    /// The per-segment Bernstein form of the thesis ([`KnotVector::bernstein`]): one
     /// Bézier piece per non-empty knot span of the curve, `degree + 1` coefficients each.
     Bernstein,
 }
 
 /// A spline function whose coefficients depend on variables `x`, with the Jacobian
-/// $\partial\,\text{coefficient}_k / \partial x_j$ (rows: coefficients, columns: variables).
+/// $\partial\\,\text{coefficient}_k / \partial x_j$ (rows: coefficients, columns: variables).
 #[derive(Clone, Debug)]
 pub struct Differentiated<T> {
     /// The function.

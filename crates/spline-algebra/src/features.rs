@@ -146,7 +146,7 @@ impl<T: Scalar> CurveFeatures<T> for Bezier<T, Vector2<T>> {
 /// $C' \wedge C'' = D / W^3$ with $D = \det(P, P', P'')$ and $C' = N / W^2$ with
 /// $N = (X'W - XW', Y'W - YW')$, so $\kappa = D W^3 / |N|^3$ and
 /// $\kappa' = W^2 G / |N|^5$ with
-/// $G = (D' W + 3 D W')\, N \cdot N - 3 D W\, N \cdot N'$, $N' = (X''W - XW'', Y''W - YW'')$.
+/// $G = (D' W + 3 D W')\\, N \cdot N - 3 D W\\, N \cdot N'$, $N' = (X''W - XW'', Y''W - YW'')$.
 /// Inflections are the sign changes of `D`, curvature extrema those of `G` (for `W ≡ 1`,
 /// `D = h4` and `G = g`).
 impl<T: Scalar> CurveFeatures<T> for NurbsCurve<T, 2> {

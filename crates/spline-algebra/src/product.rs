@@ -79,7 +79,7 @@ pub fn product_knots<T: Scalar>(a: &KnotVector<T>, b: &KnotVector<T>) -> Result<
 
 /// The per-segment Bernstein product (thesis (5.38)) as a block-diagonal bilinear map from
 /// (degree `p` pieces) × (degree `q` pieces) to degree `p + q` pieces on `segments` segments:
-/// $f_i = \sum_j \binom{p}{j}\binom{q}{i-j} / \binom{p+q}{i}\; g_j\, h_{i-j}$.
+/// $f_i = \sum_j \binom{p}{j}\binom{q}{i-j} / \binom{p+q}{i}\\; g_j\\, h_{i-j}$.
 #[must_use]
 pub fn bernstein_product<T: Scalar>(p: usize, q: usize, segments: usize) -> SparseBilinear<T> {
     let d = p + q;

@@ -376,7 +376,7 @@ pub fn tensor_linear_combination<T: Scalar, P: ControlPoint<T>>(
 pub struct QuadraticFunction<T> {
     /// The function.
     pub value: Surface<T, T>,
-    /// $\partial\, \text{coefficient}_k / \partial x_j$.
+    /// $\partial\\, \text{coefficient}_k / \partial x_j$.
     pub gradient: CsrMatrix<T>,
     /// The constant Hessian: row `k` is the Hessian of coefficient `k`.
     pub hessian: SparseBilinear<T>,
@@ -455,7 +455,7 @@ fn partial_or_zero<T: Scalar>(s: &Surface<T, T>, k: usize, l: usize) -> Result<S
 /// $c_3 = (s_{uuv} + s_{vvv})/2$, $c_4 = 2(s_{uu} - s_{vv})(s_{uuv} - s_{vvv}) + 8 s_{uv} s_{uvv}$,
 /// $c_5 = s_{uu} + s_{vv}$,
 /// $a = s_{uv} c_1 - s_{uu} c_3 + c_5 c_3/2 + c_4/8$,
-/// $b = s_{uv} c_2/4 - s_{uu} c_4/4 + c_5 c_4/8 + d\, c_3/2$,
+/// $b = s_{uv} c_2/4 - s_{uu} c_4/4 + c_5 c_4/8 + d\\, c_3/2$,
 /// $a' = s_{vv} c_1 - c_5 c_1/2 - c_2/8 - s_{uv} c_3$,
 /// $b' = s_{vv} c_2/4 - c_5 c_2/8 - c_1 d/2 - s_{uv} c_4/4$.
 /// Here $e_{1,2} = \lambda_{1,2,u} s_{uv} + \lambda_{1,2,v} (\lambda_{1,2} - s_{uu})$ and

@@ -5,6 +5,9 @@
 //! gives a one-line message on standard error and exit status 2, never a panic or NaN.
 
 #![allow(unreachable_pub)]
+// The doc comments of the commands and their arguments are the tool's `--help` texts, read in
+// a terminal: JSON in them (`[0,0,1]`, `[param][k][coord]`) is data, not an intra-doc link.
+#![allow(rustdoc::broken_intra_doc_links)]
 
 mod algebra;
 mod eval;

@@ -90,7 +90,7 @@ impl<T: Scalar> KnotVector<T> {
 
     /// The triangular scheme of [`KnotVector::basis_values_fixed`], keeping every degree:
     /// row `d` holds the `d + 1` basis functions of degree `d` non-zero in `span`,
-    /// $N_{span - d + r,\,d}(u)$ at index `r` (the rest of the row is zero). Lower degrees
+    /// $N_{span - d + r,\\,d}(u)$ at index `r` (the rest of the row is zero). Lower degrees
     /// give curve derivatives through the derivative control points (The NURBS Book A3.4).
     ///
     /// # Panics

@@ -262,7 +262,7 @@ pub(crate) fn check_strict<T: Scalar>(params: &[T]) -> Result<()> {
 /// clamped on $[\bar u_0, \bar u_m]$ with, for `d = (m + 1)/(n − p + 1)` (`n + 1` control
 /// points), `j = ⌊i d⌋`, `α = i d − j`,
 ///
-/// $$ u_{p+i} = (1 - \alpha)\, \bar u_{j-1} + \alpha\, \bar u_j, \qquad i = 1, …, n - p. $$
+/// $$ u_{p+i} = (1 - \alpha)\\, \bar u_{j-1} + \alpha\\, \bar u_j, \qquad i = 1, …, n - p. $$
 ///
 /// Every knot span then contains at least one parameter, so the Schoenberg–Whitney
 /// conditions hold when the parameters are distinct.

@@ -27,7 +27,7 @@ impl<T: Scalar> Quadrature<T> {
     }
 }
 
-/// $\int \lVert C'(u) \rVert\,du$ over the pieces between consecutive `breaks` (the speed
+/// $\int \lVert C'(u) \rVert\\,du$ over the pieces between consecutive `breaks` (the speed
 /// is smooth inside each), by adaptive Gauss–Legendre quadrature to the absolute `accuracy`
 /// shared among the pieces.
 ///

@@ -8,7 +8,7 @@ use spline_core::{
 };
 
 /// A Bézier curve of degree `n` on `[a, b]`:
-/// $P(t) = \sum_{i=0}^{n} B_i^n\!\left(\frac{t-a}{b-a}\right) P_i$.
+/// $P(t) = \sum_{i=0}^{n} B_i^n\\!\left(\frac{t-a}{b-a}\right) P_i$.
 ///
 /// Any degree is accepted (interpolating Bézier curves of seed 003 have one control point per
 /// data point); degrees above [`spline_core::MAX_DEGREE`] fall back to heap memory in

@@ -7,7 +7,7 @@ use spline_core::{
 /// A B-spline: a degree, a [`KnotVector`] and `n` control points of any type `P` that forms a
 /// vector space over `T`.
 ///
-/// $$ C(u) = \sum_{i=0}^{n-1} N_{i,p}(u)\, P_i, \qquad u \in [u_p, u_n]. $$
+/// $$ C(u) = \sum_{i=0}^{n-1} N_{i,p}(u)\\, P_i, \qquad u \in [u_p, u_n]. $$
 ///
 /// With `P = T` it is a B-spline *function*; with `P = nalgebra::SVector<T, D>` a curve in
 /// `R^D`; with homogeneous points it is the container behind a NURBS curve. The container

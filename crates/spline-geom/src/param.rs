@@ -158,7 +158,7 @@ pub trait ParamCurve<T: Scalar> {
     }
 
     /// The arc length between parameters `a ≤ b` to the absolute `accuracy`:
-    /// $\int_a^b \lVert C'(u) \rVert\,du$ by adaptive Gauss–Legendre quadrature on each
+    /// $\int_a^b \lVert C'(u) \rVert\\,du$ by adaptive Gauss–Legendre quadrature on each
     /// piece (the speed is smooth inside a piece), bisecting where two estimates differ.
     ///
     /// # Errors

@@ -5,7 +5,7 @@ use nalgebra::Vector3;
 use spline_core::{Error, ErrorKind, Result, Scalar, cast, to_f64};
 
 /// A symmetric quadratic form on the tangent plane in the basis $(S_u, S_v)$:
-/// $Q(du, dv) = uu\, du^2 + 2\, uv\, du\, dv + vv\, dv^2$.
+/// $Q(du, dv) = uu\\, du^2 + 2\\, uv\\, du\\, dv + vv\\, dv^2$.
 ///
 /// The first fundamental form has $uu = E = S_u \cdot S_u$, $uv = F = S_u \cdot S_v$,
 /// $vv = G = S_v \cdot S_v$; the second $uu = L = S_{uu} \cdot n$, $uv = M = S_{uv} \cdot n$,
@@ -14,7 +14,7 @@ use spline_core::{Error, ErrorKind, Result, Scalar, cast, to_f64};
 pub struct FundamentalForm<T> {
     /// The coefficient of $du^2$ ($E$ or $L$).
     pub uu: T,
-    /// The coefficient of $2\,du\,dv$ ($F$ or $M$).
+    /// The coefficient of $2\\,du\\,dv$ ($F$ or $M$).
     pub uv: T,
     /// The coefficient of $dv^2$ ($G$ or $N$).
     pub vv: T,
@@ -27,7 +27,7 @@ impl<T: Scalar> FundamentalForm<T> {
         self.uu * du * du + (self.uv + self.uv) * du * dv + self.vv * dv * dv
     }
 
-    /// The determinant $uu\,vv - uv^2$.
+    /// The determinant $uu\\,vv - uv^2$.
     #[must_use]
     pub fn determinant(&self) -> T {
         self.uu * self.vv - self.uv * self.uv
@@ -150,7 +150,7 @@ impl<T: Scalar> LocalProperties<T> {
         })
     }
 
-    /// The normal curvature $II(du, dv) / I(du, dv)$ along the tangent $du\,S_u + dv\,S_v$.
+    /// The normal curvature $II(du, dv) / I(du, dv)$ along the tangent $du\\,S_u + dv\\,S_v$.
     ///
     /// # Errors
     /// [`ErrorKind::DegenerateGeometry`] if the tangent is zero.

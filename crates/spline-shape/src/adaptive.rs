@@ -71,7 +71,7 @@ pub struct AdaptiveIteration {
     pub simplex_iterations: u64,
 }
 
-/// The perimeter $\mathcal P = \int \lVert c'\rVert$, the area $\mathcal A = \int y\,x'\,dt$
+/// The perimeter $\mathcal P = \int \lVert c'\rVert$, the area $\mathcal A = \int y\\,x'\\,dt$
 /// and $J = \mathcal P^2 / \mathcal A$ of a planar curve.
 ///
 /// ```

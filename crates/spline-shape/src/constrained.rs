@@ -1,7 +1,7 @@
 //! Least-squares approximation of a function of one variable by a B-spline function under
 //! sign constraints on its derivatives (thesis §5.1–5.4).
 //!
-//! The objective is $f_0(x) = \tfrac12\sum_j (s(u_j) - \gamma(u_j))^2 = \tfrac12\|Ax - b\|^2$
+//! The objective is $f_0(x) = \tfrac12\sum_j (s(u_j) - \gamma(u_j))^2 = \tfrac12\\|Ax - b\\|^2$
 //! with $A_{ji} = N_{i,d}(u_j)$. A constraint "$s^{(k)} \ge 0$ on `[a, b]`" becomes a sign
 //! condition on the control points of the derivative spline restricted to `[a, b]` (a sparse
 //! linear map of `x`: derivative, then knot insertion at `a` and `b`; thesis (5.20)–(5.30)):
@@ -85,7 +85,7 @@ impl FunctionConstraint {
 /// What a dense sampling of one constraint found (see [`FunctionApproximation::check`]).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct ConstraintCheck {
-    /// The largest violation: $\max(0, -\sigma\, s^{(k)}(u))$ over the samples for a sign
+    /// The largest violation: $\max(0, -\sigma\\, s^{(k)}(u))$ over the samples for a sign
     /// constraint, the same at the two ends (with their signs) for a sign change; `0` when
     /// the samples satisfy the constraint.
     pub violation: f64,
@@ -103,7 +103,7 @@ pub struct FunctionFit {
     pub spline: BSpline<f64, f64>,
     /// The unconstrained least-squares spline on the same knots.
     pub unconstrained: BSpline<f64, f64>,
-    /// $f_0 = \tfrac12\|Ax - b\|^2$ of the constrained spline.
+    /// $f_0 = \tfrac12\\|Ax - b\\|^2$ of the constrained spline.
     pub objective: f64,
     /// $f_0$ of the unconstrained spline (a lower bound of `objective`).
     pub unconstrained_objective: f64,

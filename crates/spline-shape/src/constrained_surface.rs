@@ -2,7 +2,7 @@
 //! function under constraints on its differential properties (thesis §5.5–5.6).
 //!
 //! The samples form a grid `us × vs`; the objective is
-//! $f_0(x) = \tfrac12\sum_{k,l} (s(u_k, v_l) - \gamma(u_k, v_l))^2 = \tfrac12\|Ax - b\|^2$
+//! $f_0(x) = \tfrac12\sum_{k,l} (s(u_k, v_l) - \gamma(u_k, v_l))^2 = \tfrac12\\|Ax - b\\|^2$
 //! with $A = A_u \otimes A_v$ on the row-major coefficients $x_{ij}$ (`i` along `u`).
 //!
 //! - A sign constraint on a partial derivative $\partial^{k+l}s/\partial u^k\partial v^l$ on
@@ -77,7 +77,7 @@ pub struct ConstrainedSurfaceFit {
     pub surface: Surface<f64, f64>,
     /// The unconstrained least-squares surface on the same knots.
     pub unconstrained: Surface<f64, f64>,
-    /// $f_0 = \tfrac12\|Ax - b\|^2$ of the constrained surface.
+    /// $f_0 = \tfrac12\\|Ax - b\\|^2$ of the constrained surface.
     pub objective: f64,
     /// $f_0$ of the unconstrained surface.
     pub unconstrained_objective: f64,
@@ -148,7 +148,7 @@ impl SurfaceApproximation {
         self
     }
 
-    /// Adds $\sigma\,\partial^{k+l}s/\partial u^k\partial v^l \ge 0$ on the whole domain.
+    /// Adds $\sigma\\,\partial^{k+l}s/\partial u^k\partial v^l \ge 0$ on the whole domain.
     #[must_use]
     pub fn sign(self, k: usize, l: usize, sign: Sign) -> Self {
         self.with_constraint(SurfaceConstraint::Sign {
@@ -158,7 +158,7 @@ impl SurfaceApproximation {
         })
     }
 
-    /// Adds $\sigma\,\partial^{k+l}s/\partial u^k\partial v^l \ge 0$ on a rectangle.
+    /// Adds $\sigma\\,\partial^{k+l}s/\partial u^k\partial v^l \ge 0$ on a rectangle.
     #[must_use]
     pub fn sign_on(self, k: usize, l: usize, sign: Sign, region: Region) -> Self {
         self.with_constraint(SurfaceConstraint::Sign {

@@ -19,7 +19,7 @@ use spline_geom::BSpline;
 /// How the least-squares problem is solved.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub enum LsqMethod {
-    /// Banded normal equations $A^T W^2 A\, c = A^T W^2 Q$ solved by banded Cholesky: the
+    /// Banded normal equations $A^T W^2 A\\, c = A^T W^2 Q$ solved by banded Cholesky: the
     /// fastest, `O(m p² + n p²)`, accurate for the well-conditioned B-spline bases.
     #[default]
     NormalEquations,
@@ -317,7 +317,7 @@ impl<'a, T: Scalar, P: ControlPoint<T>> LeastSquares<'a, T, P> {
         Ok(())
     }
 
-    /// The normal equations $A^T W^2 A\, c = A^T W^2 Q$ of the problem (with the smoothing
+    /// The normal equations $A^T W^2 A\\, c = A^T W^2 Q$ of the problem (with the smoothing
     /// term), assembled but not solved: the quadratic objective
     /// $f_0(c) = \tfrac12 \sum_k w_k^2 \lVert C(\bar u_k) - Q_k \rVert^2 + \tfrac\lambda2 \int \lVert C'' \rVert^2$
     /// for methods that minimise it under other constraints (the selective eraser).

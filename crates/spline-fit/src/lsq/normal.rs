@@ -158,7 +158,7 @@ impl<'a, T: Scalar> GridLeastSquares<'a, T> {
         }
     }
 
-    /// The normal equations $(G_u \otimes G_v)\, x = r$ with
+    /// The normal equations $(G_u \otimes G_v)\\, x = r$ with
     /// $r = \operatorname{vec}(A_u^T Z A_v)$, assembled but not solved.
     ///
     /// # Errors
@@ -249,7 +249,7 @@ impl<T: Scalar> GridNormalEquations<T> {
         self.constant
     }
 
-    /// The unconstrained minimiser $X = G_u^{-1} R\, G_v^{-1}$ (row-major), by two banded
+    /// The unconstrained minimiser $X = G_u^{-1} R\\, G_v^{-1}$ (row-major), by two banded
     /// Cholesky solves.
     ///
     /// # Errors

@@ -9,11 +9,13 @@ use crate::bspline::BSpline;
 use crate::homogeneous::{Homogeneous, check_weights};
 use crate::structural::check_tolerance;
 use nalgebra::SVector;
+#[cfg(doc)]
+use spline_core::ErrorKind;
 use spline_core::{ControlPoint, KnotVector, MAX_ORDER, Result, Scalar};
 
 /// A NURBS curve in $\mathbb{R}^D$ (seed 004 Definition 6.1):
 ///
-/// $$ R(u) = \frac{\sum_i N_{i,p}(u)\, w_i P_i}{\sum_i N_{i,p}(u)\, w_i}, \qquad w_i > 0. $$
+/// $$ R(u) = \frac{\sum_i N_{i,p}(u)\\, w_i P_i}{\sum_i N_{i,p}(u)\\, w_i}, \qquad w_i > 0. $$
 ///
 /// Stored as a [`BSpline`] of [`Homogeneous`] points `(w_i P_i, w_i)`; the Cartesian control
 /// points and the weights are views. Weights are validated (positive and finite) on

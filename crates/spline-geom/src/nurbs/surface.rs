@@ -8,12 +8,14 @@ use crate::homogeneous::{Homogeneous, check_weights};
 use crate::structural::check_tolerance;
 use crate::surface::{Direction, Surface, flatten_net};
 use nalgebra::SVector;
+#[cfg(doc)]
+use spline_core::ErrorKind;
 use spline_core::{ControlPoint, KnotVector, Result, Scalar};
 
 /// A NURBS surface in $\mathbb{R}^D$ (seed 004 (6.11), (6.14)):
 ///
-/// $$ S(u, v) = \frac{\sum_{i,j} N_{i,p}(u) N_{j,q}(v)\, w_{ij} P_{ij}}
-///                   {\sum_{i,j} N_{i,p}(u) N_{j,q}(v)\, w_{ij}}, \qquad w_{ij} > 0. $$
+/// $$ S(u, v) = \frac{\sum_{i,j} N_{i,p}(u) N_{j,q}(v)\\, w_{ij} P_{ij}}
+///                   {\sum_{i,j} N_{i,p}(u) N_{j,q}(v)\\, w_{ij}}, \qquad w_{ij} > 0. $$
 ///
 /// Stored as a [`Surface`] of [`Homogeneous`] points; the net is row-major, `i` along `u`.
 ///

@@ -2,6 +2,8 @@
 //! grids by the tensor fast path.
 
 use super::{BasisTable, Surface, basis_into};
+#[cfg(doc)]
+use spline_core::ErrorKind;
 use spline_core::{ControlPoint, MAX_ORDER, Result, Scalar};
 
 impl<T: Scalar, P: ControlPoint<T>> Surface<T, P> {

@@ -45,7 +45,7 @@ impl fmt::Display for Direction {
 
 /// A tensor-product B-spline surface (seed 000 (7), seed 004 (5.1)):
 ///
-/// $$ S(u, v) = \sum_{i=0}^{n_u - 1} \sum_{j=0}^{n_v - 1} N_{i,p}(u)\, N_{j,q}(v)\, P_{ij},
+/// $$ S(u, v) = \sum_{i=0}^{n_u - 1} \sum_{j=0}^{n_v - 1} N_{i,p}(u)\\, N_{j,q}(v)\\, P_{ij},
 /// \qquad (u, v) \in [u_p, u_{n_u}] \times [v_q, v_{n_v}]. $$
 ///
 /// Two validated [`KnotVector`]s (each carries its degree) and an `n_u × n_v` control net of

@@ -1,5 +1,5 @@
 //! The optimisation problem shared by the constrained approximations of functions of one and
-//! two variables (thesis §5.1–5.6): the least-squares objective $f_0 = \tfrac12\|Ax - b\|^2$,
+//! two variables (thesis §5.1–5.6): the least-squares objective $f_0 = \tfrac12\\|Ax - b\\|^2$,
 //! linear sign constraints `G x < 0` and quadratic ones `½ xᵀ H_k x < 0` with constant
 //! Hessians, as a [`BarrierProblem`].
 
@@ -91,7 +91,7 @@ pub(crate) fn vstack(ncols: usize, blocks: &[CsrMatrix<f64>]) -> CsrMatrix<f64> 
 }
 
 /// A constrained least-squares problem, ready for [`crate::minimize`]: minimise
-/// $f_0(x) = \tfrac12\|Ax - b\|^2$ over the coefficients `x` subject to linear constraints
+/// $f_0(x) = \tfrac12\\|Ax - b\\|^2$ over the coefficients `x` subject to linear constraints
 /// `G x < 0` (sign conditions on the control points of derivatives, each row scaled to unit
 /// length so that its value is the signed distance of `x` to the hyperplane) and quadratic
 /// ones $\tfrac12 x^T H_k x < 0$ with constant Hessians `H_k` (the control points of
