@@ -2,14 +2,13 @@
 //! library: basis functions, evaluation with derivatives, insertion, splitting, derivative
 //! curves, degree elevation.
 
-mod common;
-
-use common::{assert_close, assert_same_curve, cases, f64s};
 use nalgebra::SVector;
 use serde_json::{Value, json};
 use spline::core::KnotVector;
 use spline::geom::BSpline;
 use spline::geom::exchange::CurveRecord;
+use spline_testing::compare::assert_close;
+use spline_testing::reference::{assert_same_curve, cases, f64s, flatten};
 
 fn record(v: &Value) -> CurveRecord {
     serde_json::from_value(v.clone()).expect("curve record")
@@ -78,7 +77,7 @@ fn curve_evaluation_with_derivatives() {
             for (u, expected) in params.iter().zip(case["expected"].as_array().unwrap()) {
                 let ders = curve.derivatives(*u, order).unwrap();
                 let flat: Vec<f64> = ders.iter().flat_map(|p| p.iter().copied()).collect();
-                let exp = common::flatten(expected);
+                let exp = flatten(expected);
                 let scale = 1f64.max(exp.iter().fold(0.0, |m, x| m.max(x.abs())));
                 assert_close(&flat, &exp, 1e-9 * scale, &format!("{name} u={u}"));
                 // de Boor and basis form agree on the point itself.
@@ -145,7 +144,7 @@ fn derivative_curve() {
         with_curve!(&case["curve"], |curve| {
             let got = curve.derivative(order).unwrap();
             let scale = 1f64.max(
-                common::flatten(&case["expected"]["control_points"])
+                flatten(&case["expected"]["control_points"])
                     .iter()
                     .fold(0.0, |m, x| m.max(x.abs())),
             );

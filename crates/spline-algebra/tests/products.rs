@@ -9,32 +9,33 @@
 
 mod common;
 
-use common::{Rng, assert_close_rel, dense, parameters, random_knots, random_pool};
-use nalgebra::Vector2;
+use common::dense;
 use num_dual::{Dual64, HyperDual64};
+use proptest::collection::vec;
+use proptest::prelude::*;
 use spline_algebra::{
     ProductMap, difference, dot_product, linear_combination, product, product_knots,
     product_with_jacobians, square, sum, wedge_product,
 };
 use spline_core::KnotVector;
 use spline_geom::BSpline;
+use spline_testing::compare::assert_close_rel;
+use spline_testing::strategies::{
+    functions_on_a_pool, parameters, two_functions, two_planar_curves,
+};
 
 fn to_dual<T: spline_core::Scalar>(k: &KnotVector<f64>, f: impl Fn(f64) -> T) -> KnotVector<T> {
     KnotVector::new(k.degree(), k.knots().iter().map(|&x| f(x)).collect()).unwrap()
 }
 
-#[test]
-fn products_evaluate_to_the_product_of_values() {
-    let mut rng = Rng::new(1);
-    let mut checked = 0usize;
-    for case in 0..300 {
-        let pool = random_pool(&mut rng);
-        let p = rng.int(0, 7);
-        let q = rng.int(0, 7);
-        let ka = random_knots(&mut rng, p, &pool, case % 3 == 0);
-        let kb = random_knots(&mut rng, q, &pool, case % 5 == 0);
-        let a = BSpline::new(ka.clone(), rng.values(ka.num_basis())).unwrap();
-        let b = BSpline::new(kb.clone(), rng.values(kb.num_basis())).unwrap();
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(300))]
+
+    #[test]
+    fn products_evaluate_to_the_product_of_values((a, b) in two_functions(7, 7), samples in vec(0.0f64..1.0, 40)) {
+        let (ka, kb) = (a.knots().clone(), b.knots().clone());
+        let (p, q) = (ka.degree(), kb.degree());
+        let case = format!("p = {p}, q = {q}");
         let c = product(&a, &b).unwrap();
         let scale = a
             .control_points()
@@ -43,7 +44,7 @@ fn products_evaluate_to_the_product_of_values() {
             * b.control_points()
                 .iter()
                 .fold(0.0f64, |m, x| m.max(x.abs()));
-        for u in parameters(&mut rng, c.knots(), 40) {
+        for u in parameters(c.knots(), &samples) {
             let expected = a.eval(u).unwrap() * b.eval(u).unwrap();
             assert_close_rel(
                 c.eval(u).unwrap(),
@@ -52,7 +53,6 @@ fn products_evaluate_to_the_product_of_values() {
                 scale,
                 &format!("case {case} (p={p}, q={q}) at u={u}"),
             );
-            checked += 1;
         }
         // Per-segment Bernstein form agrees too.
         let map = ProductMap::new(&ka, &kb).unwrap();
@@ -62,7 +62,7 @@ fn products_evaluate_to_the_product_of_values() {
                 .unwrap(),
         )
         .unwrap();
-        for u in parameters(&mut rng, c.knots(), 10) {
+        for u in parameters(c.knots(), &samples[..10]) {
             let expected = a.eval(u).unwrap() * b.eval(u).unwrap();
             assert_close_rel(
                 pieces.eval(u).unwrap(),
@@ -73,19 +73,17 @@ fn products_evaluate_to_the_product_of_values() {
             );
         }
     }
-    assert!(checked > 10_000, "{checked} parameters checked");
 }
 
-/// The multiplicities of the product space, computed independently from the continuity rule.
-#[test]
-fn product_space_has_minimal_multiplicities() {
-    let mut rng = Rng::new(2);
-    for case in 0..300 {
-        let pool = random_pool(&mut rng);
-        let p = rng.int(0, 7);
-        let q = rng.int(0, 7);
-        let ka = random_knots(&mut rng, p, &pool, case % 2 == 0);
-        let kb = random_knots(&mut rng, q, &pool, case % 3 == 0);
+// The multiplicities of the product space, computed independently from the continuity rule.
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(300))]
+
+    #[test]
+    fn product_space_has_minimal_multiplicities((pool, a, b) in functions_on_a_pool(7, 7)) {
+        let (ka, kb) = (a.knots().clone(), b.knots().clone());
+        let (p, q) = (ka.degree(), kb.degree());
+        let case = format!("p = {p}, q = {q}");
         let w = product_knots(&ka, &kb).unwrap();
         assert_eq!(w.degree(), p + q);
         assert!(w.is_clamped());
@@ -128,8 +126,6 @@ fn product_space_has_minimal_multiplicities() {
         // interior knot cannot represent it (the removal error is large) — unless another
         // knot lies close by (the pool has knots 1e-4 apart), which makes the smaller space
         // numerically as good: such knots are not tested.
-        let a = BSpline::new(ka.clone(), rng.values(ka.num_basis())).unwrap();
-        let b = BSpline::new(kb.clone(), rng.values(kb.num_basis())).unwrap();
         let c = product(&a, &b).unwrap();
         let breaks = w.domain_breaks();
         let isolated = (1..breaks.len() - 1)
@@ -147,17 +143,14 @@ fn product_space_has_minimal_multiplicities() {
     }
 }
 
-#[test]
-fn jacobians_agree_with_finite_differences_and_dual_numbers() {
-    let mut rng = Rng::new(3);
-    for case in 0..60 {
-        let pool = random_pool(&mut rng);
-        let p = rng.int(0, 5);
-        let q = rng.int(0, 5);
-        let ka = random_knots(&mut rng, p, &pool, case % 4 == 0);
-        let kb = random_knots(&mut rng, q, &pool, case % 3 == 0);
-        let a = BSpline::new(ka.clone(), rng.values(ka.num_basis())).unwrap();
-        let b = BSpline::new(kb.clone(), rng.values(kb.num_basis())).unwrap();
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(60))]
+
+    #[test]
+    fn jacobians_agree_with_finite_differences_and_dual_numbers((a, b) in two_functions(5, 5)) {
+        let (ka, kb) = (a.knots().clone(), b.knots().clone());
+        let (p, q) = (ka.degree(), kb.degree());
+        let case = format!("p = {p}, q = {q}");
         let r = product_with_jacobians(&a, &b).unwrap();
         let ja = dense(&r.jacobian_a);
         let jb = dense(&r.jacobian_b);
@@ -255,23 +248,13 @@ fn jacobians_agree_with_finite_differences_and_dual_numbers() {
     }
 }
 
-#[test]
-fn dot_wedge_sum_square() {
-    let mut rng = Rng::new(4);
-    for case in 0..40 {
-        let pool = random_pool(&mut rng);
-        let p = rng.int(1, 5);
-        let q = rng.int(1, 5);
-        let ka = random_knots(&mut rng, p, &pool, false);
-        let kb = random_knots(&mut rng, q, &pool, false);
-        let pa: Vec<Vector2<f64>> = (0..ka.num_basis())
-            .map(|_| Vector2::new(rng.range(-1.0, 1.0), rng.range(-1.0, 1.0)))
-            .collect();
-        let pb: Vec<Vector2<f64>> = (0..kb.num_basis())
-            .map(|_| Vector2::new(rng.range(-1.0, 1.0), rng.range(-1.0, 1.0)))
-            .collect();
-        let a = BSpline::new(ka.clone(), pa).unwrap();
-        let b = BSpline::new(kb.clone(), pb).unwrap();
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(40))]
+
+    #[test]
+    fn dot_wedge_sum_square((a, b) in two_planar_curves(5, 5), samples in vec(0.0f64..1.0, 30)) {
+        let (ka, kb) = (a.knots().clone(), b.knots().clone());
+        let case = format!("p = {}, q = {}", a.degree(), b.degree());
         let d = dot_product(&a, &b).unwrap();
         let w = wedge_product(&a, &b).unwrap();
         let s = sum(&a, &b).unwrap();
@@ -281,7 +264,7 @@ fn dot_wedge_sum_square() {
         let sq_all = square(&fa).unwrap();
         let (sq, sq_jac, sq_hess) = (sq_all.value, sq_all.jacobian, sq_all.hessian);
         let lc = linear_combination(0.5, &fa, -2.0, &fb).unwrap();
-        for u in parameters(&mut rng, &ka, 30) {
+        for u in parameters(&ka, &samples) {
             let (va, vb) = (a.eval(u).unwrap(), b.eval(u).unwrap());
             assert_close_rel(d.product.eval(u).unwrap(), va.dot(&vb), 1e-12, 1.0, "dot");
             assert_close_rel(

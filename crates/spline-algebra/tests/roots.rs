@@ -3,12 +3,11 @@
 
 #![allow(clippy::cast_lossless)]
 
-mod common;
-
-use common::{Rng, random_knots, random_pool};
+use proptest::collection::vec;
+use proptest::prelude::*;
 use spline_algebra::{SplineMap, product, sign_change_params, zeros};
-use spline_core::KnotVector;
 use spline_geom::BSpline;
+use spline_testing::strategies::function;
 
 /// `u − r` on `[0, 1]`.
 fn linear(r: f64) -> BSpline<f64, f64> {
@@ -23,29 +22,29 @@ fn from_roots(roots: &[f64]) -> BSpline<f64, f64> {
     f
 }
 
-#[test]
-fn known_simple_roots_with_interior_knots() {
-    let mut rng = Rng::new(31);
-    for case in 0..200 {
-        let count = rng.int(1, 7);
-        let mut roots: Vec<f64> = (0..count).map(|_| rng.range(0.02, 0.98)).collect();
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(200))]
+
+    #[test]
+    fn known_simple_roots_with_interior_knots(roots in vec(0.02f64..0.98, 1..=7), extra in vec(0.01f64..0.99, 2)) {
+        let mut roots = roots;
         roots.sort_by(f64::total_cmp);
         if roots.windows(2).any(|w| w[1] - w[0] < 1e-3) {
-            continue;
+            return Ok(());
         }
         let f = from_roots(&roots);
         // Insert some knots (one of them exactly at a root) so that roots fall inside
         // segments and on breakpoints.
-        let mut extra = vec![roots[0], rng.range(0.01, 0.99), rng.range(0.01, 0.99)];
+        let mut extra = vec![roots[0], extra[0], extra[1]];
         extra.sort_by(f64::total_cmp);
         let map = SplineMap::refinement(f.knots(), &extra).unwrap();
         let f = map.apply_to(&f).unwrap();
         for accuracy in [1e-6, 1e-13] {
             let z = zeros(&f, accuracy).unwrap();
-            assert_eq!(z.len(), roots.len(), "case {case}: {z:?} vs {roots:?}");
+            assert_eq!(z.len(), roots.len(), "{z:?} vs {roots:?}");
             for (i, (zi, r)) in z.iter().zip(&roots).enumerate() {
                 assert!(!zi.is_interval());
-                assert!(zi.sign_change, "case {case}: simple root {r} is a crossing");
+                assert!(zi.sign_change, "roots {roots:?}: simple root {r} is a crossing");
                 // A root is determined only up to its condition number: rounding of the
                 // coefficients (~eps) moves it by about eps / |f'(r)|.
                 let slope: f64 = (0..roots.len())
@@ -55,7 +54,7 @@ fn known_simple_roots_with_interior_knots() {
                 let conditioning = 1e3 * f64::EPSILON / slope;
                 assert!(
                     (zi.at() - r).abs() <= accuracy.max(conditioning),
-                    "case {case}: {} vs {r} (accuracy {accuracy}, conditioning {conditioning:.1e})",
+                    "roots {roots:?}: {} vs {r} (accuracy {accuracy}, conditioning {conditioning:.1e})",
                     zi.at()
                 );
                 if accuracy >= 1e-6 {
@@ -150,15 +149,12 @@ fn requested_accuracy_and_errors() {
     assert!(zeros(&f, f64::INFINITY).is_err());
 }
 
-#[test]
-fn random_functions_against_dense_sampling() {
-    let mut rng = Rng::new(32);
-    let mut compared = 0;
-    for _ in 0..300 {
-        let pool = random_pool(&mut rng);
-        let p = rng.int(1, 7);
-        let knots: KnotVector<f64> = random_knots(&mut rng, p, &pool, false);
-        let f = BSpline::new(knots.clone(), rng.values(knots.num_basis())).unwrap();
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(300))]
+
+    #[test]
+    fn random_functions_against_dense_sampling(f in function(1, 7, false)) {
+
         let crossings: Vec<f64> = zeros(&f, 1e-12)
             .unwrap()
             .iter()
@@ -175,7 +171,7 @@ fn random_functions_against_dense_sampling() {
         let samples = 20_000;
         let spacing = 1.0 / samples as f64;
         if crossings.windows(2).any(|w| w[1] - w[0] < 4.0 * spacing) {
-            continue;
+            return Ok(());
         }
         let values: Vec<f64> = (0..=samples)
             .map(|i| f.eval(i as f64 * spacing).unwrap())
@@ -196,7 +192,5 @@ fn random_functions_against_dense_sampling() {
         for (c, s) in crossings.iter().zip(&sampled) {
             assert!((c - s).abs() <= spacing, "{c} vs {s}");
         }
-        compared += 1;
     }
-    assert!(compared > 200);
 }

@@ -5,21 +5,10 @@
 #![allow(clippy::needless_range_loop, clippy::cast_lossless)]
 
 use serde_json::Value;
+use spline_testing::reference::{assert_same_curve, cases, flatten};
 use std::path::PathBuf;
 use std::process::Command;
 use std::sync::atomic::{AtomicUsize, Ordering};
-
-fn cases(name: &str) -> Vec<Value> {
-    let path = format!(
-        "{}/../../tests/data/reference/{name}.json",
-        env!("CARGO_MANIFEST_DIR")
-    );
-    let text = std::fs::read_to_string(&path).unwrap_or_else(|e| panic!("{path}: {e}"));
-    let data: Value = serde_json::from_str(&text).expect("valid JSON");
-    let cases = data["cases"].as_array().expect("cases").clone();
-    assert!(!cases.is_empty());
-    cases
-}
 
 /// A temporary file that is removed when dropped.
 struct TempFile(PathBuf);
@@ -89,44 +78,6 @@ fn fails_with(args: &[&str], needle: &str) {
     );
 }
 
-fn flatten(v: &Value) -> Vec<f64> {
-    match v {
-        Value::Array(items) => items.iter().flat_map(flatten).collect(),
-        Value::Number(n) => vec![n.as_f64().expect("f64")],
-        other => panic!("not a number array: {other}"),
-    }
-}
-
-/// Degree equal, knots within 1e-12 absolute, control points within 1e-9 relative.
-fn assert_same_curve(got: &Value, expected: &Value, what: &str) {
-    assert_eq!(got["degree"], expected["degree"], "{what}: degree");
-    let (gk, ek) = (flatten(&got["knots"]), flatten(&expected["knots"]));
-    assert_eq!(gk.len(), ek.len(), "{what}: knots {gk:?} vs {ek:?}");
-    for (i, (a, b)) in gk.iter().zip(&ek).enumerate() {
-        assert!((a - b).abs() <= 1e-12, "{what}: knot {i}: {a} vs {b}");
-    }
-    assert_eq!(
-        got["control_points"].as_array().unwrap().len(),
-        expected["control_points"].as_array().unwrap().len(),
-        "{what}: number of control points"
-    );
-    assert_eq!(
-        got["control_points"][0].as_array().unwrap().len(),
-        expected["control_points"][0].as_array().unwrap().len(),
-        "{what}: dimension"
-    );
-    let (gc, ec) = (
-        flatten(&got["control_points"]),
-        flatten(&expected["control_points"]),
-    );
-    for (i, (a, b)) in gc.iter().zip(&ec).enumerate() {
-        assert!(
-            (a - b).abs() <= 1e-9 * b.abs().max(1.0),
-            "{what}: control coordinate {i}: {a} vs {b}"
-        );
-    }
-}
-
 #[test]
 fn interpolate_reference_cases() {
     for case in cases("interpolate") {
@@ -144,7 +95,7 @@ fn interpolate_reference_cases() {
             "--knots",
             "averaging",
         ]);
-        assert_same_curve(&got, &case["expected"], name);
+        assert_same_curve(&got, &case["expected"], 1e-9, name);
     }
 }
 
@@ -171,7 +122,7 @@ fn interpolate_defaults_are_chordal_and_averaging() {
     let file = TempFile::new(&format!("# header line\n{text}"));
     let degree = case["degree"].to_string();
     let got = json_ok(&["interpolate", file.path(), "--degree", &degree]);
-    assert_same_curve(&got, &case["expected"], "defaults");
+    assert_same_curve(&got, &case["expected"], 1e-9, "defaults");
 }
 
 #[test]
@@ -200,7 +151,7 @@ fn least_squares_reference_cases() {
                 args.extend(["--weights", w]);
             }
             let got = json_ok(&args);
-            assert_same_curve(&got, &case["expected"], &format!("{name} {method}"));
+            assert_same_curve(&got, &case["expected"], 1e-9, &format!("{name} {method}"));
         }
     }
 }
@@ -211,7 +162,7 @@ fn natural_reference_cases() {
         let name = case["name"].as_str().unwrap();
         let (x, y) = (case["x"].to_string(), case["y"].to_string());
         let got = json_ok(&["natural", "--x", &x, "--y", &y]);
-        assert_same_curve(&got, &case["expected"], name);
+        assert_same_curve(&got, &case["expected"], 1e-9, name);
     }
 }
 

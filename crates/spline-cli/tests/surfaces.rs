@@ -4,6 +4,8 @@
 //! `mesh` outputs, and errors (exit status 2, one line on standard error, never a panic).
 
 use serde_json::{Value, json};
+use spline_testing::compare::assert_close;
+use spline_testing::reference::{cases, flatten};
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
@@ -87,33 +89,6 @@ fn fails(args: &[&str]) -> String {
     assert!(lines[0].starts_with("spline: "), "{}", lines[0]);
     assert!(!out.stderr.contains("panicked"));
     lines[0].to_owned()
-}
-
-fn cases(name: &str) -> Vec<Value> {
-    let path = format!(
-        "{}/../../tests/data/reference/{name}.json",
-        env!("CARGO_MANIFEST_DIR")
-    );
-    let data: Value = serde_json::from_str(&std::fs::read_to_string(&path).unwrap()).unwrap();
-    data["cases"].as_array().unwrap().clone()
-}
-
-fn flatten(v: &Value) -> Vec<f64> {
-    match v {
-        Value::Array(items) => items.iter().flat_map(flatten).collect(),
-        Value::Number(n) => vec![n.as_f64().unwrap()],
-        other => panic!("not a number array: {other}"),
-    }
-}
-
-fn assert_close(got: &[f64], expected: &[f64], tol: f64, what: &str) {
-    assert_eq!(got.len(), expected.len(), "{what}: lengths");
-    for (i, (x, y)) in got.iter().zip(expected).enumerate() {
-        assert!(
-            (x - y).abs() <= tol * y.abs().max(1.0),
-            "{what}[{i}]: got {x}, expected {y}"
-        );
-    }
 }
 
 fn norm(v: &[f64]) -> f64 {

@@ -4,8 +4,8 @@
 use approx::assert_relative_eq;
 use num_dual::Dual64;
 use proptest::prelude::*;
-use spline_core::strategies::knot_vector;
 use spline_core::{ErrorKind, KnotVector, bernstein, bernstein_all};
+use spline_testing::strategies::knot_vector;
 
 /// `(t)_+^e` with the right-continuous convention `(0)_+^0 = 1`.
 fn truncated_power(t: f64, e: usize) -> f64 {

@@ -7,10 +7,10 @@
 use nalgebra::Vector2;
 use proptest::prelude::*;
 use spline_core::KnotVector;
-use spline_core::strategies::knot_vector;
 use spline_fit::{
     InterpolationOptions, LeastSquares, LsqMethod, Parametrization, interpolate, interpolate_closed,
 };
+use spline_testing::strategies::knot_vector;
 
 /// Points along a random walk with steps of length at least 0.05 (no coincident points).
 fn walk(min: usize, max: usize) -> impl Strategy<Value = Vec<Vector2<f64>>> {

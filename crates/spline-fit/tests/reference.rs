@@ -11,26 +11,7 @@ use spline_fit::{
     natural_cubic,
 };
 use spline_geom::BSpline;
-
-fn cases(name: &str) -> Vec<Value> {
-    let path = format!(
-        "{}/../../tests/data/reference/{name}.json",
-        env!("CARGO_MANIFEST_DIR")
-    );
-    let text = std::fs::read_to_string(&path).unwrap_or_else(|e| panic!("{path}: {e}"));
-    let data: Value = serde_json::from_str(&text).expect("valid JSON");
-    let cases = data["cases"].as_array().expect("cases").clone();
-    assert!(!cases.is_empty(), "{name}: no cases");
-    cases
-}
-
-fn f64s(v: &Value) -> Vec<f64> {
-    v.as_array()
-        .expect("array")
-        .iter()
-        .map(|x| x.as_f64().expect("number"))
-        .collect()
-}
+use spline_testing::reference::{cases, f64s};
 
 fn rows(v: &Value) -> Vec<Vec<f64>> {
     v.as_array().expect("array").iter().map(f64s).collect()

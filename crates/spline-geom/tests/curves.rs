@@ -8,30 +8,9 @@ use approx::assert_relative_eq;
 use nalgebra::{Vector2, Vector3};
 use num_dual::Dual64;
 use proptest::prelude::*;
-use spline_core::strategies::knot_vector;
 use spline_core::{ErrorKind, KnotVector};
 use spline_geom::{BSpline, Bezier, Curve2, sign_changes};
-
-fn curve_strategy(
-    max_degree: usize,
-    extra: usize,
-    discontinuous: bool,
-) -> impl Strategy<Value = BSpline<f64, Vector3<f64>>> {
-    knot_vector(max_degree, extra, 1.0, discontinuous).prop_flat_map(|knots| {
-        let n = knots.num_basis();
-        proptest::collection::vec((-1.0f64..1.0, -1.0f64..1.0, -1.0f64..1.0), n).prop_map(
-            move |pts| {
-                BSpline::new(
-                    knots.clone(),
-                    pts.into_iter()
-                        .map(|(x, y, z)| Vector3::new(x, y, z))
-                        .collect(),
-                )
-                .unwrap()
-            },
-        )
-    })
-}
+use spline_testing::strategies::{knot_vector, spatial_curve as curve_strategy};
 
 /// Parameters covering the domain, including every knot in it.
 fn samples(curve: &BSpline<f64, Vector3<f64>>) -> Vec<f64> {
@@ -87,17 +66,25 @@ proptest! {
     fn refinement_keeps_the_curve_and_matches_repeated_insertion(curve in curve_strategy(5, 6, false), ts in proptest::collection::vec(0.0f64..1.0, 1..8)) {
         let (a, b) = curve.domain();
         let us: Vec<f64> = ts.iter().map(|t| a + (b - a) * ((t * 64.0).round() / 64.0)).collect();
-        if let Ok(refined) = curve.refine(&us) {
-            assert_same_shape(&curve, &refined, &samples(&curve))?;
-            let mut one_by_one = curve.clone();
-            for &u in &us {
-                one_by_one = one_by_one.insert_knot(u, 1).unwrap();
+        let too_many = us.iter().any(|&u| curve.knots().multiplicity(u) + us.iter().filter(|&&x| x == u).count() > curve.degree() + 1);
+        match curve.refine(&us) {
+            Ok(refined) => {
+                assert_same_shape(&curve, &refined, &samples(&curve))?;
+                let mut one_by_one = curve.clone();
+                for &u in &us {
+                    one_by_one = one_by_one.insert_knot(u, 1).unwrap();
+                }
+                prop_assert_eq!(refined.knots(), one_by_one.knots());
+                for (p, q) in refined.control_points().iter().zip(one_by_one.control_points()) {
+                    prop_assert!((p - q).norm() < 1e-12);
+                }
             }
-            prop_assert_eq!(refined.knots(), one_by_one.knots());
-            for (p, q) in refined.control_points().iter().zip(one_by_one.control_points()) {
-                prop_assert!((p - q).norm() < 1e-12);
+            Err(e) => {
+                prop_assert_eq!(e.kind(), ErrorKind::KnotMultiplicity);
+                prop_assert!(too_many);
             }
         }
+        prop_assert!(curve.refine(&us).is_ok() != too_many);
     }
 
     #[test]

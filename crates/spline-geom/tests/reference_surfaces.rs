@@ -6,36 +6,8 @@ use nalgebra::SVector;
 use serde_json::Value;
 use spline_geom::exchange::{CurveRecord, SurfaceRecord};
 use spline_geom::{CircleConstruction, Frame, NurbsCurve, NurbsSurface, Surface};
-
-fn cases(name: &str) -> Vec<Value> {
-    let path = format!(
-        "{}/../../tests/data/reference/{name}.json",
-        env!("CARGO_MANIFEST_DIR")
-    );
-    let text = std::fs::read_to_string(&path).unwrap_or_else(|e| panic!("{path}: {e}"));
-    let data: Value = serde_json::from_str(&text).expect("valid JSON");
-    data["cases"].as_array().expect("cases").clone()
-}
-
-fn flatten(v: &Value) -> Vec<f64> {
-    match v {
-        Value::Array(items) => items.iter().flat_map(flatten).collect(),
-        Value::Number(n) => vec![n.as_f64().expect("f64")],
-        other => panic!("not a number array: {other}"),
-    }
-}
-
-/// `|got − expected| ≤ tol · max(1, |expected|)` element-wise.
-fn assert_close(got: &[f64], expected: &[f64], tol: f64, what: &str) {
-    assert_eq!(got.len(), expected.len(), "{what}: lengths");
-    for (i, (x, y)) in got.iter().zip(expected).enumerate() {
-        assert!(
-            (x - y).abs() <= tol * y.abs().max(1.0),
-            "{what}[{i}]: got {x}, expected {y} (diff {:.3e})",
-            (x - y).abs()
-        );
-    }
-}
+use spline_testing::compare::assert_close;
+use spline_testing::reference::{cases, flatten};
 
 fn params(v: &Value) -> Vec<f64> {
     flatten(v)

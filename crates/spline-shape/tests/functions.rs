@@ -9,6 +9,7 @@ use spline_geom::BSpline;
 use spline_shape::{
     BarrierProblem, FunctionApproximation, FunctionConstraint, FunctionFit, MAX_SIGN_PATTERNS, Sign,
 };
+use spline_testing::compare::assert_close_rel;
 use std::f64::consts::PI;
 
 const FOUR_PI: f64 = 4.0 * PI;
@@ -161,10 +162,12 @@ fn experiment(
 
 fn assert_matches_brute_force(result: &FunctionFit, order: usize, f: impl Fn(f64) -> f64) {
     let best = brute_force(result.spline.knots(), order, Sign::NonNegative, f);
-    assert!(
-        (result.objective - best).abs() <= 1e-6 * (1.0 + best),
-        "barrier {} vs brute force {best}",
-        result.objective
+    assert_close_rel(
+        result.objective,
+        best,
+        1e-6,
+        1.0 + best,
+        "barrier vs brute force",
     );
 }
 

@@ -3,7 +3,8 @@
 #![allow(dead_code, unreachable_pub)]
 
 use serde_json::Value;
-use std::path::PathBuf;
+#[allow(unused_imports)] // each test file uses some of them
+pub use spline_testing::reference::{assert_close_json, assert_same_curve, cases, flatten};
 use std::process::{Command, Output};
 use std::sync::atomic::{AtomicUsize, Ordering};
 
@@ -67,60 +68,4 @@ pub fn temp_file(name: &str, contents: &str) -> String {
     let path = dir.join(format!("{n}-{name}"));
     std::fs::write(&path, contents).expect("write temp file");
     path.to_string_lossy().into_owned()
-}
-
-/// The cases of a reference file of the repository.
-pub fn cases(name: &str) -> Vec<Value> {
-    let path = PathBuf::from(env!("CARGO_MANIFEST_DIR"))
-        .join("../../tests/data/reference")
-        .join(format!("{name}.json"));
-    let text = std::fs::read_to_string(&path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
-    let data: Value = serde_json::from_str(&text).expect("reference JSON");
-    data["cases"].as_array().expect("cases").clone()
-}
-
-/// Flattens nested number arrays.
-pub fn flatten(v: &Value) -> Vec<f64> {
-    match v {
-        Value::Array(items) => items.iter().flat_map(flatten).collect(),
-        Value::Number(n) => vec![n.as_f64().expect("f64")],
-        other => panic!("not a number array: {other}"),
-    }
-}
-
-/// Asserts equal shapes (nesting and lengths) and values within `tol` relative to the
-/// largest magnitude of `expected`.
-pub fn assert_close_json(got: &Value, expected: &Value, tol: f64, what: &str) {
-    fn shape(v: &Value) -> String {
-        match v {
-            Value::Array(items) => format!(
-                "[{}]",
-                items.iter().map(shape).collect::<Vec<_>>().join(",")
-            ),
-            _ => "x".into(),
-        }
-    }
-    assert_eq!(shape(got), shape(expected), "{what}: shapes differ");
-    let (g, e) = (flatten(got), flatten(expected));
-    let scale = e.iter().fold(1f64, |m, x| m.max(x.abs()));
-    for (i, (x, y)) in g.iter().zip(&e).enumerate() {
-        assert!((x - y).abs() <= tol * scale, "{what}[{i}]: {x} vs {y}");
-    }
-}
-
-/// Compares exchange-format curves: degree, knots (1e-12 absolute), control points.
-pub fn assert_same_curve(got: &Value, expected: &Value, tol: f64, what: &str) {
-    assert_eq!(got["degree"], expected["degree"], "{what}: degree");
-    assert_close_json(
-        &got["knots"],
-        &expected["knots"],
-        1e-12,
-        &format!("{what}: knots"),
-    );
-    assert_close_json(
-        &got["control_points"],
-        &expected["control_points"],
-        tol,
-        &format!("{what}: control points"),
-    );
 }

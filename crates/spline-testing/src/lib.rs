@@ -1,0 +1,8 @@
+//! Test support for the crates of the `spline` workspace (a dev-dependency only, never
+//! published): the reference cases of `tests/data/reference/` ([`reference`]), proptest
+//! strategies for knot vectors, spline spaces and splines that shrink to small cases
+//! ([`strategies`]), and comparisons of numbers, points and curves ([`compare`]).
+
+pub mod compare;
+pub mod reference;
+pub mod strategies;
