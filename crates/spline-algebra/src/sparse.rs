@@ -131,6 +131,10 @@ pub(crate) fn add_scaled<T: Scalar>(
 /// The Kronecker product `a ⊗ b`: entry `(i·rb + k, j·cb + l) = a_ij b_kl` — the matrix of a
 /// tensor-product map on row-major grids (`x[i · n_b + k]`).
 ///
+/// # Panics
+///
+/// Never for valid inputs: the product's CSR structure is valid by construction.
+///
 /// ```
 /// use spline_algebra::{CsrMatrix, kron};
 /// let a = CsrMatrix::identity(2);

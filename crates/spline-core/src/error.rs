@@ -82,6 +82,13 @@ pub enum ErrorKind {
 /// ```
 #[derive(Clone, Debug)]
 pub struct Error {
+    /// Boxed so that `Result<T>` stays one pointer larger than `T` on the hot paths.
+    inner: Box<Inner>,
+}
+
+/// What an [`Error`] holds.
+#[derive(Clone, Debug)]
+struct Inner {
     kind: ErrorKind,
     message: String,
     fields: Fields,
@@ -100,7 +107,8 @@ struct Fields {
 /// Errors are equal when their kinds, messages and fields are (sources are not compared).
 impl PartialEq for Error {
     fn eq(&self, other: &Self) -> bool {
-        self.kind == other.kind && self.message == other.message && self.fields == other.fields
+        let (a, b) = (&self.inner, &other.inner);
+        a.kind == b.kind && a.message == b.message && a.fields == b.fields
     }
 }
 
@@ -108,10 +116,12 @@ impl Error {
     /// Creates an error of the given kind with a human-readable message.
     pub fn new(kind: ErrorKind, message: impl Into<String>) -> Self {
         Self {
-            kind,
-            message: for_people(message.into()),
-            fields: Fields::default(),
-            source: None,
+            inner: Box::new(Inner {
+                kind,
+                message: for_people(message.into()),
+                fields: Fields::default(),
+                source: None,
+            }),
         }
     }
 
@@ -175,98 +185,99 @@ impl Error {
     #[must_use]
     pub fn io(action: impl fmt::Display, error: std::io::Error) -> Self {
         let mut e = Self::new(ErrorKind::Io, format!("cannot {action}: {error}"));
-        e.source = Some(Arc::new(error));
+        e.inner.source = Some(Arc::new(error));
         e
     }
 
     /// Attaches an underlying error, returned by [`std::error::Error::source`].
     #[must_use]
     pub fn with_source(mut self, source: impl std::error::Error + Send + Sync + 'static) -> Self {
-        self.source = Some(Arc::new(source));
+        self.inner.source = Some(Arc::new(source));
         self
     }
 
     /// Records the index of the offending entry (a control point, a parameter, a knot).
     #[must_use]
     pub fn with_index(mut self, index: usize) -> Self {
-        self.fields.index = Some(index);
+        self.inner.fields.index = Some(index);
         self
     }
 
     /// Records the offending value (a parameter, a knot, a weight, a tolerance).
     #[must_use]
     pub fn with_value(mut self, value: f64) -> Self {
-        self.fields.value = Some(value);
+        self.inner.fields.value = Some(value);
         self
     }
 
     /// Records the interval involved (a domain).
     #[must_use]
     pub fn with_interval(mut self, a: f64, b: f64) -> Self {
-        self.fields.interval = Some((a, b));
+        self.inner.fields.interval = Some((a, b));
         self
     }
 
     /// Records an expected and a found count (lengths, orders, multiplicities).
     #[must_use]
     pub fn with_counts(mut self, expected: usize, found: usize) -> Self {
-        self.fields.counts = Some((expected, found));
+        self.inner.fields.counts = Some((expected, found));
         self
     }
 
     /// The kind of the error.
     #[must_use]
     pub fn kind(&self) -> ErrorKind {
-        self.kind
+        self.inner.kind
     }
 
     /// The message, one line, without a trailing period.
     #[must_use]
     pub fn message(&self) -> &str {
-        &self.message
+        &self.inner.message
     }
 
     /// The index of the offending entry, when the error is about one.
     #[must_use]
     pub fn index(&self) -> Option<usize> {
-        self.fields.index
+        self.inner.fields.index
     }
 
     /// The offending value, when the error is about one.
     #[must_use]
     pub fn value(&self) -> Option<f64> {
-        self.fields.value
+        self.inner.fields.value
     }
 
     /// The interval involved (the domain of an out-of-domain parameter).
     #[must_use]
     pub fn interval(&self) -> Option<(f64, f64)> {
-        self.fields.interval
+        self.inner.fields.interval
     }
 
     /// `(expected, found)` counts, for errors about lengths, orders and multiplicities.
     #[must_use]
     pub fn counts(&self) -> Option<(usize, usize)> {
-        self.fields.counts
+        self.inner.fields.counts
     }
 
     /// Prefixes the message with context (`"control point 3: " + message`).
     #[must_use]
     pub fn context(mut self, context: impl fmt::Display) -> Self {
-        self.message = for_people(format!("{context}: {}", self.message));
+        self.inner.message = for_people(format!("{context}: {}", self.inner.message));
         self
     }
 }
 
 impl fmt::Display for Error {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        f.write_str(&self.message)
+        f.write_str(&self.inner.message)
     }
 }
 
 impl std::error::Error for Error {
     fn source(&self) -> Option<&(dyn std::error::Error + 'static)> {
-        self.source
+        self.inner
+            .source
             .as_deref()
             .map(|e| e as &(dyn std::error::Error + 'static))
     }

@@ -216,30 +216,22 @@ pub fn project_ordered<T: Scalar, C: ParamCurve<T>>(
     Ok(out)
 }
 
-/// Safeguarded Newton iteration for the closest point on `[lo, hi]`.
+/// Safeguarded Newton iteration for the closest point on `[lo, hi]`, from the best of the
+/// two ends and the middle.
 fn newton<T: Scalar, C: ParamCurve<T>>(
     curve: &C,
     target: &C::Point,
     lo: T,
     hi: T,
 ) -> Result<(T, C::Point)> {
-    let half: T = cast(0.5);
-    let mut ders = [C::Point::origin(); 3];
-    let dist2 = |ders: &[C::Point; 3]| (ders[0] - *target).length_squared();
-    // Start at the better of the two ends and the middle.
-    let mut t = lo;
-    curve.derivatives_into(t, &mut ders)?;
-    let mut f = dist2(&ders);
-    for cand in [(lo + hi) * half, hi] {
-        let mut d = [C::Point::origin(); 3];
-        curve.derivatives_into(cand, &mut d)?;
-        let fc = dist2(&d);
-        if fc < f {
-            t = cand;
-            f = fc;
+    let mut best = (lo, T::max_value().unwrap_or_else(|| cast(f64::MAX)));
+    for u in [lo, (lo + hi) * cast::<T>(0.5), hi] {
+        let f = (curve.eval(u)? - *target).length_squared();
+        if f < best.1 {
+            best = (u, f);
         }
     }
-    newton_from(curve, target, t, lo, hi)
+    newton_from(curve, target, best.0, lo, hi)
 }
 
 /// Safeguarded Newton iteration for the closest point on `[lo, hi]` from `t`.

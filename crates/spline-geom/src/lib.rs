@@ -57,7 +57,10 @@ pub use bspline::BSpline;
 pub use construct::{Axis, CircleConstruction, ConicKind, Frame, MAX_ARC_PIECES};
 pub use homogeneous::Homogeneous;
 pub use mesh::{MAX_MESH_SEGMENTS, MeshView, TriangleMesh};
-pub use nurbs::{NurbsCurve, NurbsCurve2, NurbsCurve3, NurbsSurface, NurbsSurface3};
+pub use nurbs::{
+    HomogeneousContainer, NurbsCurve, NurbsCurve2, NurbsCurve3, NurbsSurface, NurbsSurface3,
+    Rational,
+};
 pub use operations::{Operation, Outcome, StructuralCurve, StructuralSurface};
 pub use param::{ParamCurve, ParamSurface, PlanarCurve, SpatialSurface};
 pub use planar::wedge;

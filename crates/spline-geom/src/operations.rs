@@ -4,6 +4,7 @@
 //! ([`StructuralSurface`]) and returns an [`Outcome`] to print.
 
 use crate::bspline::BSpline;
+#[cfg(doc)]
 use crate::nurbs::{NurbsCurve, NurbsSurface};
 use crate::surface::{Direction, Surface};
 use spline_core::{ControlPoint, Error, ErrorKind, Result, Scalar};
@@ -178,39 +179,6 @@ impl<T: Scalar, P: ControlPoint<T>> StructuralCurve<T> for BSpline<T, P> {
     }
 }
 
-impl<T: Scalar, const D: usize> StructuralCurve<T> for NurbsCurve<T, D> {
-    fn insert_knot(&self, u: T, times: usize) -> Result<Self> {
-        NurbsCurve::insert_knot(self, u, times)
-    }
-
-    fn refine(&self, knots: &[T]) -> Result<Self> {
-        NurbsCurve::refine(self, knots)
-    }
-
-    fn remove_knot(&self, u: T, times: usize, relative_tolerance: T) -> Result<Self> {
-        NurbsCurve::remove_knot(self, u, times, relative_tolerance)
-    }
-
-    fn elevate_degree(&self, times: usize) -> Result<Self> {
-        NurbsCurve::elevate_degree(self, times)
-    }
-
-    fn split(&self, u: T) -> Result<(Self, Self)> {
-        NurbsCurve::split(self, u)
-    }
-
-    fn bezier_curves(&self) -> Result<Vec<Self>> {
-        self.bezier_segments()
-    }
-
-    fn derivative_curve(&self, _order: usize) -> Result<Self> {
-        Err(Error::new(
-            ErrorKind::Unsupported,
-            "the derivative of a NURBS curve is not a NURBS curve on the same knots (its values are NurbsCurve::derivatives; `spline eval --derivatives K`)",
-        ))
-    }
-}
-
 /// The structural operations of a kind of tensor-product surface, in one direction.
 pub trait StructuralSurface<T: Scalar>: Sized {
     /// Inserts the knot `t` `times` times in `direction`.
@@ -223,17 +191,17 @@ pub trait StructuralSurface<T: Scalar>: Sized {
     /// # Errors
     /// As [`Surface::refine`].
     fn refine(&self, direction: Direction, knots: &[T]) -> Result<Self>;
-    /// Removes the knot `t` of `direction` `times` times within a relative tolerance.
+    /// Removes the knot `t` of `direction` `times` times if the surface moves by at most
+    /// `tolerance` (absolute).
+    ///
+    /// # Errors
+    /// As [`Surface::remove_knot_within`].
+    fn remove_knot_within(&self, dir: Direction, t: T, times: usize, tol: T) -> Result<Self>;
+    /// Removes the knot `t` of `dir` `times` times within a relative tolerance.
     ///
     /// # Errors
     /// As [`Surface::remove_knot`].
-    fn remove_knot(
-        &self,
-        direction: Direction,
-        t: T,
-        times: usize,
-        relative_tolerance: T,
-    ) -> Result<Self>;
+    fn remove_knot(&self, dir: Direction, t: T, times: usize, relative: T) -> Result<Self>;
     /// Raises the degree in `direction` by `times`.
     ///
     /// # Errors
@@ -249,7 +217,7 @@ pub trait StructuralSurface<T: Scalar>: Sized {
     /// # Errors
     /// [`ErrorKind::InvalidWeight`] for rational patches whose weights leave the range of
     /// floating point.
-    fn bezier_surfaces(&self) -> Result<Vec<Vec<Self>>>;
+    fn bezier_patches(&self) -> Result<Vec<Vec<Self>>>;
     /// The partial derivatives of order `order` in `u` and in `v`, as surfaces.
     ///
     /// # Errors
@@ -290,7 +258,7 @@ pub trait StructuralSurface<T: Scalar>: Sized {
                 let (a, b) = self.split(d, *at)?;
                 Outcome::Pair(a, b)
             }
-            Operation::Bezier => Outcome::Grid(self.bezier_surfaces()?),
+            Operation::Bezier => Outcome::Grid(self.bezier_patches()?),
             Operation::Derivative { order } => {
                 let (du, dv) = self.derivative_surfaces(*order)?;
                 Outcome::Pair(du, dv)
@@ -308,6 +276,10 @@ impl<T: Scalar, P: ControlPoint<T>> StructuralSurface<T> for Surface<T, P> {
         Surface::refine(self, direction, knots)
     }
 
+    fn remove_knot_within(&self, direction: Direction, t: T, times: usize, tol: T) -> Result<Self> {
+        Surface::remove_knot_within(self, direction, t, times, tol)
+    }
+
     fn remove_knot(&self, direction: Direction, t: T, times: usize, tol: T) -> Result<Self> {
         Surface::remove_knot(self, direction, t, times, tol)
     }
@@ -320,47 +292,14 @@ impl<T: Scalar, P: ControlPoint<T>> StructuralSurface<T> for Surface<T, P> {
         Surface::split(self, direction, t)
     }
 
-    fn bezier_surfaces(&self) -> Result<Vec<Vec<Self>>> {
-        Ok(self.bezier_patches())
+    fn bezier_patches(&self) -> Result<Vec<Vec<Self>>> {
+        Ok(Surface::bezier_patches(self))
     }
 
     fn derivative_surfaces(&self, order: usize) -> Result<(Self, Self)> {
         Ok((
             self.derivative_surface(order, 0)?,
             self.derivative_surface(0, order)?,
-        ))
-    }
-}
-
-impl<T: Scalar, const D: usize> StructuralSurface<T> for NurbsSurface<T, D> {
-    fn insert_knot(&self, direction: Direction, t: T, times: usize) -> Result<Self> {
-        NurbsSurface::insert_knot(self, direction, t, times)
-    }
-
-    fn refine(&self, direction: Direction, knots: &[T]) -> Result<Self> {
-        NurbsSurface::refine(self, direction, knots)
-    }
-
-    fn remove_knot(&self, direction: Direction, t: T, times: usize, tol: T) -> Result<Self> {
-        NurbsSurface::remove_knot(self, direction, t, times, tol)
-    }
-
-    fn elevate_degree(&self, direction: Direction, times: usize) -> Result<Self> {
-        NurbsSurface::elevate_degree(self, direction, times)
-    }
-
-    fn split(&self, direction: Direction, t: T) -> Result<(Self, Self)> {
-        NurbsSurface::split(self, direction, t)
-    }
-
-    fn bezier_surfaces(&self) -> Result<Vec<Vec<Self>>> {
-        self.bezier_patches()
-    }
-
-    fn derivative_surfaces(&self, _order: usize) -> Result<(Self, Self)> {
-        Err(Error::new(
-            ErrorKind::Unsupported,
-            "the derivative of a NURBS surface is not a NURBS surface on the same knots (its values are NurbsSurface::derivatives; `spline eval --derivatives K`)",
         ))
     }
 }

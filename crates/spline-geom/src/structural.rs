@@ -444,7 +444,7 @@ pub(crate) fn checked_removal<T: Scalar, V: VectorSpace<T>>(
 /// The scale that turns a relative removal tolerance into an absolute one: the largest of
 /// the control points' coordinate magnitudes, or 1 if that is smaller.
 pub(crate) fn relative_scale<T: Scalar>(magnitudes: impl IntoIterator<Item = T>) -> T {
-    magnitudes.into_iter().fold(T::one(), |m, x| m.max(x))
+    magnitudes.into_iter().fold(T::one(), T::max)
 }
 
 /// [`ErrorKind::InvalidTolerance`] unless the tolerance is non-negative.

@@ -7,6 +7,7 @@ use nalgebra::{SVector, Vector2, Vector3};
 use num_dual::Dual64;
 use proptest::prelude::*;
 use spline_core::{ErrorKind, KnotVector, Scalar, cast, to_f64};
+use spline_geom::StructuralSurface;
 use spline_geom::{
     Axis, BSpline, CircleConstruction, ConicKind, Direction, Frame, NurbsCurve, NurbsSurface,
     Surface,

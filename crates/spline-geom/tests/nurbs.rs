@@ -6,6 +6,7 @@ use nalgebra::{SVector, Vector2, Vector3};
 use num_dual::{Dual2_64, Dual64, HyperDual64};
 use proptest::prelude::*;
 use spline_core::{ErrorKind, KnotVector, Scalar, cast, to_f64};
+use spline_geom::StructuralSurface;
 use spline_geom::exchange::{CurveRecord, SurfaceRecord};
 use spline_geom::{BSpline, Direction, Homogeneous, NurbsCurve, NurbsSurface, Surface};
 use spline_testing::strategies::knot_vector;

@@ -4,11 +4,8 @@ use nalgebra::SVector;
 use spline_core::{ControlPoint, Scalar, to_f64};
 use spline_geom::ParamCurve;
 
-/// Asserts `|a_i − b_i| ≤ tol · max(1, |b_i|)` for every entry.
-///
-/// # Panics
-/// When the lengths or an entry differ.
-pub fn assert_close(a: &[f64], b: &[f64], tol: f64, what: &str) {
+/// Asserts `|a_i − b_i| ≤ tol · scale(b_i)` for every entry.
+fn assert_entries(a: &[f64], b: &[f64], tol: f64, what: &str, scale: impl Fn(f64) -> f64) {
     assert_eq!(
         a.len(),
         b.len(),
@@ -17,13 +14,21 @@ pub fn assert_close(a: &[f64], b: &[f64], tol: f64, what: &str) {
         b.len()
     );
     for (i, (x, y)) in a.iter().zip(b).enumerate() {
-        let scale = 1f64.max(y.abs());
+        let s = scale(*y);
         assert!(
-            (x - y).abs() <= tol * scale,
-            "{what}[{i}]: got {x}, expected {y} (diff {:.3e})",
+            (x - y).abs() <= tol * s,
+            "{what}[{i}]: got {x}, expected {y} (diff {:.3e}, scale {s:e})",
             (x - y).abs()
         );
     }
+}
+
+/// Asserts `|a_i − b_i| ≤ tol · max(1, |b_i|)` for every entry.
+///
+/// # Panics
+/// When the lengths or an entry differ.
+pub fn assert_close(a: &[f64], b: &[f64], tol: f64, what: &str) {
+    assert_entries(a, b, tol, what, |y| y.abs().max(1.0));
 }
 
 /// Asserts `|a_i − b_i| ≤ tol · max(1, max_j |b_j|)` for every entry: a tolerance relative
@@ -32,21 +37,8 @@ pub fn assert_close(a: &[f64], b: &[f64], tol: f64, what: &str) {
 /// # Panics
 /// When the lengths or an entry differ.
 pub fn assert_close_scaled(a: &[f64], b: &[f64], tol: f64, what: &str) {
-    assert_eq!(
-        a.len(),
-        b.len(),
-        "{what}: lengths {} vs {}",
-        a.len(),
-        b.len()
-    );
     let scale = b.iter().fold(1f64, |m, x| m.max(x.abs()));
-    for (i, (x, y)) in a.iter().zip(b).enumerate() {
-        assert!(
-            (x - y).abs() <= tol * scale,
-            "{what}[{i}]: got {x}, expected {y} (diff {:.3e}, scale {scale:e})",
-            (x - y).abs()
-        );
-    }
+    assert_entries(a, b, tol, what, |_| scale);
 }
 
 /// Asserts `|got − expected| ≤ tol · max(scale, |expected|)`.

@@ -174,39 +174,35 @@ impl<'a, T: Scalar> GridLeastSquares<'a, T> {
             ));
         }
         // A_uᵀ Z, one grid column at a time (m_v assemblies in u).
-        let mut column = vec![T::zero(); mu];
-        let mut az = Vec::with_capacity(mv);
-        let mut gram_u = None;
-        for b in 0..mv {
-            for (a, slot) in column.iter_mut().enumerate() {
-                *slot = self.values[a * mv + b];
-            }
-            let normal = LeastSquares::new(&column, self.us, self.knots_u.clone())
+        let in_u = |b: usize| {
+            let column: Vec<T> = (0..mu).map(|a| self.values[a * mv + b]).collect();
+            LeastSquares::new(&column, self.us, self.knots_u.clone())
                 .normal_equations()
-                .map_err(|e| e.context("u"))?;
-            az.push(normal.rhs().to_vec());
-            gram_u.get_or_insert(normal);
+                .map_err(|e| e.context("u"))
+        };
+        let gram_u = in_u(0)?;
+        let mut az = vec![gram_u.rhs().to_vec()];
+        for b in 1..mv {
+            az.push(in_u(b)?.rhs().to_vec());
         }
         // (A_uᵀ Z) A_v, one row at a time (n_u assemblies in v).
-        let nu = self.knots_u.num_basis();
-        let mut row = vec![T::zero(); mv];
-        let mut rhs = Vec::with_capacity(nu * self.knots_v.num_basis());
-        let mut gram_v = None;
-        for i in 0..nu {
-            for (b, slot) in row.iter_mut().enumerate() {
-                *slot = az[b][i];
-            }
-            let normal = LeastSquares::new(&row, self.vs, self.knots_v.clone())
+        let in_v = |i: usize| {
+            let row: Vec<T> = az.iter().map(|column| column[i]).collect();
+            LeastSquares::new(&row, self.vs, self.knots_v.clone())
                 .normal_equations()
-                .map_err(|e| e.context("v"))?;
-            rhs.extend_from_slice(normal.rhs());
-            gram_v.get_or_insert(normal);
+                .map_err(|e| e.context("v"))
+        };
+        let gram_v = in_v(0)?;
+        let mut rhs = Vec::with_capacity(gram_u.rhs().len() * gram_v.rhs().len());
+        rhs.extend_from_slice(gram_v.rhs());
+        for i in 1..self.knots_u.num_basis() {
+            rhs.extend_from_slice(in_v(i)?.rhs());
         }
         let half: T = cast(0.5);
         let constant = self.values.iter().fold(T::zero(), |s, &z| s + z * z) * half;
         Ok(GridNormalEquations {
-            u: gram_u.expect("at least one grid column"),
-            v: gram_v.expect("at least one coefficient row"),
+            u: gram_u,
+            v: gram_v,
             rhs,
             constant,
         })

@@ -1,17 +1,16 @@
 //! NURBS curves: the rational view over a B-spline of homogeneous points.
 
 use super::{
-    cartesian, cartesian_scale, check_rational_removal, check_result_weights, mapped,
-    rational_curve_derivatives, weighted_points, weights_of,
+    Rational, cartesian_scale, check_rational_removal, mapped, rational_curve_derivatives,
+    weighted_points,
 };
 use crate::bezier::bezier_as_bspline;
 use crate::bspline::BSpline;
-use crate::homogeneous::{Homogeneous, check_weights};
+use crate::homogeneous::Homogeneous;
+use crate::operations::StructuralCurve;
 use crate::structural::check_tolerance;
 use nalgebra::SVector;
-#[cfg(doc)]
-use spline_core::ErrorKind;
-use spline_core::{ControlPoint, KnotVector, MAX_ORDER, Result, Scalar};
+use spline_core::{ControlPoint, Error, ErrorKind, KnotVector, MAX_ORDER, Result, Scalar};
 
 /// A NURBS curve in $\mathbb{R}^D$ (seed 004 Definition 6.1):
 ///
@@ -36,15 +35,7 @@ use spline_core::{ControlPoint, KnotVector, MAX_ORDER, Result, Scalar};
 /// assert!((p - Vector2::new((1.0 - t * t) / (1.0 + t * t), 2.0 * t / (1.0 + t * t))).norm() < 1e-15);
 /// # Ok::<(), spline_core::Error>(())
 /// ```
-#[derive(Clone, Debug, PartialEq)]
-pub struct NurbsCurve<T, const D: usize> {
-    curve: BSpline<T, Homogeneous<T, D>>,
-    /// The Cartesian control points $P_i$ (a view of `curve`, kept so that
-    /// [`NurbsCurve::control_points`] is a slice as for every other container).
-    points: Vec<SVector<T, D>>,
-    /// The weights $w_i$ (likewise).
-    weights: Vec<T>,
-}
+pub type NurbsCurve<T, const D: usize> = Rational<BSpline<T, Homogeneous<T, D>>, T, D>;
 
 /// A planar NURBS curve.
 pub type NurbsCurve2<T = f64> = NurbsCurve<T, 2>;
@@ -80,82 +71,38 @@ impl<T: Scalar, const D: usize> NurbsCurve<T, D> {
         Self::new(KnotVector::new(degree, knots)?, control_points, weights)
     }
 
-    /// A NURBS curve from its homogeneous container.
-    ///
-    /// # Errors
-    /// [`ErrorKind::InvalidWeight`] unless every weight is positive and finite.
-    pub fn from_homogeneous(curve: BSpline<T, Homogeneous<T, D>>) -> Result<Self> {
-        check_weights(curve.control_points().iter().map(|h| h.weight))?;
-        Ok(Self::wrap(curve))
-    }
-
-    /// The curve of a homogeneous container with positive weights, with its views.
-    fn wrap(curve: BSpline<T, Homogeneous<T, D>>) -> Self {
-        Self {
-            points: cartesian(curve.control_points()),
-            weights: weights_of(curve.control_points()),
-            curve,
-        }
-    }
-
     /// A non-rational B-spline curve as a NURBS curve with unit weights.
     #[must_use]
     pub fn from_bspline(curve: &BSpline<T, SVector<T, D>>) -> Self {
         Self::wrap(curve.map_control_points(|p| Homogeneous::new(*p, T::one())))
     }
 
-    pub(crate) fn new_unchecked(curve: BSpline<T, Homogeneous<T, D>>) -> Self {
-        debug_assert!(curve.control_points().iter().all(|h| h.weight > T::zero()));
-        Self::wrap(curve)
-    }
-
-    /// The result of a structural operation in homogeneous space: positive weights in theory
-    /// (positive combinations of positive weights), but weights spanning hundreds of orders of
-    /// magnitude can underflow to zero.
-    fn checked(curve: BSpline<T, Homogeneous<T, D>>) -> Result<Self> {
-        check_result_weights(curve.control_points())?;
-        Ok(Self::wrap(curve))
-    }
-
-    /// The homogeneous B-spline curve (6.4) whose projection this curve is.
-    #[inline]
-    #[must_use]
-    pub fn homogeneous(&self) -> &BSpline<T, Homogeneous<T, D>> {
-        &self.curve
-    }
-
-    /// Consumes the curve, returning its homogeneous container.
-    #[must_use]
-    pub fn into_homogeneous(self) -> BSpline<T, Homogeneous<T, D>> {
-        self.curve
-    }
-
     /// The degree `p`.
     #[inline]
     #[must_use]
     pub fn degree(&self) -> usize {
-        self.curve.degree()
+        self.container.degree()
     }
 
     /// The knot vector.
     #[inline]
     #[must_use]
     pub fn knots(&self) -> &KnotVector<T> {
-        self.curve.knots()
+        self.container.knots()
     }
 
     /// The parametric domain $[u_p, u_n]$.
     #[inline]
     #[must_use]
     pub fn domain(&self) -> (T, T) {
-        self.curve.domain()
+        self.container.domain()
     }
 
     /// The number of control points.
     #[inline]
     #[must_use]
     pub fn len(&self) -> usize {
-        self.curve.control_points().len()
+        self.container.control_points().len()
     }
 
     /// Always `false`: a curve has at least `p + 1` control points.
@@ -165,23 +112,14 @@ impl<T: Scalar, const D: usize> NurbsCurve<T, D> {
         false
     }
 
-    /// The Cartesian control points $P_i$.
-    #[must_use]
-    pub fn control_points(&self) -> &[SVector<T, D>] {
-        &self.points
-    }
-
-    /// The weights $w_i$.
-    #[must_use]
-    pub fn weights(&self) -> &[T] {
-        &self.weights
-    }
-
     /// Whether all weights are equal: the curve is then a polynomial B-spline curve.
     #[must_use]
     pub fn is_polynomial(&self) -> bool {
-        let w = self.curve.control_points()[0].weight;
-        self.curve.control_points().iter().all(|h| h.weight == w)
+        let w = self.container.control_points()[0].weight;
+        self.container
+            .control_points()
+            .iter()
+            .all(|h| h.weight == w)
     }
 
     /// The non-rational B-spline curve with the same control points, if all weights are
@@ -189,7 +127,7 @@ impl<T: Scalar, const D: usize> NurbsCurve<T, D> {
     #[must_use]
     pub fn to_bspline(&self) -> Option<BSpline<T, SVector<T, D>>> {
         self.is_polynomial()
-            .then(|| self.curve.map_control_points(Homogeneous::project))
+            .then(|| self.container.map_control_points(Homogeneous::project))
     }
 
     /// Applies an affine map to the Cartesian control points, keeping the weights: by the
@@ -200,7 +138,7 @@ impl<T: Scalar, const D: usize> NurbsCurve<T, D> {
         &self,
         mut f: impl FnMut(&SVector<T, D>) -> SVector<T, E>,
     ) -> NurbsCurve<T, E> {
-        NurbsCurve::new_unchecked(self.curve.map_control_points(|h| mapped(h, &mut f)))
+        NurbsCurve::new_unchecked(self.container.map_control_points(|h| mapped(h, &mut f)))
     }
 
     /// The point $R(u)$: de Boor in homogeneous space, then the projection (6.5).
@@ -209,8 +147,8 @@ impl<T: Scalar, const D: usize> NurbsCurve<T, D> {
     /// [`ErrorKind::NonFinite`] or [`ErrorKind::OutOfDomain`].
     #[inline]
     pub fn eval(&self, u: T) -> Result<SVector<T, D>> {
-        let span = self.curve.knots().find_span(u)?;
-        Ok(self.curve.eval_in_span(span, u).project())
+        let span = self.container.knots().find_span(u)?;
+        Ok(self.container.eval_in_span(span, u).project())
     }
 
     /// Evaluates at many parameters (increasing order takes a constant-time span search).
@@ -218,7 +156,7 @@ impl<T: Scalar, const D: usize> NurbsCurve<T, D> {
     /// # Errors
     /// [`ErrorKind::NonFinite`] or [`ErrorKind::OutOfDomain`] for the first bad parameter.
     pub fn eval_many(&self, params: &[T]) -> Result<Vec<SVector<T, D>>> {
-        let knots = self.curve.knots();
+        let knots = self.container.knots();
         for (i, &u) in params.iter().enumerate() {
             knots
                 .check_param(u)
@@ -229,7 +167,7 @@ impl<T: Scalar, const D: usize> NurbsCurve<T, D> {
             .iter()
             .map(|&u| {
                 span = knots.span_in_domain_from(u, span);
-                self.curve.eval_in_span(span, u).project()
+                self.container.eval_in_span(span, u).project()
             })
             .collect())
     }
@@ -244,13 +182,13 @@ impl<T: Scalar, const D: usize> NurbsCurve<T, D> {
     /// [`ErrorKind::NonFinite`] when a derivative is too large for the scalar type (rational
     /// derivatives of order `k` grow like `k!`; `f64` overflows near order 170).
     pub fn derivatives_into(&self, u: T, out: &mut [SVector<T, D>]) -> Result<()> {
-        let span = self.curve.knots().find_span(u)?;
+        let span = self.container.knots().find_span(u)?;
         if out.is_empty() {
             return Ok(());
         }
         let mut stack = [Homogeneous::<T, D>::origin(); MAX_ORDER];
         let hom = &mut stack[..out.len().min(self.degree() + 1)];
-        self.curve.derivatives_in_span(span, u, hom);
+        self.container.derivatives_in_span(span, u, hom);
         rational_curve_derivatives(hom, out)
     }
 
@@ -282,7 +220,7 @@ impl<T: Scalar, const D: usize> NurbsCurve<T, D> {
     /// # Errors
     /// As [`BSpline::insert_knot`].
     pub fn insert_knot(&self, u: T, times: usize) -> Result<Self> {
-        Self::checked(self.curve.insert_knot(u, times)?)
+        Self::checked(self.container.insert_knot(u, times)?)
     }
 
     /// Inserts many knots at once (knot refinement), in homogeneous space.
@@ -290,7 +228,7 @@ impl<T: Scalar, const D: usize> NurbsCurve<T, D> {
     /// # Errors
     /// As [`BSpline::refine`].
     pub fn refine(&self, knots: &[T]) -> Result<Self> {
-        Self::checked(self.curve.refine(knots)?)
+        Self::checked(self.container.refine(knots)?)
     }
 
     /// Removes the interior knot `u` `times` times if the curve moves by at most `tolerance`
@@ -305,10 +243,10 @@ impl<T: Scalar, const D: usize> NurbsCurve<T, D> {
     /// removal would make a weight non-positive.
     pub fn remove_knot_within(&self, u: T, times: usize, tolerance: T) -> Result<Self> {
         check_tolerance(tolerance)?;
-        let removed = self.curve.reduced(&self.knots().removed(u, times)?)?;
+        let removed = self.container.reduced(&self.knots().removed(u, times)?)?;
         let back = removed.insert_knot(u, times)?;
         check_rational_removal(
-            self.curve.control_points(),
+            self.container.control_points(),
             removed.control_points(),
             back.control_points(),
             (u, times),
@@ -323,7 +261,7 @@ impl<T: Scalar, const D: usize> NurbsCurve<T, D> {
     /// # Errors
     /// As [`NurbsCurve::remove_knot_within`].
     pub fn remove_knot(&self, u: T, times: usize, relative_tolerance: T) -> Result<Self> {
-        let scale = cartesian_scale(self.curve.control_points());
+        let scale = cartesian_scale(self.container.control_points());
         self.remove_knot_within(u, times, relative_tolerance * scale)
     }
 
@@ -332,7 +270,7 @@ impl<T: Scalar, const D: usize> NurbsCurve<T, D> {
     /// # Errors
     /// As [`BSpline::elevate_degree`].
     pub fn elevate_degree(&self, times: usize) -> Result<Self> {
-        Self::checked(self.curve.elevate_degree(times)?)
+        Self::checked(self.container.elevate_degree(times)?)
     }
 
     /// Splits at `u` into two curves clamped at `u`.
@@ -340,20 +278,20 @@ impl<T: Scalar, const D: usize> NurbsCurve<T, D> {
     /// # Errors
     /// As [`BSpline::split`].
     pub fn split(&self, u: T) -> Result<(Self, Self)> {
-        let (a, b) = self.curve.split(u)?;
+        let (a, b) = self.container.split(u)?;
         Ok((Self::checked(a)?, Self::checked(b)?))
     }
 
     /// The same curve with clamped knots.
     #[must_use]
     pub fn clamped(&self) -> Self {
-        Self::new_unchecked(self.curve.clamped())
+        Self::new_unchecked(self.container.clamped())
     }
 
     /// The same curve traversed backwards on the same domain.
     #[must_use]
     pub fn reversed(&self) -> Self {
-        Self::new_unchecked(self.curve.reversed())
+        Self::new_unchecked(self.container.reversed())
     }
 
     /// The same curve on the domain `[a, b]`.
@@ -361,7 +299,7 @@ impl<T: Scalar, const D: usize> NurbsCurve<T, D> {
     /// # Errors
     /// As [`BSpline::reparametrized`].
     pub fn reparametrized(&self, a: T, b: T) -> Result<Self> {
-        Ok(Self::new_unchecked(self.curve.reparametrized(a, b)?))
+        Ok(Self::new_unchecked(self.container.reparametrized(a, b)?))
     }
 
     /// The rational Bézier segments, one per non-empty knot span, each a clamped NURBS curve
@@ -371,10 +309,43 @@ impl<T: Scalar, const D: usize> NurbsCurve<T, D> {
     /// [`ErrorKind::InvalidWeight`] when a weight underflows to zero (weights spanning
     /// hundreds of orders of magnitude).
     pub fn bezier_segments(&self) -> Result<Vec<Self>> {
-        self.curve
+        self.container
             .bezier_segments()
             .into_iter()
             .map(|b| Self::checked(bezier_as_bspline(&b)))
             .collect()
+    }
+}
+
+impl<T: Scalar, const D: usize> StructuralCurve<T> for NurbsCurve<T, D> {
+    fn insert_knot(&self, u: T, times: usize) -> Result<Self> {
+        NurbsCurve::insert_knot(self, u, times)
+    }
+
+    fn refine(&self, knots: &[T]) -> Result<Self> {
+        NurbsCurve::refine(self, knots)
+    }
+
+    fn remove_knot(&self, u: T, times: usize, relative_tolerance: T) -> Result<Self> {
+        NurbsCurve::remove_knot(self, u, times, relative_tolerance)
+    }
+
+    fn elevate_degree(&self, times: usize) -> Result<Self> {
+        NurbsCurve::elevate_degree(self, times)
+    }
+
+    fn split(&self, u: T) -> Result<(Self, Self)> {
+        NurbsCurve::split(self, u)
+    }
+
+    fn bezier_curves(&self) -> Result<Vec<Self>> {
+        self.bezier_segments()
+    }
+
+    fn derivative_curve(&self, _order: usize) -> Result<Self> {
+        Err(Error::new(
+            ErrorKind::Unsupported,
+            "the derivative of a NURBS curve is not a NURBS curve on the same knots (its values are NurbsCurve::derivatives; `spline eval --derivatives K`)",
+        ))
     }
 }

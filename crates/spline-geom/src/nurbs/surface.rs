@@ -1,16 +1,15 @@
 //! NURBS surfaces: the rational view over a tensor-product surface of homogeneous points.
 
 use super::{
-    NurbsCurve, cartesian, cartesian_scale, check_rational_removal, check_result_weights, mapped,
-    rational_surface_derivatives, unbounded, weighted_points, weights_of,
+    NurbsCurve, Rational, cartesian_scale, check_rational_removal, mapped,
+    rational_surface_derivatives, unbounded, weighted_points,
 };
-use crate::homogeneous::{Homogeneous, check_weights};
+use crate::homogeneous::Homogeneous;
+use crate::operations::StructuralSurface;
 use crate::structural::check_tolerance;
 use crate::surface::{Direction, Surface, flatten_net};
 use nalgebra::SVector;
-#[cfg(doc)]
-use spline_core::ErrorKind;
-use spline_core::{ControlPoint, KnotVector, Result, Scalar};
+use spline_core::{ControlPoint, Error, ErrorKind, KnotVector, Result, Scalar};
 
 /// A NURBS surface in $\mathbb{R}^D$ (seed 004 (6.11), (6.14)):
 ///
@@ -27,14 +26,7 @@ use spline_core::{ControlPoint, KnotVector, Result, Scalar};
 /// assert!(((p - Vector3::new(1.0, 2.0, 3.0)).norm() - 2.0).abs() < 1e-14);
 /// # Ok::<(), spline_core::Error>(())
 /// ```
-#[derive(Clone, Debug, PartialEq)]
-pub struct NurbsSurface<T, const D: usize> {
-    surface: Surface<T, Homogeneous<T, D>>,
-    /// The Cartesian control net, row-major (a view of `surface`).
-    points: Vec<SVector<T, D>>,
-    /// The weights, row-major (likewise).
-    weights: Vec<T>,
-}
+pub type NurbsSurface<T, const D: usize> = Rational<Surface<T, Homogeneous<T, D>>, T, D>;
 
 /// A NURBS surface in space.
 pub type NurbsSurface3<T = f64> = NurbsSurface<T, 3>;
@@ -75,118 +67,59 @@ impl<T: Scalar, const D: usize> NurbsSurface<T, D> {
         Self::new(knots_u, knots_v, points, weights)
     }
 
-    /// A NURBS surface from its homogeneous container.
-    ///
-    /// # Errors
-    /// [`ErrorKind::InvalidWeight`] unless every weight is positive and finite.
-    pub fn from_homogeneous(surface: Surface<T, Homogeneous<T, D>>) -> Result<Self> {
-        check_weights(surface.control_points().iter().map(|h| h.weight))?;
-        Ok(Self::wrap(surface))
-    }
-
-    /// The surface of a homogeneous container with positive weights, with its views.
-    fn wrap(surface: Surface<T, Homogeneous<T, D>>) -> Self {
-        Self {
-            points: cartesian(surface.control_points()),
-            weights: weights_of(surface.control_points()),
-            surface,
-        }
-    }
-
     /// A non-rational surface as a NURBS surface with unit weights.
     #[must_use]
     pub fn from_surface(surface: &Surface<T, SVector<T, D>>) -> Self {
         Self::wrap(surface.map_control_points(|p| Homogeneous::new(*p, T::one())))
     }
 
-    pub(crate) fn new_unchecked(surface: Surface<T, Homogeneous<T, D>>) -> Self {
-        debug_assert!(
-            surface
-                .control_points()
-                .iter()
-                .all(|h| h.weight > T::zero())
-        );
-        Self::wrap(surface)
-    }
-
-    /// See [`NurbsCurve::checked`].
-    fn checked(surface: Surface<T, Homogeneous<T, D>>) -> Result<Self> {
-        check_result_weights(surface.control_points())?;
-        Ok(Self::wrap(surface))
-    }
-
-    /// The homogeneous surface whose projection this surface is.
-    #[inline]
-    #[must_use]
-    pub fn homogeneous(&self) -> &Surface<T, Homogeneous<T, D>> {
-        &self.surface
-    }
-
-    /// Consumes the surface, returning its homogeneous container.
-    #[must_use]
-    pub fn into_homogeneous(self) -> Surface<T, Homogeneous<T, D>> {
-        self.surface
-    }
-
     /// The degrees `(p, q)`.
     #[inline]
     #[must_use]
     pub fn degrees(&self) -> (usize, usize) {
-        self.surface.degrees()
+        self.container.degrees()
     }
 
     /// The degree in one direction.
     #[inline]
     #[must_use]
     pub fn degree(&self, direction: Direction) -> usize {
-        self.surface.degree(direction)
+        self.container.degree(direction)
     }
 
     /// The knot vector in `u`.
     #[inline]
     #[must_use]
     pub fn knots_u(&self) -> &KnotVector<T> {
-        self.surface.knots_u()
+        self.container.knots_u()
     }
 
     /// The knot vector in `v`.
     #[inline]
     #[must_use]
     pub fn knots_v(&self) -> &KnotVector<T> {
-        self.surface.knots_v()
+        self.container.knots_v()
     }
 
     /// The knot vector in one direction.
     #[inline]
     #[must_use]
     pub fn knots(&self, direction: Direction) -> &KnotVector<T> {
-        self.surface.knots(direction)
+        self.container.knots(direction)
     }
 
     /// The size `(n_u, n_v)` of the control net.
     #[inline]
     #[must_use]
     pub fn net_size(&self) -> (usize, usize) {
-        self.surface.net_size()
+        self.container.net_size()
     }
 
     /// The parametric domain `((u_min, u_max), (v_min, v_max))`.
     #[inline]
     #[must_use]
     pub fn domain(&self) -> ((T, T), (T, T)) {
-        self.surface.domain()
-    }
-
-    /// The Cartesian control points, row-major.
-    #[must_use]
-    pub fn control_points(&self) -> &[SVector<T, D>] {
-        &self.points
-    }
-
-    /// The weights, row-major.
-    #[must_use]
-    pub fn weights(&self) -> &[T] {
-        &self.weights
+        self.container.domain()
     }
 
     /// The Cartesian control point $P_{ij}$.
@@ -195,7 +128,7 @@ impl<T: Scalar, const D: usize> NurbsSurface<T, D> {
     /// If `i ≥ n_u` or `j ≥ n_v`.
     #[must_use]
     pub fn control_point(&self, i: usize, j: usize) -> SVector<T, D> {
-        self.surface.control_point(i, j).project()
+        self.container.control_point(i, j).project()
     }
 
     /// The weight $w_{ij}$.
@@ -204,7 +137,7 @@ impl<T: Scalar, const D: usize> NurbsSurface<T, D> {
     /// If `i ≥ n_u` or `j ≥ n_v`.
     #[must_use]
     pub fn weight(&self, i: usize, j: usize) -> T {
-        self.surface.control_point(i, j).weight
+        self.container.control_point(i, j).weight
     }
 
     /// Applies an affine map to the Cartesian control points, keeping the weights (this maps
@@ -214,7 +147,7 @@ impl<T: Scalar, const D: usize> NurbsSurface<T, D> {
         &self,
         mut f: impl FnMut(&SVector<T, D>) -> SVector<T, E>,
     ) -> NurbsSurface<T, E> {
-        NurbsSurface::new_unchecked(self.surface.map_control_points(|h| mapped(h, &mut f)))
+        NurbsSurface::new_unchecked(self.container.map_control_points(|h| mapped(h, &mut f)))
     }
 
     /// The point $S(u, v)$.
@@ -223,7 +156,7 @@ impl<T: Scalar, const D: usize> NurbsSurface<T, D> {
     /// [`ErrorKind::NonFinite`] or [`ErrorKind::OutOfDomain`].
     #[inline]
     pub fn eval(&self, u: T, v: T) -> Result<SVector<T, D>> {
-        Ok(self.surface.eval(u, v)?.project())
+        Ok(self.container.eval(u, v)?.project())
     }
 
     /// All rational partial derivatives $\partial^{k+l} S / \partial u^k \partial v^l$,
@@ -244,11 +177,11 @@ impl<T: Scalar, const D: usize> NurbsSurface<T, D> {
     ) -> Result<()> {
         let len = crate::bspline::square_len(order)?;
         crate::bspline::check_same_len(len, out.len())?;
-        let (su, sv) = self.surface.find_spans(u, v)?;
-        let (p, q) = self.surface.degrees();
+        let (su, sv) = self.container.find_spans(u, v)?;
+        let (p, q) = self.container.degrees();
         let top = order.min(p.max(q));
         let mut hom = vec![Homogeneous::<T, D>::origin(); (top + 1) * (top + 1)];
-        self.surface
+        self.container
             .derivatives_in_spans(su, sv, u, v, top, &mut hom);
         rational_surface_derivatives(&hom, top, order, out)
     }
@@ -272,7 +205,7 @@ impl<T: Scalar, const D: usize> NurbsSurface<T, D> {
     /// As [`Surface::eval_grid_into`].
     pub fn eval_grid(&self, us: &[T], vs: &[T]) -> Result<Vec<SVector<T, D>>> {
         Ok(self
-            .surface
+            .container
             .eval_grid(us, vs)?
             .iter()
             .map(Homogeneous::project)
@@ -284,7 +217,7 @@ impl<T: Scalar, const D: usize> NurbsSurface<T, D> {
     /// # Errors
     /// [`ErrorKind::NonFinite`] or [`ErrorKind::OutOfDomain`].
     pub fn curve_at_u(&self, u: T) -> Result<NurbsCurve<T, D>> {
-        Ok(NurbsCurve::new_unchecked(self.surface.curve_at_u(u)?))
+        Ok(NurbsCurve::new_unchecked(self.container.curve_at_u(u)?))
     }
 
     /// The iso-parametric curve `u ↦ S(u, v)` at fixed `v`, a NURBS curve.
@@ -292,97 +225,19 @@ impl<T: Scalar, const D: usize> NurbsSurface<T, D> {
     /// # Errors
     /// [`ErrorKind::NonFinite`] or [`ErrorKind::OutOfDomain`].
     pub fn curve_at_v(&self, v: T) -> Result<NurbsCurve<T, D>> {
-        Ok(NurbsCurve::new_unchecked(self.surface.curve_at_v(v)?))
-    }
-
-    /// Inserts the knot `t` `times` times in `direction`, in homogeneous space.
-    ///
-    /// # Errors
-    /// As [`Surface::insert_knot`].
-    pub fn insert_knot(&self, direction: Direction, t: T, times: usize) -> Result<Self> {
-        Self::checked(self.surface.insert_knot(direction, t, times)?)
-    }
-
-    /// Inserts many knots in `direction`, in homogeneous space.
-    ///
-    /// # Errors
-    /// As [`Surface::refine`].
-    pub fn refine(&self, direction: Direction, knots: &[T]) -> Result<Self> {
-        Self::checked(self.surface.refine(direction, knots)?)
-    }
-
-    /// Removes the interior knot `t` of `direction` `times` times if the surface moves by at
-    /// most `tolerance` (absolute, Cartesian), bounded as in
-    /// [`NurbsCurve::remove_knot_within`].
-    ///
-    /// # Errors
-    /// As [`NurbsCurve::remove_knot_within`].
-    pub fn remove_knot_within(
-        &self,
-        direction: Direction,
-        t: T,
-        times: usize,
-        tolerance: T,
-    ) -> Result<Self> {
-        check_tolerance(tolerance)?;
-        let removed = self
-            .surface
-            .remove_knot_within(direction, t, times, unbounded())?;
-        let back = removed.insert_knot(direction, t, times)?;
-        check_rational_removal(
-            self.surface.control_points(),
-            removed.control_points(),
-            back.control_points(),
-            (t, times),
-            tolerance,
-        )
-        .map_err(|e| e.context(format_args!("direction {direction}")))?;
-        Self::checked(removed)
-    }
-
-    /// [`NurbsSurface::remove_knot_within`] with a tolerance relative to the size of the
-    /// control net.
-    ///
-    /// # Errors
-    /// As [`NurbsCurve::remove_knot_within`].
-    pub fn remove_knot(
-        &self,
-        direction: Direction,
-        t: T,
-        times: usize,
-        relative_tolerance: T,
-    ) -> Result<Self> {
-        let scale = cartesian_scale(self.surface.control_points());
-        self.remove_knot_within(direction, t, times, relative_tolerance * scale)
-    }
-
-    /// Raises the degree in `direction` by `times`, in homogeneous space.
-    ///
-    /// # Errors
-    /// As [`Surface::elevate_degree`].
-    pub fn elevate_degree(&self, direction: Direction, times: usize) -> Result<Self> {
-        Self::checked(self.surface.elevate_degree(direction, times)?)
-    }
-
-    /// Splits at `t` in `direction` into two surfaces clamped at `t`.
-    ///
-    /// # Errors
-    /// As [`Surface::split`].
-    pub fn split(&self, direction: Direction, t: T) -> Result<(Self, Self)> {
-        let (a, b) = self.surface.split(direction, t)?;
-        Ok((Self::checked(a)?, Self::checked(b)?))
+        Ok(NurbsCurve::new_unchecked(self.container.curve_at_v(v)?))
     }
 
     /// The same surface with clamped knots in both directions.
     #[must_use]
     pub fn clamped(&self) -> Self {
-        Self::new_unchecked(self.surface.clamped())
+        Self::new_unchecked(self.container.clamped())
     }
 
     /// The same surface traversed backwards in `direction`.
     #[must_use]
     pub fn reversed(&self, direction: Direction) -> Self {
-        Self::new_unchecked(self.surface.reversed(direction))
+        Self::new_unchecked(self.container.reversed(direction))
     }
 
     /// The same surface with the domain of `direction` mapped onto `[a, b]`.
@@ -391,14 +246,84 @@ impl<T: Scalar, const D: usize> NurbsSurface<T, D> {
     /// As [`Surface::reparametrized`].
     pub fn reparametrized(&self, direction: Direction, a: T, b: T) -> Result<Self> {
         Ok(Self::new_unchecked(
-            self.surface.reparametrized(direction, a, b)?,
+            self.container.reparametrized(direction, a, b)?,
         ))
     }
 
     /// The surface with `u` and `v` exchanged.
     #[must_use]
     pub fn transposed(&self) -> Self {
-        Self::new_unchecked(self.surface.transposed())
+        Self::new_unchecked(self.container.transposed())
+    }
+}
+
+/// Structural operations in homogeneous space (the algorithms of [`Surface`] on the
+/// homogeneous net), with the change of the rational surface bounded for removals.
+impl<T: Scalar, const D: usize> StructuralSurface<T> for NurbsSurface<T, D> {
+    /// Inserts the knot `t` `times` times in `direction`, in homogeneous space.
+    ///
+    /// # Errors
+    /// As [`Surface::insert_knot`].
+    fn insert_knot(&self, direction: Direction, t: T, times: usize) -> Result<Self> {
+        Self::checked(self.container.insert_knot(direction, t, times)?)
+    }
+
+    /// Inserts many knots in `direction`, in homogeneous space.
+    ///
+    /// # Errors
+    /// As [`Surface::refine`].
+    fn refine(&self, direction: Direction, knots: &[T]) -> Result<Self> {
+        Self::checked(self.container.refine(direction, knots)?)
+    }
+
+    /// Removes the interior knot `t` of `direction` `times` times if the surface moves by at
+    /// most `tolerance` (absolute, Cartesian), bounded as in
+    /// [`NurbsCurve::remove_knot_within`].
+    ///
+    /// # Errors
+    /// As [`NurbsCurve::remove_knot_within`].
+    fn remove_knot_within(&self, dir: Direction, t: T, times: usize, tol: T) -> Result<Self> {
+        check_tolerance(tol)?;
+        let removed = self
+            .container
+            .remove_knot_within(dir, t, times, unbounded())?;
+        let back = removed.insert_knot(dir, t, times)?;
+        check_rational_removal(
+            self.container.control_points(),
+            removed.control_points(),
+            back.control_points(),
+            (t, times),
+            tol,
+        )
+        .map_err(|e| e.context(format_args!("dir {dir}")))?;
+        Self::checked(removed)
+    }
+
+    /// [`NurbsSurface::remove_knot_within`] with a tolerance relative to the size of the
+    /// control net.
+    ///
+    /// # Errors
+    /// As [`NurbsCurve::remove_knot_within`].
+    fn remove_knot(&self, dir: Direction, t: T, times: usize, relative: T) -> Result<Self> {
+        let scale = cartesian_scale(self.container.control_points());
+        self.remove_knot_within(dir, t, times, relative * scale)
+    }
+
+    /// Raises the degree in `direction` by `times`, in homogeneous space.
+    ///
+    /// # Errors
+    /// As [`Surface::elevate_degree`].
+    fn elevate_degree(&self, direction: Direction, times: usize) -> Result<Self> {
+        Self::checked(self.container.elevate_degree(direction, times)?)
+    }
+
+    /// Splits at `t` in `direction` into two surfaces clamped at `t`.
+    ///
+    /// # Errors
+    /// As [`Surface::split`].
+    fn split(&self, direction: Direction, t: T) -> Result<(Self, Self)> {
+        let (a, b) = self.container.split(direction, t)?;
+        Ok((Self::checked(a)?, Self::checked(b)?))
     }
 
     /// The rational Bézier patches, `[a][b]` over the `a`-th non-empty span in `u` and the
@@ -406,11 +331,18 @@ impl<T: Scalar, const D: usize> NurbsSurface<T, D> {
     ///
     /// # Errors
     /// As [`NurbsCurve::bezier_segments`].
-    pub fn bezier_patches(&self) -> Result<Vec<Vec<Self>>> {
-        self.surface
+    fn bezier_patches(&self) -> Result<Vec<Vec<Self>>> {
+        self.container
             .bezier_patches()
             .into_iter()
             .map(|row| row.into_iter().map(Self::checked).collect())
             .collect()
+    }
+
+    fn derivative_surfaces(&self, _order: usize) -> Result<(Self, Self)> {
+        Err(Error::new(
+            ErrorKind::Unsupported,
+            "the derivative of a NURBS surface is not a NURBS surface on the same knots (its values are NurbsSurface::derivatives; `spline eval --derivatives K`)",
+        ))
     }
 }

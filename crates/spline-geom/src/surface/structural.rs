@@ -243,15 +243,9 @@ impl<T: Scalar, P: ControlPoint<T>> Surface<T, P> {
     ///
     /// # Errors
     /// As [`BSpline::remove_knot_within`].
-    pub fn remove_knot_within(
-        &self,
-        direction: Direction,
-        t: T,
-        times: usize,
-        tolerance: T,
-    ) -> Result<Self> {
-        self.with_lines(direction, |c| {
-            checked_removal(c, t, times, tolerance, |a: &Line<P>, b: &Line<P>| {
+    pub fn remove_knot_within(&self, dir: Direction, t: T, times: usize, tol: T) -> Result<Self> {
+        self.with_lines(dir, |c| {
+            checked_removal(c, t, times, tol, |a: &Line<P>, b: &Line<P>| {
                 a.0.iter()
                     .zip(&b.0)
                     .fold(T::zero(), |m, (x, y)| m.max((*x - *y).length()))
@@ -264,15 +258,9 @@ impl<T: Scalar, P: ControlPoint<T>> Surface<T, P> {
     ///
     /// # Errors
     /// As [`BSpline::remove_knot_within`].
-    pub fn remove_knot(
-        &self,
-        direction: Direction,
-        t: T,
-        times: usize,
-        relative_tolerance: T,
-    ) -> Result<Self> {
+    pub fn remove_knot(&self, dir: Direction, t: T, times: usize, relative: T) -> Result<Self> {
         let scale = relative_scale(self.control_points().iter().map(ControlPoint::max_abs));
-        self.remove_knot_within(direction, t, times, relative_tolerance * scale)
+        self.remove_knot_within(dir, t, times, relative * scale)
     }
 
     /// Raises the degree in `direction` by `times` (seed 000 FIG. 13; exact, as
