@@ -16,8 +16,8 @@ fn samples(curve: &NurbsCurve<f64, 2>, per_span: usize) -> Vec<f64> {
 /// Draws a planar NURBS curve (class `class`) with its control polygon and control points.
 fn add_nurbs(svg: &mut SvgPlot, curve: &NurbsCurve<f64, 2>, class: &str) -> Result<()> {
     let polygon = curve.control_points();
-    svg.add_polyline(&polygon, "polygon");
-    svg.add_markers(&polygon, "control");
+    svg.add_polyline(polygon, "polygon");
+    svg.add_markers(polygon, "control");
     svg.add_polyline(&curve.eval_many(&samples(curve, 64))?, class);
     Ok(())
 }
