@@ -1,7 +1,8 @@
 //! Every structural map: the spline it produces is the same curve (checked by evaluation,
 //! an independent reference), and the matrix agrees with the fast path — the same
-//! algorithm run on `f64` points — to rounding (1e-15 relative for insertion and
-//! elevation).
+//! algorithm run on `f64` points — to rounding: 1e-15 relative to the magnitudes that
+//! enter each coefficient for insertion, refinement, derivatives and elevation of cubics,
+//! 1e-15 · 2^(p − 3) for elevation at degree p > 3.
 #![allow(
     clippy::needless_range_loop,
     clippy::cast_lossless,
@@ -65,7 +66,12 @@ proptest! {
         let knots = curve.knots().clone();
         let (a, b) = knots.domain();
         let u = a + (b - a) * t;
-        prop_assume!(knots.multiplicity(u) + times <= knots.degree() + 1);
+        // As many copies as fit (at least one: `u` may already have full multiplicity).
+        let room = knots.degree() + 1 - knots.multiplicity(u);
+        if room == 0 {
+            return Ok(());
+        }
+        let times = times.min(room);
         let map = SplineMap::insertion(&knots, u, times).unwrap();
         let fast = curve.insert_knot(u, times).unwrap();
         same_curve(&curve, &fast, 1e-13, "insertion");
@@ -114,7 +120,14 @@ proptest! {
         let map = SplineMap::elevation(curve.knots(), times).unwrap();
         let fast = curve.elevate_degree(times).unwrap();
         same_curve(&curve, &fast, 1e-12, "elevation");
-        matrix_agrees(&map, &curve, &fast, 1e-15, "elevation");
+        // 1e-15 relative up to cubics. Above, the blossoms at the elevated knots are
+        // evaluated by de Casteljau steps that extrapolate beyond the piece, whose
+        // intermediate values exceed Σ|M_ij||P_j|; f64 points round at every step, symbolic
+        // rows combine the coefficients first, so the two agree to O(2^p ε) (measured over
+        // 10⁵ random cases: 5ε at p = 4, 7ε at p = 5, 17ε at p = 6).
+        let p = curve.knots().degree();
+        let tol = 1e-15 * f64::from(1u32 << p.saturating_sub(3));
+        matrix_agrees(&map, &curve, &fast, tol, "elevation");
     }
 
     #[test]
@@ -156,15 +169,30 @@ proptest! {
         let knots = curve.knots().clone();
         let (a, b) = knots.domain();
         let u = a + (b - a) * t;
-        prop_assume!(knots.multiplicity(u) < knots.degree() + 1);
-        prop_assume!(knots.degree() >= 1);
+        if knots.degree() == 0 || knots.multiplicity(u) > knots.degree() {
+            return Ok(());
+        }
         let ins = SplineMap::insertion(&knots, u, 1).unwrap();
         let der = SplineMap::derivative(ins.target(), 1).unwrap();
         let ele = SplineMap::elevation(der.target(), 1).unwrap();
         let composed = ins.then(&der).unwrap().then(&ele).unwrap();
         let expected = curve.insert_knot(u, 1).unwrap().derivative(1).unwrap().elevate_degree(1).unwrap();
-        let got = composed.apply_to(&curve).unwrap();
-        assert_points_close(got.control_points(), expected.control_points(), 1e-12, "composition");
+        // Relative to the magnitudes along the chain, |M_3| |M_2| |M_1| |P|: the derivative
+        // divides by knot differences, so the factors' entries can be large and cancel in the
+        // product, while the sequential operations round at the size of the factors.
+        let mut magnitude: Vec<f64> = curve.control_points().iter().map(|p| p.amax()).collect();
+        for map in [&ins, &der, &ele] {
+            magnitude = map
+                .matrix()
+                .row_iter()
+                .map(|row| row.col_indices().iter().zip(row.values()).map(|(&j, v)| v.abs() * magnitude[j]).sum())
+                .collect();
+        }
+        let got = composed.apply(curve.control_points()).unwrap();
+        for (i, (a, b)) in got.iter().zip(expected.control_points()).enumerate() {
+            let d = (a - b).amax();
+            prop_assert!(d <= 1e-14 * magnitude[i].max(f64::MIN_POSITIVE), "composition: coefficient {} differs by {:e} (magnitude {:e})", i, d, magnitude[i]);
+        }
         prop_assert!(der.then(&ins).is_err() || der.target() == ins.source());
     }
 }

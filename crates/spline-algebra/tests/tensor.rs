@@ -246,9 +246,10 @@ proptest! {
             let lam = [0.5 * (c5 + sd), 0.5 * (c5 - sd)];
             let lu = [c1 + c2 / (4.0 * sd), c1 - c2 / (4.0 * sd)];
             let lv = [c3 + c4 / (4.0 * sd), c3 - c4 / (4.0 * sd)];
-            // Corrected λ_u, λ_v against finite differences of the eigenvalues (not at umbilics).
-            if d > 1e-2 {
-                let h = 1e-5;
+            // Corrected λ_u, λ_v against finite differences of the eigenvalues (not at umbilics,
+            // and not across the interior knot 0.5, where third derivatives jump).
+            let h = 1e-5;
+            if d > 1e-2 && (u - 0.5).abs() > 2.0 * h && (v - 0.5).abs() > 2.0 * h {
                 let (pu, mu) = (eigen(u + h, v), eigen(u - h, v));
                 let (pv, mv) = (eigen(u, v + h), eigen(u, v - h));
                 assert_close_rel(lu[0], (pu.0 - mu.0) / (2.0 * h), 1e-5, 1.0, "λ1_u");
