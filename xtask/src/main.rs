@@ -1,6 +1,8 @@
 //! Project automation: `cargo xtask <task>`.
 //!
-//! - `ci`: exactly what CI runs (`.ci/run`): format check, clippy with warnings denied, tests.
+//! - `ci`: exactly what CI runs (`.ci/run`): format check, clippy with warnings denied,
+//!   documentation with warnings denied, tests.
+//! - `help` (`--help`, `-h`): the list of tasks.
 //! - `docs`: regenerate the SVG pictures in `docs/`.
 //! - `bench airfoils [--jobs J]`: the whole UIUC database (fetched once from the
 //!   `aerosandbox` wheel into `target/airfoils/`) smoothed by the release tool, 20 control
@@ -71,14 +73,71 @@ fn run_docs(root: &Path) -> Result<(), String> {
     Ok(())
 }
 
+/// The tasks, as `cargo xtask --help` lists them (keep in step with the module docs).
+const TASKS: &[(&str, &str)] = &[
+    (
+        "ci",
+        "exactly what CI runs (.ci/run): format check, clippy -D warnings, docs, tests",
+    ),
+    ("docs", "redraw the SVG pictures in docs/"),
+    (
+        "demo",
+        "fit and smooth an airfoil from data/airfoils/, print the result, draw it under target/demo/",
+    ),
+    (
+        "reproduce",
+        "the seeds' published numbers next to ours (thesis Table 6.1 and §5.1, seed 000 Tables 1–2)",
+    ),
+    (
+        "bench fit",
+        "criterion benchmarks of fitting, with scipy in the same run (venv under target/)",
+    ),
+    (
+        "bench eval",
+        "criterion benchmarks of curve evaluation, with scipy in the same run",
+    ),
+    (
+        "bench airfoils [--jobs J]",
+        "smooth the whole UIUC database (fetched once into target/airfoils/)",
+    ),
+    (
+        "fuzz [--cases N | --seconds S] [--seed S] [--target T]",
+        "structured mutation fuzzing in process (fuzz/README.md)",
+    ),
+    (
+        "campaign [--cases N] [--seed S] [--jobs J] [--timeout S] [--memory-mb M]",
+        "mutation campaign of the release binary over every subcommand",
+    ),
+    ("help", "this list"),
+];
+
+fn help() -> String {
+    let mut text = String::from("usage: cargo xtask <task>\n\ntasks:\n");
+    for (task, what) in TASKS {
+        text.push_str(&format!("  {task}\n      {what}\n"));
+    }
+    text
+}
+
 fn usage() -> String {
-    "usage: cargo xtask <ci | docs | bench fit | bench eval | bench airfoils | demo | reproduce | fuzz [--cases N | --seconds S] | campaign [--cases N]>".into()
+    let names: Vec<&str> = TASKS
+        .iter()
+        .map(|(task, _)| task.split(" [").next().unwrap_or(task))
+        .collect();
+    format!(
+        "usage: cargo xtask <{}> (cargo xtask --help lists what each does)",
+        names.join(" | ")
+    )
 }
 
 fn main() -> ExitCode {
     let args: Vec<String> = std::env::args().skip(1).collect();
     let root = repo_root();
     let result = match args.first().map(String::as_str) {
+        Some("help" | "--help" | "-h") => {
+            print!("{}", help());
+            Ok(())
+        }
         Some("ci") => run_ci(&root),
         Some("docs") => run_docs(&root),
         Some("demo") => demo::run(&root),
@@ -99,5 +158,19 @@ fn main() -> ExitCode {
             eprintln!("xtask: {e}");
             ExitCode::FAILURE
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::{TASKS, help, usage};
+
+    #[test]
+    fn help_lists_every_task() {
+        let (help, usage) = (help(), usage());
+        for task in ["ci", "docs", "demo", "reproduce", "bench fit", "fuzz", "campaign"] {
+            assert!(help.contains(task) && usage.contains(task), "{task}");
+        }
+        assert_eq!(help.matches("\n      ").count(), TASKS.len());
     }
 }
