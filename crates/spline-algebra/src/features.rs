@@ -179,55 +179,118 @@ impl<T: Scalar> CurveFeatures<T> for NurbsCurve<T, 2> {
         let scale = leg_scale(self.control_points());
         let largest = self.weights().iter().fold(0.0f64, |m, &w| m.max(to_f64(w)));
         let wscale: T = cast(spline_core::power_of_two_scale(largest));
+        // And a translation to the middle of the control points: the numerators combine
+        // the coordinates themselves, whose rounding would otherwise grow with the distance
+        // from the origin.
+        let (lo, hi) = self.control_points().iter().fold(
+            (self.control_points()[0], self.control_points()[0]),
+            |(lo, hi), p| (lo.inf(p), hi.sup(p)),
+        );
+        let half: T = cast(0.5);
+        let middle = (lo + hi) * half;
         let h = self.homogeneous();
         let coordinate =
             |f: &dyn Fn(&spline_geom::Homogeneous<T, 2>) -> T| h.map_control_points(|q| f(q));
-        let x = coordinate(&|q| q.point.x / scale / wscale);
-        let y = coordinate(&|q| q.point.y / scale / wscale);
-        let w = coordinate(&|q| q.weight / wscale);
-        let d = |f: &BSpline<T, T>, k: usize| f.derivative(k);
-        let (x1, y1, w1) = (d(&x, 1)?, d(&y, 1)?, d(&w, 1)?);
-        let (x2, y2, w2) = (d(&x, 2)?, d(&y, 2)?, d(&w, 2)?);
-        let one = T::one();
+        let x = Tracked::leaf(coordinate(&|q| {
+            (q.point.x - q.weight * middle.x) / scale / wscale
+        }));
+        let y = Tracked::leaf(coordinate(&|q| {
+            (q.point.y - q.weight * middle.y) / scale / wscale
+        }));
+        let w = Tracked::leaf(coordinate(&|q| q.weight / wscale));
+        let (x1, y1, w1) = (x.derivative(1)?, y.derivative(1)?, w.derivative(1)?);
+        let (x2, y2, w2) = (x.derivative(2)?, y.derivative(2)?, w.derivative(2)?);
+        let (one, three): (T, T) = (T::one(), cast(3.0));
         // a · b − c · e
-        let cross = |a: &BSpline<T, T>, b: &BSpline<T, T>, c: &BSpline<T, T>, e: &BSpline<T, T>| {
-            linear_combination(one, &product(a, b)?, -one, &product(c, e)?)
+        let cross = |a: &Tracked<T>, b: &Tracked<T>, c: &Tracked<T>, e: &Tracked<T>| {
+            Tracked::combination(one, &a.times(b)?, -one, &c.times(e)?)
         };
         // N, N' and D = X (Y'W'' − W'Y'') − Y (X'W'' − W'X'') + W (X'Y'' − Y'X'').
         let nx = cross(&x1, &w, &x, &w1)?;
         let ny = cross(&y1, &w, &y, &w1)?;
         let nx1 = cross(&x2, &w, &x, &w2)?;
         let ny1 = cross(&y2, &w, &y, &w2)?;
-        let det = linear_combination(
+        let det = Tracked::combination(
             one,
-            &linear_combination(
+            &Tracked::combination(
                 one,
-                &product(&x, &cross(&y1, &w2, &w1, &y2)?)?,
+                &x.times(&cross(&y1, &w2, &w1, &y2)?)?,
                 -one,
-                &product(&y, &cross(&x1, &w2, &w1, &x2)?)?,
+                &y.times(&cross(&x1, &w2, &w1, &x2)?)?,
             )?,
             one,
-            &product(&w, &cross(&x1, &y2, &y1, &x2)?)?,
-        )?;
-        let nn = linear_combination(one, &product(&nx, &nx)?, one, &product(&ny, &ny)?)?;
-        check_regular(&nn, accuracy)?;
-        let nn1 = linear_combination(one, &product(&nx, &nx1)?, one, &product(&ny, &ny1)?)?;
-        let three: T = cast(3.0);
-        let lead = linear_combination(
-            one,
-            &product(&det.derivative(1)?, &w)?,
-            three,
-            &product(&det, &w1)?,
-        )?;
-        let g = linear_combination(
-            one,
-            &product(&lead, &nn)?,
-            -three,
-            &product(&product(&det, &w)?, &nn1)?,
-        )?;
+            &w.times(&cross(&x1, &y2, &y1, &x2)?)?,
+        )?
+        .cleaned();
+        let nn = Tracked::combination(one, &nx.times(&nx)?, one, &ny.times(&ny)?)?;
+        check_regular(&nn.value, accuracy)?;
+        let nn1 = Tracked::combination(one, &nx.times(&nx1)?, one, &ny.times(&ny1)?)?;
+        let lead =
+            Tracked::combination(one, &det.derivative(1)?.times(&w)?, three, &det.times(&w1)?)?;
+        let g = Tracked::combination(one, &lead.times(&nn)?, -three, &det.times(&w)?.times(&nn1)?)?
+            .cleaned();
+        let (det, g) = (det.value, g.value);
         Ok(PlanarFeatures {
             inflections: sign_change_params(&det, accuracy)?,
             curvature_extrema: sign_change_params(&g, accuracy)?,
         })
+    }
+}
+
+/// A B-spline function with a bound on the magnitudes that entered each coefficient (sums
+/// of absolute values of the terms, through products and linear combinations): where a
+/// coefficient is below `1e-10` of its magnitude it is rounding left by cancellation, not
+/// a value. A circle's curvature-extremum numerator, a straight segment's curvature
+/// numerator cancel that way, and sign changes of the noise would be reported as features.
+struct Tracked<T: Scalar> {
+    value: BSpline<T, T>,
+    magnitude: BSpline<T, T>,
+}
+
+impl<T: Scalar> Tracked<T> {
+    /// An input (a coordinate or a derivative): its magnitudes are its coefficients' sizes.
+    fn leaf(value: BSpline<T, T>) -> Self {
+        let magnitude = value.map_control_points(|c| c.abs());
+        Self { value, magnitude }
+    }
+
+    fn derivative(&self, order: usize) -> Result<Self> {
+        Ok(Self::leaf(self.value.derivative(order)?))
+    }
+
+    /// The product; products of non-negative coefficients bound those of the product.
+    fn times(&self, other: &Self) -> Result<Self> {
+        Ok(Self {
+            value: product(&self.value, &other.value)?,
+            magnitude: product(&self.magnitude, &other.magnitude)?,
+        })
+    }
+
+    /// `alpha · a + beta · b`, with magnitude `|alpha| |a| + |beta| |b|`.
+    fn combination(alpha: T, a: &Self, beta: T, b: &Self) -> Result<Self> {
+        Ok(Self {
+            value: linear_combination(alpha, &a.value, beta, &b.value)?,
+            magnitude: linear_combination(alpha.abs(), &a.magnitude, beta.abs(), &b.magnitude)?,
+        })
+    }
+
+    /// The coefficients that are rounding of cancelled terms set to zero (and the
+    /// magnitudes of what remains restarted from the values).
+    fn cleaned(self) -> Self {
+        let threshold: T = cast(1e-10);
+        let points = self
+            .value
+            .control_points()
+            .iter()
+            .zip(self.magnitude.control_points())
+            .map(|(&v, &m)| {
+                if v.abs() <= threshold * m {
+                    T::zero()
+                } else {
+                    v
+                }
+            })
+            .collect();
+        Self::leaf(BSpline::new_unchecked(self.value.knots().clone(), points))
     }
 }

@@ -84,3 +84,59 @@ fn rational_features_match_the_sampled_curvature() {
     near(&f.inflections, &inflections, "inflections");
     near(&f.curvature_extrema, &extrema, "curvature extrema");
 }
+
+/// Constant curvature has no extrema, a straight segment no inflections: the numerators
+/// vanish identically and what the arithmetic leaves of them is rounding, whose sign
+/// changes are not features. A slightly flattened circle keeps its four vertices.
+#[test]
+fn circles_and_straight_segments_have_no_features() {
+    use spline_geom::{CircleConstruction, Frame};
+    for construction in [CircleConstruction::Square, CircleConstruction::Triangle] {
+        for (center, radius) in [((0.0, 0.0), 1.0), ((3.7, -1.1), 0.013), ((-2e3, 5e2), 7e4)] {
+            let frame = Frame::planar(Vector2::new(center.0, center.1));
+            let circle = NurbsCurve::circle(&frame, radius, construction).unwrap();
+            let f = planar_features(&circle, 1e-12).unwrap();
+            assert!(
+                f.curvature_extrema.is_empty() && f.inflections.is_empty(),
+                "{construction:?} {radius}: {f:?}"
+            );
+            // Squeezed by 1e-6 in y: an ellipse, with vertices at u = 0, ¼, ½, ¾ (the
+            // interior ones found).
+            let ellipse = NurbsCurve::from_knots(
+                2,
+                circle.knots().knots().to_vec(),
+                circle
+                    .control_points()
+                    .iter()
+                    .map(|p| Vector2::new(p.x, center.1 + (p.y - center.1) * (1.0 - 1e-6)))
+                    .collect(),
+                circle.weights().to_vec(),
+            )
+            .unwrap();
+            let f = planar_features(&ellipse, 1e-12).unwrap();
+            assert_eq!(
+                f.curvature_extrema.len(),
+                3,
+                "{construction:?} {radius}: {f:?}"
+            );
+        }
+    }
+    // A rational parabola-like curve with collinear control points: a straight segment.
+    let segment = NurbsCurve::from_knots(
+        2,
+        vec![0.0, 0.0, 0.0, 0.4, 1.0, 1.0, 1.0],
+        vec![
+            Vector2::new(0.1, 0.3),
+            Vector2::new(0.7, 0.9),
+            Vector2::new(1.9, 2.1),
+            Vector2::new(2.2, 2.4),
+        ],
+        vec![1.0, 3.0, 0.2, 1.0],
+    )
+    .unwrap();
+    let f = planar_features(&segment, 1e-12).unwrap();
+    assert!(
+        f.inflections.is_empty() && f.curvature_extrema.is_empty(),
+        "{f:?}"
+    );
+}
