@@ -58,19 +58,26 @@ enum Shape {
     Torus(TorusArgs),
 }
 
+/// Where a circle or an arc lies: its center, radius and plane.
 #[derive(Args)]
-struct CircleArgs {
-    /// Center as a JSON array: [x, y] for a planar circle, [x, y, z] for a circle in space.
+struct PlaneCircle {
+    /// Center as a JSON array: [x, y] in the plane, [x, y, z] in space.
     #[arg(long)]
     center: String,
     /// Radius (positive).
     #[arg(long, allow_hyphen_values = true)]
     radius: f64,
-    /// Normal of the plane of a circle in space, as a JSON array [x, y, z] (default
-    /// [0, 0, 1]; only with a 3-D center). The circle starts on the coordinate axis least
-    /// aligned with the normal, projected on the plane.
+    /// Normal of the plane in space, as a JSON array [x, y, z] (default [0, 0, 1]; only with
+    /// a 3-D center). The circle starts on the coordinate axis least aligned with the
+    /// normal, projected on the plane.
     #[arg(long)]
     normal: Option<String>,
+}
+
+#[derive(Args)]
+struct CircleArgs {
+    #[command(flatten)]
+    on: PlaneCircle,
     /// How the circle is built.
     #[arg(long, value_enum, default_value_t = Construction::Square)]
     construction: Construction,
@@ -78,16 +85,8 @@ struct CircleArgs {
 
 #[derive(Args)]
 struct ArcArgs {
-    /// Center as a JSON array: [x, y] or [x, y, z].
-    #[arg(long)]
-    center: String,
-    /// Radius (positive).
-    #[arg(long, allow_hyphen_values = true)]
-    radius: f64,
-    /// Normal of the plane for an arc in space, as a JSON array (default [0, 0, 1]; only with
-    /// a 3-D center).
-    #[arg(long)]
-    normal: Option<String>,
+    #[command(flatten)]
+    on: PlaneCircle,
     /// Start angle in degrees, from the x axis of the plane towards its y axis.
     #[arg(long, default_value_t = 0.0, allow_hyphen_values = true)]
     start: f64,
@@ -285,12 +284,12 @@ fn curve_and_point(
 fn make_json(shape: &Shape) -> Result<Json> {
     Ok(match shape {
         Shape::Circle(a) => {
-            let (frame, dim) = circle_frame(&a.center, a.normal.as_deref())?;
-            let circle = NurbsCurve::circle(&frame, a.radius, construction(a.construction))?;
+            let (frame, dim) = circle_frame(&a.on.center, a.on.normal.as_deref())?;
+            let circle = NurbsCurve::circle(&frame, a.on.radius, construction(a.construction))?;
             Sized { value: circle, dim }.json()?
         }
         Shape::Arc(a) => {
-            let (frame, dim) = circle_frame(&a.center, a.normal.as_deref())?;
+            let (frame, dim) = circle_frame(&a.on.center, a.on.normal.as_deref())?;
             let pieces = (a.sweep.abs() / a.max_piece).ceil();
             #[allow(clippy::cast_precision_loss)]
             if a.max_piece > 0.0 && pieces > spline_geom::MAX_ARC_PIECES as f64 {
@@ -305,7 +304,7 @@ fn make_json(shape: &Shape) -> Result<Json> {
             }
             let arc = NurbsCurve::arc_with_max_piece(
                 &frame,
-                a.radius,
+                a.on.radius,
                 a.start.to_radians(),
                 a.sweep.to_radians(),
                 a.max_piece.to_radians(),

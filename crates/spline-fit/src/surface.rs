@@ -59,21 +59,20 @@ fn check_grid<T: Scalar, P: ControlPoint<T>>(grid: &[P], rows: usize, cols: usiz
 
 /// Checks the degrees and the grid of a grid fit, then `enough` (the numbers of points and
 /// control points agree with the degrees); `shortfall` describes the problem otherwise.
-fn check_grid_fit<T: Scalar, P: ControlPoint<T>>(
+fn checked_grid_params<T: Scalar, P: ControlPoint<T>>(
     grid: &[P],
     (rows, cols): (usize, usize),
     (degree_u, degree_v): (usize, usize),
-    enough: bool,
-    shortfall: impl FnOnce() -> String,
-) -> Result<()> {
+    (param_u, param_v): (&Parametrization<T>, &Parametrization<T>),
+    shortfall: Option<String>,
+) -> Result<(Vec<T>, Vec<T>)> {
     check_degree(degree_u)?;
     check_degree(degree_v)?;
     check_grid(grid, rows, cols)?;
-    if enough {
-        Ok(())
-    } else {
-        Err(Error::new(ErrorKind::TooFewPoints, shortfall()))
+    if let Some(message) = shortfall {
+        return Err(Error::new(ErrorKind::TooFewPoints, message));
     }
+    surface_grid_params(grid, rows, cols, param_u, param_v)
 }
 
 /// Parameters of a grid $Q_{kl}$ (`rows × cols`, row-major, `k` along `u`) by The NURBS
@@ -182,20 +181,19 @@ pub fn interpolate_surface<T: Scalar, P: ControlPoint<T>>(
     param_u: &Parametrization<T>,
     param_v: &Parametrization<T>,
 ) -> Result<SurfaceFit<T, P>> {
-    check_grid_fit(
+    let (u, v) = checked_grid_params(
         grid,
         (rows, cols),
         (degree_u, degree_v),
-        rows > degree_u && cols > degree_v,
-        || {
+        (param_u, param_v),
+        (rows <= degree_u || cols <= degree_v).then(|| {
             format!(
                 "a surface of degrees ({degree_u}, {degree_v}) needs at least {} × {} points, got {rows} × {cols}",
                 degree_u + 1,
                 degree_v + 1
             )
-        },
+        }),
     )?;
-    let (u, v) = surface_grid_params(grid, rows, cols, param_u, param_v)?;
     let ku = KnotVector::averaging(degree_u, &u)?;
     let kv = KnotVector::averaging(degree_v, &v)?;
     two_passes(grid, rows, cols, &u, &v, &ku, &kv, &|k, params, pts| {
@@ -264,20 +262,20 @@ pub fn approximate_surface_grid<T: Scalar, P: ControlPoint<T>>(
     param_u: &Parametrization<T>,
     param_v: &Parametrization<T>,
 ) -> Result<SurfaceFit<T, P>> {
-    check_grid_fit(
+    let enough = num_u > degree_u && num_v > degree_v && num_u <= rows && num_v <= cols;
+    let (u, v) = checked_grid_params(
         grid,
         (rows, cols),
         (degree_u, degree_v),
-        num_u > degree_u && num_v > degree_v && num_u <= rows && num_v <= cols,
-        || {
+        (param_u, param_v),
+        (!enough).then(|| {
             format!(
                 "{num_u} × {num_v} control points of degrees ({degree_u}, {degree_v}) need {} ≤ num_u ≤ {rows} and {} ≤ num_v ≤ {cols}",
                 degree_u + 1,
                 degree_v + 1
             )
-        },
+        }),
     )?;
-    let (u, v) = surface_grid_params(grid, rows, cols, param_u, param_v)?;
     let ku = knots_for(&KnotChoice::NurbsBook, degree_u, num_u, &u)?;
     let kv = knots_for(&KnotChoice::NurbsBook, degree_v, num_v, &v)?;
     two_passes(grid, rows, cols, &u, &v, &ku, &kv, &|k, params, pts| {

@@ -52,21 +52,8 @@ fn classify(line: &str) -> Line {
     if line.is_empty() {
         return Line::Blank;
     }
-    let tokens: Vec<&str> = line
-        .split(|c: char| c.is_whitespace() || c == ',')
-        .filter(|t| !t.is_empty())
-        .collect();
-    let numbers: Option<Vec<f64>> = tokens
-        .iter()
-        .map(|t| {
-            let t = t
-                .strip_prefix('(')
-                .and_then(|t| t.strip_suffix(')'))
-                .unwrap_or(t);
-            t.parse::<f64>().ok()
-        })
-        .collect();
-    match numbers {
+    let tokens = crate::point_text::tokens(line);
+    match crate::point_text::numbers(&tokens) {
         Some(v) => Line::Numbers(v),
         // A placeholder such as `0.0000     ......` holds no point.
         None if tokens.len() >= 2

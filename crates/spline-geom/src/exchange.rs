@@ -208,18 +208,7 @@ pub fn parse_points(text: &str) -> Result<Vec<Vec<f64>>> {
                 if line.is_empty() || line.starts_with('#') {
                     return None;
                 }
-                let values: Option<Vec<f64>> = line
-                    .split(|c: char| c.is_whitespace() || c == ',')
-                    .filter(|t| !t.is_empty())
-                    .map(|t| {
-                        let t = t
-                            .strip_prefix('(')
-                            .and_then(|t| t.strip_suffix(')'))
-                            .unwrap_or(t);
-                        t.parse::<f64>().ok()
-                    })
-                    .collect();
-                values.map(|v| (i + 1, v))
+                crate::point_text::numbers(&crate::point_text::tokens(line)).map(|v| (i + 1, v))
             })
             .collect()
     };

@@ -45,6 +45,7 @@ mod operations;
 mod param;
 mod param_impls;
 mod planar;
+mod point_text;
 mod structural;
 mod surface;
 mod surface_geometry;

@@ -209,6 +209,29 @@ fn barrier_value(problem: &impl BarrierProblem, x: &DVector<f64>, t: f64) -> Opt
     f.is_finite().then_some(f)
 }
 
+/// At an iterate: the constraints' Jacobian, the weights `1 / (−f_i)` and the gradient of
+/// the barrier objective.
+struct Gradient {
+    jac: CsrMatrix<f64>,
+    inv: DVector<f64>,
+    gradient: DVector<f64>,
+}
+
+/// The gradient of the barrier objective, `t ∇f0 + Σ ∇f_i / (−f_i)`.
+fn barrier_gradient(problem: &impl BarrierProblem, x: &DVector<f64>, t: f64) -> Result<Gradient> {
+    let c = problem.constraints(x);
+    let jac = problem.constraint_jacobian(x);
+    let inv = c.map(|ci| 1.0 / -ci);
+    let gradient = problem.objective_gradient(x) * t + jac.transpose() * &inv;
+    if gradient.iter().any(|g| !g.is_finite()) {
+        return Err(Error::new(
+            ErrorKind::NonFinite,
+            "the barrier gradient is not finite",
+        ));
+    }
+    Ok(Gradient { jac, inv, gradient })
+}
+
 /// A condition that ends a centring step early.
 pub(crate) type StopRule<'a> = &'a dyn Fn(&DVector<f64>) -> bool;
 
@@ -226,17 +249,7 @@ pub(crate) fn centre(
         return centre_trust_region(problem, x, t, options, stop);
     }
     for step in 0..options.max_newton_iterations {
-        let c = problem.constraints(x);
-        let jac = problem.constraint_jacobian(x);
-        let inv = c.map(|ci| 1.0 / -ci);
-        // Gradient: t ∇f0 + Σ ∇f_i / (−f_i).
-        let gradient = problem.objective_gradient(x) * t + jac.transpose() * &inv;
-        if gradient.iter().any(|g| !g.is_finite()) {
-            return Err(Error::new(
-                ErrorKind::NonFinite,
-                "the barrier gradient is not finite",
-            ));
-        }
+        let Gradient { jac, inv, gradient } = barrier_gradient(problem, x, t)?;
         // Hessian: t ∇²f0 + Σ ∇f_i ∇f_iᵀ / f_i² + Σ ∇²f_i / (−f_i). With the curvature of
         // the constraints when that keeps the Newton matrix positive definite; otherwise the
         // Gauss–Newton matrix t∇²f0 + Σ ∇f_i∇f_iᵀ/f_i² (positive semi-definite) with a small
@@ -317,16 +330,7 @@ fn centre_trust_region(
     let mut f = barrier_value(problem, x, t)
         .ok_or_else(|| Error::new(ErrorKind::NonFinite, "iterate left the barrier domain"))?;
     for _ in 0..options.max_newton_iterations {
-        let c = problem.constraints(x);
-        let jac = problem.constraint_jacobian(x);
-        let inv = c.map(|ci| 1.0 / -ci);
-        let gradient = problem.objective_gradient(x) * t + jac.transpose() * &inv;
-        if gradient.iter().any(|g| !g.is_finite()) {
-            return Err(Error::new(
-                ErrorKind::NonFinite,
-                "the barrier gradient is not finite",
-            ));
-        }
+        let Gradient { jac, inv, gradient } = barrier_gradient(problem, x, t)?;
         let mut metric = DMatrix::zeros(n, n);
         for (i, j, v) in problem.objective_hessian(x).triplet_iter() {
             metric[(i, j)] += t * v;

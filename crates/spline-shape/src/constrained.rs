@@ -207,22 +207,12 @@ impl FunctionApproximation {
         })
     }
 
-    /// Splits every span of the derived splines of the sign constraints into `pieces`
-    /// (knot refinement, `1` = none): more, and less conservative, sign conditions on
-    /// control points that lie closer to the derivative. Sign changes are not refined (it
-    /// would multiply their sign patterns).
-    #[must_use]
-    pub fn refinement(mut self, pieces: usize) -> Self {
-        self.refinement = pieces;
-        self
-    }
-
-    /// Sets the barrier method's settings.
-    #[must_use]
-    pub fn options(mut self, options: BarrierOptions) -> Self {
-        self.options = options;
-        self
-    }
+    solver_settings!(
+        "Splits every span of the derived splines of the sign constraints into `pieces` \
+         (knot refinement, `1` = none): more, and less conservative, sign conditions on \
+         control points that lie closer to the derivative. Sign changes are not refined (it \
+         would multiply their sign patterns)."
+    );
 
     /// The knot vector of the fit.
     #[must_use]

@@ -186,20 +186,10 @@ impl SurfaceApproximation {
         })
     }
 
-    /// Splits every span of the derived splines into `pieces` in both directions (`1` =
-    /// none): less conservative sign conditions.
-    #[must_use]
-    pub fn refinement(mut self, pieces: usize) -> Self {
-        self.refinement = pieces;
-        self
-    }
-
-    /// Sets the barrier method's settings.
-    #[must_use]
-    pub fn options(mut self, options: BarrierOptions) -> Self {
-        self.options = options;
-        self
-    }
+    solver_settings!(
+        "Splits every span of the derived splines into `pieces` in both directions (`1` = \
+         none): less conservative sign conditions."
+    );
 
     /// The knot vectors `(u, v)`.
     #[must_use]

@@ -12,6 +12,26 @@
 //! - [`eraser`]: the selective eraser of curvature extrema of planar curves (thesis ch. 6),
 //!   e.g. airfoil smoothing.
 
+/// The settings shared by the constrained approximations of functions and of surfaces
+/// (their builders' `refinement` and `options`), written once.
+macro_rules! solver_settings {
+    ($refinement:literal) => {
+        #[doc = $refinement]
+        #[must_use]
+        pub fn refinement(mut self, pieces: usize) -> Self {
+            self.refinement = pieces;
+            self
+        }
+
+        /// Sets the barrier method's settings.
+        #[must_use]
+        pub fn options(mut self, options: BarrierOptions) -> Self {
+            self.options = options;
+            self
+        }
+    };
+}
+
 pub mod adaptive;
 pub mod barrier;
 pub mod constrained;
