@@ -168,7 +168,15 @@ mod tests {
     #[test]
     fn help_lists_every_task() {
         let (help, usage) = (help(), usage());
-        for task in ["ci", "docs", "demo", "reproduce", "bench fit", "fuzz", "campaign"] {
+        for task in [
+            "ci",
+            "docs",
+            "demo",
+            "reproduce",
+            "bench fit",
+            "fuzz",
+            "campaign",
+        ] {
             assert!(help.contains(task) && usage.contains(task), "{task}");
         }
         assert_eq!(help.matches("\n      ").count(), TASKS.len());
