@@ -32,7 +32,10 @@ fn every_cli_example_of_the_readme_runs() {
     let readme = std::fs::read_to_string(root.join("README.md")).expect("README.md");
     let lines = examples(&readme);
     assert!(lines.len() >= 15, "{lines:?}");
-    assert!(lines.iter().any(|l| l.contains("make circle")), "a NURBS example");
+    assert!(
+        lines.iter().any(|l| l.contains("make circle")),
+        "a NURBS example"
+    );
     let binary = env!("CARGO_BIN_EXE_spline");
     for line in &lines {
         let script = format!("set -euo pipefail\nspline() {{ '{binary}' \"$@\"; }}\n{line}\n");

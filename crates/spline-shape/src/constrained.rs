@@ -36,7 +36,7 @@
 
 use crate::barrier::{BarrierOptions, BarrierReport};
 use crate::problem::{
-    ApproximationProblem, LeastSquaresObjective, Sign, check_interval, derived_map,
+    ApproximationProblem, LeastSquaresObjective, Sign, check_interval, check_samples, derived_map,
     normalized_rows, solve, vstack,
 };
 use nalgebra_sparse::{CooMatrix, CsrMatrix};
@@ -434,12 +434,7 @@ impl FunctionApproximation {
         samples_per_span: usize,
     ) -> Result<Vec<ConstraintCheck>> {
         self.validate()?;
-        if samples_per_span == 0 {
-            return Err(Error::new(
-                ErrorKind::InvalidArgument,
-                "need at least one sample per span",
-            ));
-        }
+        check_samples(samples_per_span)?;
         let mut out = Vec::with_capacity(self.constraints.len());
         for c in &self.constraints {
             let (a, b) = self.interval_of(c);

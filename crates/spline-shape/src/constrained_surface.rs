@@ -35,7 +35,7 @@
 use crate::barrier::{BarrierOptions, BarrierReport};
 use crate::constrained::{ConstraintCheck, span_samples, uniform_samples};
 use crate::problem::{
-    ApproximationProblem, LeastSquaresObjective, Sign, check_interval, derived_map,
+    ApproximationProblem, LeastSquaresObjective, Sign, check_interval, check_samples, derived_map,
     furthest_feasible, normalized_rows, refined, solve, strictly_feasible, vstack,
 };
 use nalgebra::{DVector, Matrix2, Matrix6, Vector6};
@@ -494,12 +494,7 @@ impl SurfaceApproximation {
         samples_per_span: usize,
     ) -> Result<Vec<ConstraintCheck>> {
         self.validate()?;
-        if samples_per_span == 0 {
-            return Err(Error::new(
-                ErrorKind::InvalidArgument,
-                "need at least one sample per span",
-            ));
-        }
+        check_samples(samples_per_span)?;
         let mut out = Vec::with_capacity(self.constraints.len());
         for c in &self.constraints {
             let region = match *c {

@@ -358,6 +358,17 @@ impl BarrierProblem for Boxed<'_> {
 }
 
 /// Whether every constraint is negative at `x`.
+/// [`ErrorKind::InvalidArgument`] for no samples per span (of a constraint check).
+pub(crate) fn check_samples(samples_per_span: usize) -> Result<()> {
+    if samples_per_span == 0 {
+        return Err(Error::new(
+            ErrorKind::InvalidArgument,
+            "need at least one sample per span",
+        ));
+    }
+    Ok(())
+}
+
 pub(crate) fn strictly_feasible(problem: &ApproximationProblem, x: &DVector<f64>) -> bool {
     problem.constraints(x).iter().all(|&c| c < 0.0)
 }
