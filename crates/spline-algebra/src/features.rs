@@ -250,7 +250,7 @@ struct Tracked<T: Scalar> {
 impl<T: Scalar> Tracked<T> {
     /// An input (a coordinate or a derivative): its magnitudes are its coefficients' sizes.
     fn leaf(value: BSpline<T, T>) -> Self {
-        let magnitude = value.map_control_points(|c| c.abs());
+        let magnitude = value.map_control_points(|&c| c.abs());
         Self { value, magnitude }
     }
 

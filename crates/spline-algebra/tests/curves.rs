@@ -59,7 +59,7 @@ fn magnitudes(curve: &Curve2, u: f64) -> [f64; 5] {
         .derivatives(u, 3)
         .unwrap()
         .iter()
-        .map(|v| v.norm())
+        .map(nalgebra::Matrix::norm)
         .collect();
     let h = [d[1] * d[1], d[1] * d[3], d[1] * d[2], d[1] * d[2]];
     [h[0], h[1], h[2], h[3], h[0] * h[1] + 3.0 * h[2] * h[3]]

@@ -180,7 +180,7 @@ proptest! {
         // Relative to the magnitudes along the chain, |M_3| |M_2| |M_1| |P|: the derivative
         // divides by knot differences, so the factors' entries can be large and cancel in the
         // product, while the sequential operations round at the size of the factors.
-        let mut magnitude: Vec<f64> = curve.control_points().iter().map(|p| p.amax()).collect();
+        let mut magnitude: Vec<f64> = curve.control_points().iter().map(nalgebra::Matrix::amax).collect();
         for map in [&ins, &der, &ele] {
             magnitude = map
                 .matrix()
