@@ -1,0 +1,190 @@
+//! Phase I: a strictly feasible start.
+
+use super::{BarrierOptions, BarrierProblem, centre};
+use nalgebra::DVector;
+use nalgebra_sparse::{CooMatrix, CsrMatrix};
+use spline_core::{Error, ErrorKind, Result};
+
+/// Phase I: a strictly feasible point near `x0`, found by minimising `s` subject to
+/// `f_i(x) < s` from `s = max f_i(x0) + 1` and stopping as soon as `s < −margin`.
+/// Returns `x0` unchanged if it is already strictly feasible with that margin.
+///
+/// # Errors
+/// [`ErrorKind::NoConvergence`] if no point with all `f_i < −margin` is found (the
+/// constraints may be inconsistent); the errors of [`minimize`].
+pub fn find_feasible(
+    problem: &impl BarrierProblem,
+    x0: DVector<f64>,
+    margin: f64,
+    options: &BarrierOptions,
+) -> Result<DVector<f64>> {
+    find_feasible_near(problem, x0, margin, 0.0, options)
+}
+
+/// [`find_feasible`] with `s + w f_0(x)` as phase-I objective: the pull towards small
+/// `f_0` keeps the search near good points. Non-convex constraints that are homogeneous in
+/// `x` (curvature conditions vanish on a curve shrunk to a point) otherwise let phase I
+/// drift to a degenerate point where every `f_i` tends to zero.
+///
+/// # Errors
+/// As [`find_feasible`].
+pub fn find_feasible_near(
+    problem: &impl BarrierProblem,
+    x0: DVector<f64>,
+    margin: f64,
+    objective_weight: f64,
+    options: &BarrierOptions,
+) -> Result<DVector<f64>> {
+    let c = problem.constraints(&x0);
+    let worst = c.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+    if worst < -margin || problem.num_constraints() == 0 {
+        return Ok(x0);
+    }
+    let radius = 1e3 * (1.0 + x0.amax());
+    let phase = PhaseOne {
+        inner: problem,
+        margin,
+        centre: x0.clone(),
+        radius,
+        objective_weight,
+    };
+    let n = problem.dimension();
+    let mut start = DVector::zeros(n + 1);
+    start.rows_mut(0, n).copy_from(&x0);
+    start[n] = worst + 1.0;
+    let mut x = start;
+    // On the central path `s ≈ max f_i + m/t`: start where that offset is a tenth of the
+    // initial infeasibility, not where the barrier would push `s` up.
+    let m = (problem.num_constraints() + 1) as f64;
+    let mut t = (10.0 * m / (worst.abs() + 1.0)).max(1.0);
+    for _ in 0..options.max_outer_iterations {
+        // Centre, stopping as soon as the inner point is strictly feasible.
+        let stop = |y: &DVector<f64>| y[n] < -margin;
+        // Phase I needs no accurate centring: a few Newton steps per value of t.
+        let loose = BarrierOptions {
+            max_newton_iterations: 30,
+            ..options.clone()
+        };
+        match centre(&phase, &mut x, t, &loose, Some(&stop)) {
+            Ok(_) => {}
+            Err(e) if e.kind() == ErrorKind::NoConvergence => {}
+            Err(e) => return Err(e),
+        }
+        if x[n] < -margin {
+            return Ok(x.rows(0, n).into_owned());
+        }
+        t *= options.t_growth;
+    }
+    Err(Error::new(
+        ErrorKind::NoConvergence,
+        format!(
+            "no strictly feasible point found (best max f_i = {:.3e})",
+            x[n]
+        ),
+    ))
+}
+
+/// `min s` over `(x, s)` with `f_i(x) − s < 0`, `s > −2 margin − 1` and `x` in a box around
+/// the start (both keep the problem bounded).
+struct PhaseOne<'a, P> {
+    inner: &'a P,
+    margin: f64,
+    /// Centre and half-width of the box `|x_j − centre_j| < radius` that keeps phase I
+    /// bounded when the feasible set is not.
+    centre: DVector<f64>,
+    radius: f64,
+    /// Weight of `f0` added to the objective `s` ([`find_feasible_near`]).
+    objective_weight: f64,
+}
+
+impl<P: BarrierProblem> BarrierProblem for PhaseOne<'_, P> {
+    fn dimension(&self) -> usize {
+        self.inner.dimension() + 1
+    }
+    fn num_constraints(&self) -> usize {
+        self.inner.num_constraints() + 1 + 2 * self.inner.dimension()
+    }
+    fn objective(&self, x: &DVector<f64>) -> f64 {
+        let n = self.inner.dimension();
+        let pull = if self.objective_weight > 0.0 {
+            self.objective_weight * self.inner.objective(&x.rows(0, n).into_owned())
+        } else {
+            0.0
+        };
+        x[n] + pull
+    }
+    fn objective_gradient(&self, x: &DVector<f64>) -> DVector<f64> {
+        let n = self.inner.dimension();
+        let mut g = DVector::zeros(x.len());
+        if self.objective_weight > 0.0 {
+            let inner = self.inner.objective_gradient(&x.rows(0, n).into_owned());
+            g.rows_mut(0, n).copy_from(&(inner * self.objective_weight));
+        }
+        g[n] = 1.0;
+        g
+    }
+    fn objective_hessian(&self, x: &DVector<f64>) -> CsrMatrix<f64> {
+        let n = self.inner.dimension();
+        if self.objective_weight == 0.0 {
+            return CsrMatrix::zeros(x.len(), x.len());
+        }
+        let inner = self.inner.objective_hessian(&x.rows(0, n).into_owned());
+        let mut coo = CooMatrix::new(n + 1, n + 1);
+        for (i, j, v) in inner.triplet_iter() {
+            coo.push(i, j, self.objective_weight * v);
+        }
+        CsrMatrix::from(&coo)
+    }
+    fn constraints(&self, x: &DVector<f64>) -> DVector<f64> {
+        let n = self.inner.dimension();
+        let s = x[n];
+        let inner = self.inner.constraints(&x.rows(0, n).into_owned());
+        let m = inner.len();
+        let mut c = DVector::zeros(m + 1 + 2 * n);
+        for (i, v) in inner.iter().enumerate() {
+            c[i] = v - s;
+        }
+        c[m] = -s - 2.0 * self.margin - 1.0;
+        for j in 0..n {
+            let offset = x[j] - self.centre[j];
+            c[m + 1 + 2 * j] = offset - self.radius;
+            c[m + 2 + 2 * j] = -offset - self.radius;
+        }
+        c
+    }
+    fn constraint_jacobian(&self, x: &DVector<f64>) -> CsrMatrix<f64> {
+        let n = self.inner.dimension();
+        let inner = self.inner.constraint_jacobian(&x.rows(0, n).into_owned());
+        let m = inner.nrows();
+        let mut coo = CooMatrix::new(m + 1 + 2 * n, n + 1);
+        for (i, j, v) in inner.triplet_iter() {
+            coo.push(i, j, *v);
+        }
+        for i in 0..m {
+            coo.push(i, n, -1.0);
+        }
+        coo.push(m, n, -1.0);
+        for j in 0..n {
+            coo.push(m + 1 + 2 * j, j, 1.0);
+            coo.push(m + 2 + 2 * j, j, -1.0);
+        }
+        CsrMatrix::from(&coo)
+    }
+    fn weighted_constraint_hessian(
+        &self,
+        x: &DVector<f64>,
+        weights: &DVector<f64>,
+    ) -> Option<CsrMatrix<f64>> {
+        let n = self.inner.dimension();
+        let w = weights.rows(0, self.inner.num_constraints()).into_owned();
+        self.inner
+            .weighted_constraint_hessian(&x.rows(0, n).into_owned(), &w)
+            .map(|h| {
+                let mut coo = CooMatrix::new(n + 1, n + 1);
+                for (i, j, v) in h.triplet_iter() {
+                    coo.push(i, j, *v);
+                }
+                CsrMatrix::from(&coo)
+            })
+    }
+}

@@ -1,0 +1,262 @@
+//! The eraser's problem in the interior-point method's terms: objective, constraints and
+//! their derivatives as [`BarrierProblem`] asks for them.
+
+use super::{EraserProblem, Scratch};
+use crate::barrier::BarrierProblem;
+use crate::eraser::Objective;
+use nalgebra::{DMatrix, DVector, Vector2};
+use nalgebra_sparse::{CooMatrix, CsrMatrix};
+
+impl BarrierProblem for EraserProblem {
+    fn dimension(&self) -> usize {
+        2 * self.n + usize::from(self.minimax()) + usize::from(self.relaxed)
+    }
+
+    fn num_constraints(&self) -> usize {
+        self.num_distance_constraints()
+            + self.excursions.len()
+            + self.num_conditions()
+            + usize::from(self.relaxed)
+    }
+
+    fn objective(&self, x: &DVector<f64>) -> f64 {
+        let d2 = self.squared_distances(x);
+        let mean = d2.iter().sum::<f64>() / (d2.len() as f64 * self.unit);
+        let fit = match self.objective {
+            Objective::MaxDeviation => x[2 * self.n] + self.mean_weight * mean,
+            Objective::LeastSquares => mean,
+        };
+        if self.relaxed {
+            x[self.tau_index()] + self.pull * fit
+        } else {
+            fit
+        }
+    }
+
+    fn objective_gradient(&self, x: &DVector<f64>) -> DVector<f64> {
+        let feet = self.feet(x, true);
+        let m = self.distances.points.len();
+        let weight = match self.objective {
+            Objective::MaxDeviation => self.mean_weight,
+            Objective::LeastSquares => 1.0,
+        } / (m as f64 * self.unit);
+        let mut g = DVector::zeros(self.dimension());
+        for foot in &feet.feet {
+            for (a, v) in foot.gradient.iter().enumerate() {
+                g[2 * foot.first + a] += weight * v;
+            }
+        }
+        if self.minimax() {
+            g[2 * self.n] = 1.0;
+        }
+        if self.relaxed {
+            g *= self.pull;
+            g[self.tau_index()] = 1.0;
+        }
+        g
+    }
+
+    fn objective_hessian(&self, x: &DVector<f64>) -> CsrMatrix<f64> {
+        let mut dense = DMatrix::zeros(self.dimension(), self.dimension());
+        let weight = if self.relaxed { self.pull } else { 1.0 };
+        self.add_distance_hessians(x, weight, None, &mut dense);
+        let mut coo = CooMatrix::new(self.dimension(), self.dimension());
+        for j in 0..dense.ncols() {
+            for i in 0..dense.nrows() {
+                if dense[(i, j)] != 0.0 {
+                    coo.push(i, j, dense[(i, j)]);
+                }
+            }
+        }
+        CsrMatrix::from(&coo)
+    }
+
+    fn constraints(&self, x: &DVector<f64>) -> DVector<f64> {
+        let mut out = Vec::with_capacity(self.num_constraints());
+        if self.minimax() {
+            let z = x[2 * self.n];
+            out.extend(
+                self.squared_distances(x)
+                    .iter()
+                    .map(|d2| d2 / self.unit - z),
+            );
+        }
+        let control = self.control_points(x);
+        for e in &self.excursions {
+            let c = self.curve_point(&control, e.param);
+            out.push((c - e.centre).norm_squared() / e.radius2 - 1.0);
+        }
+        let coefficients = self.signed_coefficients(x);
+        let tau = self.tau_at(x);
+        for (piece, c) in self.pieces.iter().zip(&coefficients) {
+            for ((v, s), shift) in c.iter().zip(&piece.scale).zip(&piece.shift) {
+                out.push(-v / s - tau * shift);
+            }
+        }
+        if self.relaxed {
+            out.push(-tau - 1.0);
+        }
+        DVector::from_vec(out)
+    }
+
+    fn constraint_jacobian(&self, x: &DVector<f64>) -> CsrMatrix<f64> {
+        let q1 = self.kernel.coefficients_per_segment();
+        let nl = self.kernel.local_variables();
+        let control = self.control_points(x);
+        let rows = self.num_constraints();
+        let mut offsets = Vec::with_capacity(rows + 1);
+        let mut cols = Vec::with_capacity(rows * (nl + 1));
+        let mut vals = Vec::with_capacity(rows * (nl + 1));
+        offsets.push(0);
+        if self.minimax() {
+            let feet = self.feet(x, true);
+            for foot in &feet.feet {
+                for (a, v) in foot.gradient.iter().enumerate() {
+                    cols.push(2 * foot.first + a);
+                    vals.push(v / self.unit);
+                }
+                cols.push(2 * self.n);
+                vals.push(-1.0);
+                offsets.push(cols.len());
+            }
+        }
+        let p = self.distances.knots.degree();
+        let mut basis = [0.0; spline_core::MAX_ORDER];
+        for e in &self.excursions {
+            let span = self.distances.knots.span_in_domain(e.param);
+            self.distances
+                .knots
+                .basis_values(span, e.param, &mut basis[..=p]);
+            let c: Vector2<f64> = (0..=p).map(|k| control[span - p + k] * basis[k]).sum();
+            let r = (c - e.centre) * (2.0 / e.radius2);
+            for (k, b) in basis[..=p].iter().enumerate() {
+                cols.push(2 * (span - p + k));
+                vals.push(b * r.x);
+                cols.push(2 * (span - p + k) + 1);
+                vals.push(b * r.y);
+            }
+            offsets.push(cols.len());
+        }
+        let mut scratch = self.scratch.borrow_mut();
+        let Scratch {
+            workspace,
+            values,
+            jacobian,
+        } = &mut *scratch;
+        let mut per_segment: Vec<Vec<f64>> = Vec::with_capacity(self.kernel.num_segments());
+        for s in 0..self.kernel.num_segments() {
+            self.kernel
+                .segment(s, &control, workspace, values, Some(jacobian), None);
+            per_segment.push(jacobian.clone());
+        }
+        for piece in &self.pieces {
+            let first = 2 * self.kernel.first_point(piece.segment);
+            let jac = &per_segment[piece.segment];
+            for r in 0..q1 {
+                let sub = &piece.subdivision[r * q1..(r + 1) * q1];
+                let factor = -piece.sign / piece.scale[r];
+                for c in 0..nl {
+                    let mut acc = 0.0;
+                    for (k, &s) in sub.iter().enumerate() {
+                        acc += s * jac[k * nl + c];
+                    }
+                    cols.push(first + c);
+                    vals.push(factor * acc);
+                }
+                if self.relaxed {
+                    cols.push(self.tau_index());
+                    vals.push(-piece.shift[r]);
+                }
+                offsets.push(cols.len());
+            }
+        }
+        if self.relaxed {
+            cols.push(self.tau_index());
+            vals.push(-1.0);
+            offsets.push(cols.len());
+        }
+        CsrMatrix::try_from_csr_data(rows, self.dimension(), offsets, cols, vals)
+            .expect("rows of increasing columns")
+    }
+
+    fn weighted_constraint_hessian(
+        &self,
+        x: &DVector<f64>,
+        weights: &DVector<f64>,
+    ) -> Option<CsrMatrix<f64>> {
+        let mut dense = DMatrix::zeros(self.dimension(), self.dimension());
+        self.add_weighted_constraint_hessian(x, weights, &mut dense);
+        let mut coo = CooMatrix::new(self.dimension(), self.dimension());
+        for j in 0..dense.ncols() {
+            for i in 0..dense.nrows() {
+                if dense[(i, j)] != 0.0 {
+                    coo.push(i, j, dense[(i, j)]);
+                }
+            }
+        }
+        Some(CsrMatrix::from(&coo))
+    }
+
+    fn add_weighted_constraint_hessian(
+        &self,
+        x: &DVector<f64>,
+        weights: &DVector<f64>,
+        out: &mut DMatrix<f64>,
+    ) -> bool {
+        let md = self.num_distance_constraints();
+        if md > 0 {
+            let w = weights.rows(0, md).into_owned();
+            self.add_distance_hessians(x, 0.0, Some(&w), out);
+        }
+        let p = self.distances.knots.degree();
+        let mut basis = [0.0; spline_core::MAX_ORDER];
+        for (k, e) in self.excursions.iter().enumerate() {
+            let w = weights[md + k] * 2.0 / e.radius2;
+            let span = self.distances.knots.span_in_domain(e.param);
+            self.distances
+                .knots
+                .basis_values(span, e.param, &mut basis[..=p]);
+            for a in 0..=p {
+                for b in 0..=p {
+                    let v = w * basis[a] * basis[b];
+                    let (i, j) = (2 * (span - p + a), 2 * (span - p + b));
+                    out[(i, j)] += v;
+                    out[(i + 1, j + 1)] += v;
+                }
+            }
+        }
+        let md = md + self.excursions.len();
+        let q1 = self.kernel.coefficients_per_segment();
+        let nl = self.kernel.local_variables();
+        let mut omega = vec![vec![0.0; q1]; self.kernel.num_segments()];
+        for (p, piece) in self.pieces.iter().enumerate() {
+            for r in 0..q1 {
+                let w = weights[md + p * q1 + r] * (-piece.sign / piece.scale[r]);
+                if w == 0.0 {
+                    continue;
+                }
+                for (k, o) in omega[piece.segment].iter_mut().enumerate() {
+                    *o += w * piece.subdivision[r * q1 + k];
+                }
+            }
+        }
+        let control = self.control_points(x);
+        let mut scratch = self.scratch.borrow_mut();
+        let Scratch {
+            workspace, values, ..
+        } = &mut *scratch;
+        let mut block = vec![0.0; nl * nl];
+        for (s, w) in omega.iter().enumerate() {
+            block.iter_mut().for_each(|b| *b = 0.0);
+            self.kernel
+                .segment(s, &control, workspace, values, None, Some((w, &mut block)));
+            let first = 2 * self.kernel.first_point(s);
+            for a in 0..nl {
+                for b in 0..nl {
+                    out[(first + a, first + b)] += block[a * nl + b];
+                }
+            }
+        }
+        true
+    }
+}
