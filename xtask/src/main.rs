@@ -9,8 +9,9 @@
 //!   points and one curvature maximum: the distribution of deviations and times.
 //! - `bench fit`, `bench eval`: criterion benchmarks of fitting and of curve evaluation against
 //!   scipy in the same run (a Python virtual environment with scipy is created under `target/`).
-//! - `fuzz [--cases N | --seconds S] [--seed S] [--target T]`: structured mutation fuzzing of
-//!   the readers and of every operation, in process (see `fuzz/README.md`).
+//! - `fuzz [--cases N | --seconds S] [--seed S] [--target T] [--coverage]`: structured mutation
+//!   fuzzing of the readers and of every operation, in process; with `--coverage`, the same
+//!   oracles under libFuzzer on nightly (see `fuzz/README.md`).
 //! - `campaign [--cases N] [--seed S] [--jobs J] [--timeout S] [--memory-mb M]`: a mutation
 //!   campaign of the release binary over every subcommand (subprocesses, memory limit,
 //!   timeout), printing a table of panics, aborts, slow runs, non-finite outputs and
@@ -30,6 +31,8 @@ mod docs_curves;
 mod docs_shape_functions;
 mod docs_surfaces;
 mod fuzz;
+mod fuzz_coverage;
+mod fuzz_oracles;
 mod mutate;
 mod reproduce;
 
@@ -101,8 +104,8 @@ const TASKS: &[(&str, &str)] = &[
         "smooth the whole UIUC database (fetched once into target/airfoils/)",
     ),
     (
-        "fuzz [--cases N | --seconds S] [--seed S] [--target T]",
-        "structured mutation fuzzing in process (fuzz/README.md)",
+        "fuzz [--cases N | --seconds S] [--seed S] [--target T] [--coverage]",
+        "structured mutation fuzzing in process; --coverage: libFuzzer on nightly (fuzz/README.md)",
     ),
     (
         "campaign [--cases N] [--seed S] [--jobs J] [--timeout S] [--memory-mb M]",

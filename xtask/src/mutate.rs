@@ -6,17 +6,48 @@ use serde_json::{Value, json};
 
 /// SplitMix64: a small, fast, well-distributed generator; the same seed gives the same cases
 /// on every machine.
+///
+/// [`Rng::from_bytes`] draws from a tape of bytes first (8 bytes a number) and from the
+/// generator once the tape runs out: the coverage-guided fuzzer (`fuzz/`, libFuzzer) then
+/// steers every decision of a case by mutating the bytes it hands in.
 #[derive(Clone, Debug)]
-pub(crate) struct Rng(u64);
+pub(crate) struct Rng {
+    state: u64,
+    tape: Vec<u8>,
+    position: usize,
+}
 
 impl Rng {
     pub(crate) fn new(seed: u64) -> Self {
-        Self(seed ^ 0x9E37_79B9_7F4A_7C15)
+        Self {
+            state: seed ^ 0x9E37_79B9_7F4A_7C15,
+            tape: Vec::new(),
+            position: 0,
+        }
+    }
+
+    /// A generator that replays `bytes` (little-endian numbers) before it generates; its
+    /// seed is a hash of the bytes, so that equal inputs give equal cases.
+    #[allow(dead_code)] // used by the fuzz targets of fuzz/, which include this file
+    pub(crate) fn from_bytes(bytes: &[u8]) -> Self {
+        let hash = bytes.iter().fold(0xCBF2_9CE4_8422_2325_u64, |h, &b| {
+            (h ^ u64::from(b)).wrapping_mul(0x100_0000_01B3)
+        });
+        Self {
+            tape: bytes.to_vec(),
+            ..Self::new(hash)
+        }
     }
 
     pub(crate) fn next_u64(&mut self) -> u64 {
-        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
-        let mut z = self.0;
+        if let Some(chunk) = self.tape.get(self.position..self.position + 8) {
+            self.position += 8;
+            let mut word = [0u8; 8];
+            word.copy_from_slice(chunk);
+            return u64::from_le_bytes(word);
+        }
+        self.state = self.state.wrapping_add(0x9E37_79B9_7F4A_7C15);
+        let mut z = self.state;
         z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
         z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
         z ^ (z >> 31)
@@ -306,6 +337,21 @@ mod tests {
         let ys: Vec<u64> = (0..5).map(|_| b.next_u64()).collect();
         assert_eq!(xs, ys);
         assert_ne!(xs[0], xs[1]);
+    }
+
+    #[test]
+    fn a_tape_is_replayed_then_the_generator_takes_over() {
+        let mut bytes = 7u64.to_le_bytes().to_vec();
+        bytes.extend_from_slice(&[1, 2, 3]);
+        let mut a = Rng::from_bytes(&bytes);
+        assert_eq!(a.next_u64(), 7);
+        let mut b = Rng::from_bytes(&bytes);
+        b.next_u64();
+        assert_eq!(a.next_u64(), b.next_u64());
+        assert_ne!(
+            Rng::from_bytes(&[1]).next_u64(),
+            Rng::from_bytes(&[2]).next_u64()
+        );
     }
 
     #[test]
