@@ -148,6 +148,26 @@ pub(crate) fn pass(
     (total, failures)
 }
 
+/// Runs one input file of a libFuzzer run through the stable harness, printing what the
+/// case did and its time.
+fn replay_file(target: &str, path: &Path) -> Result<(), String> {
+    let bytes = std::fs::read(path).map_err(|e| format!("{}: {e}", path.display()))?;
+    let text = String::from_utf8_lossy(&bytes).into_owned();
+    let started = Instant::now();
+    let outcome = match target {
+        "exchange" => exchange(&text),
+        "points" => points(&text),
+        _ => operations(&mut Rng::from_bytes(&bytes)),
+    };
+    let doing = CURRENT.with(|current| current.borrow().clone());
+    println!(
+        "{target} {}: {outcome:?} in {:.3} s ({doing})",
+        path.display(),
+        started.elapsed().as_secs_f64()
+    );
+    outcome
+}
+
 pub(crate) fn run(root: &Path, args: &[String]) -> Result<(), String> {
     let mut cases = usize::MAX;
     let mut seconds = None;
@@ -184,6 +204,13 @@ pub(crate) fn run(root: &Path, args: &[String]) -> Result<(), String> {
                 let corpus = corpus(root, target);
                 return run_case(target, seed, &corpus)
                     .map_err(|(message, _)| format!("{target} case {seed:#x}: {message}"));
+            }
+            "--replay-file" => {
+                // Re-runs a file written by libFuzzer (`--coverage`): says what the case does
+                // and how long it takes.
+                let path = PathBuf::from(value("--replay-file")?);
+                let target = *targets.first().ok_or("--replay-file needs a --target")?;
+                return replay_file(target, &path);
             }
             "--seed" => {
                 seed = value("--seed")?

@@ -28,7 +28,6 @@ impl Rng {
 
     /// A generator that replays `bytes` (little-endian numbers) before it generates; its
     /// seed is a hash of the bytes, so that equal inputs give equal cases.
-    #[allow(dead_code)] // used by the fuzz targets of fuzz/, which include this file
     pub(crate) fn from_bytes(bytes: &[u8]) -> Self {
         let hash = bytes.iter().fold(0xCBF2_9CE4_8422_2325_u64, |h, &b| {
             (h ^ u64::from(b)).wrapping_mul(0x100_0000_01B3)
