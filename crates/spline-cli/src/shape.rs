@@ -11,7 +11,7 @@ use spline_core::{Error, ErrorKind, Result};
 use spline_geom::airfoil::parse_airfoil;
 use spline_geom::exchange::CurveRecord;
 use spline_shape::{
-    AdaptiveOptions, Extremum, Objective, SmoothedCurve, SmoothingOptions,
+    AdaptiveOptions, Extremum, MAX_CURVATURE_EXTREMA, Objective, SmoothedCurve, SmoothingOptions,
     optimise_perimeter_over_area, smooth as erase, smooth_to_tolerance,
 };
 use std::io::IsTerminal;
@@ -112,6 +112,14 @@ fn options(args: &SmoothArgs) -> Result<SmoothingOptions> {
             .map(|t| t.parse::<Extremum>().map_err(|e| e.context("--extremum")))
             .collect::<Result<_>>()?;
     } else if let Some(k) = args.curvature_extrema {
+        if k > MAX_CURVATURE_EXTREMA {
+            return Err(Error::new(
+                ErrorKind::InvalidArgument,
+                format!(
+                    "--curvature-extrema: at most {MAX_CURVATURE_EXTREMA} extrema can be allowed, got {k}"
+                ),
+            ));
+        }
         options.extrema = (0..k)
             .map(|i| {
                 if i % 2 == 0 {

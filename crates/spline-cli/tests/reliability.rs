@@ -57,6 +57,33 @@ fn quick(args: &[&str], limit: Duration) -> Run {
 // ---------------------------------------------------------------------------------------
 // Panics and aborts.
 
+/// Found by the campaign of 2026-12-01 (seed 20261201): `smooth --curvature-extrema` with an
+/// absurd count allocated one slot an extremum before anything was checked.
+#[test]
+fn smooth_with_absurd_extrema_counts_is_refused_before_allocating() {
+    let points = temp_file(
+        "arc_points.json",
+        "[[0.0,0.0],[0.3,0.4],[0.6,0.5],[1.0,0.45],[1.3,0.3],[1.5,0.0]]",
+    );
+    for k in ["1000000000", "4294967296", "9223372036854775807"] {
+        let run = quick(
+            &[
+                "smooth",
+                &points,
+                "--control-points",
+                "12",
+                "--curvature-extrema",
+                k,
+            ],
+            Duration::from_secs(5),
+        );
+        assert_message(
+            &run,
+            &format!("--curvature-extrema: at most 1000 extrema can be allowed, got {k}"),
+        );
+    }
+}
+
 #[test]
 fn insert_with_absurd_times_is_refused_before_allocating() {
     let path = line();

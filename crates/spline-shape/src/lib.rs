@@ -52,7 +52,7 @@ pub use constrained_surface::{
     ConstrainedSurfaceFit, Region, SurfaceApproximation, SurfaceConstraint,
 };
 pub use eraser::{
-    CurvatureExtremum, Extremum, ExtremumKind, Objective, SampledExtremum, SmoothedCurve,
-    SmoothingOptions, sampled_curvature_extrema, smooth, smooth_to_tolerance,
+    CurvatureExtremum, Extremum, ExtremumKind, MAX_CURVATURE_EXTREMA, Objective, SampledExtremum,
+    SmoothedCurve, SmoothingOptions, sampled_curvature_extrema, smooth, smooth_to_tolerance,
 };
 pub use problem::{ApproximationProblem, Sign};

@@ -7,7 +7,8 @@ use spline_core::ErrorKind;
 use spline_geom::Curve2;
 use spline_geom::exchange::parse_points;
 use spline_shape::{
-    Extremum, ExtremumKind, Objective, SmoothingOptions, sampled_curvature_extrema, smooth,
+    Extremum, ExtremumKind, MAX_CURVATURE_EXTREMA, Objective, SmoothingOptions,
+    sampled_curvature_extrema, smooth,
 };
 
 fn airfoil(path: &str) -> Vec<Vector2<f64>> {
@@ -184,4 +185,19 @@ fn bad_requests_are_errors() {
     );
     assert!("maximum@x".parse::<Extremum>().is_err());
     assert!("top".parse::<Extremum>().is_err());
+    let mut options = SmoothingOptions::new(20);
+    options.extrema = (0..=MAX_CURVATURE_EXTREMA)
+        .map(|i| {
+            if i % 2 == 0 {
+                Extremum::maximum()
+            } else {
+                Extremum::minimum()
+            }
+        })
+        .collect();
+    let err = smooth(&points, &options).unwrap_err();
+    assert_eq!(
+        err.to_string(),
+        "at most 1000 curvature extrema can be allowed, got 1001"
+    );
 }

@@ -33,6 +33,10 @@ mod verify;
 
 pub use verify::{SampledExtremum, sampled_curvature_extrema};
 
+/// The most curvature extrema a smoothing may allow (each one is a knot of the curve and a
+/// slot of the placement; far more than any shape needs).
+pub const MAX_CURVATURE_EXTREMA: usize = 1000;
+
 use crate::barrier::BarrierOptions;
 use nalgebra::Vector2;
 use placement::{fit_with_correction, place_extrema};
@@ -515,6 +519,15 @@ fn check_options(options: &SmoothingOptions) -> Result<()> {
         return Err(Error::new(
             ErrorKind::InvalidArgument,
             "allow at least one curvature extremum",
+        ));
+    }
+    if options.extrema.len() > MAX_CURVATURE_EXTREMA {
+        return Err(Error::new(
+            ErrorKind::InvalidArgument,
+            format!(
+                "at most {MAX_CURVATURE_EXTREMA} curvature extrema can be allowed, got {}",
+                options.extrema.len()
+            ),
         ));
     }
     if options.knot_exponents.is_empty()
