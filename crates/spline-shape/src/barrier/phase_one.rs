@@ -11,7 +11,7 @@ use spline_core::{Error, ErrorKind, Result};
 ///
 /// # Errors
 /// [`ErrorKind::NoConvergence`] if no point with all `f_i < −margin` is found (the
-/// constraints may be inconsistent); the errors of [`minimize`].
+/// constraints may be inconsistent); the errors of [`minimize`](super::minimize).
 pub fn find_feasible(
     problem: &impl BarrierProblem,
     x0: DVector<f64>,
