@@ -11,8 +11,9 @@
 //!   control-point coordinates (seed 000 §3.3), a smoothing term, normal equations or QR;
 //!   Bézier least squares ([`bezier_least_squares`], seed 003 TD3); surfaces from grids and
 //!   from scattered points ([`approximate_surface_grid`], [`approximate_surface_scattered`]).
-//! - Parameter correction ([`correct_parameters`], seed 003) and robust closest points
-//!   ([`closest_point`]).
+//! - Parameter correction ([`correct_parameters`], seed 003) and robust closest points on
+//!   curves ([`closest_point`]) and surfaces ([`SurfaceProjector`], many queries on one
+//!   hierarchy of bounding boxes).
 //! - Deviation reports ([`Deviation`]): maximum and RMS distance and which points.
 //!
 //! Every linear system is banded and solved in `O(n p²)` (collocation without pivoting,
@@ -47,6 +48,7 @@ mod params;
 mod project;
 mod report;
 mod surface;
+mod surface_project;
 
 pub use bezier::{BezierFit, bezier_interpolate, bezier_least_squares};
 pub use correction::{
@@ -71,4 +73,7 @@ pub use report::{CurveFit, Deviation, deviation};
 pub use surface::{
     SurfaceFit, approximate_surface_grid, approximate_surface_scattered, interpolate_surface,
     surface_grid_params,
+};
+pub use surface_project::{
+    SurfaceProjection, SurfaceProjector, closest_local, closest_point_on_surface,
 };

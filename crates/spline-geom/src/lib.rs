@@ -55,7 +55,10 @@ mod variation;
 pub use arclength::DEFAULT_ACCURACY;
 pub use bezier::Bezier;
 pub use bspline::BSpline;
-pub use construct::{Axis, CircleConstruction, ConicKind, Frame, MAX_ARC_PIECES};
+pub use construct::{
+    Axis, CircleConstruction, ConicKind, Frame, MAX_ARC_PIECES, MovingFrame, compatible_curves,
+    compatible_surfaces, rotation_minimizing_frames,
+};
 pub use homogeneous::Homogeneous;
 pub use mesh::{MAX_MESH_SEGMENTS, MeshView, TriangleMesh};
 pub use nurbs::{

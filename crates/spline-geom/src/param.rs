@@ -5,6 +5,7 @@
 
 use crate::arclength::adaptive_length;
 use crate::planar::{magnitude_formula, scaled_curvature, signed_formula, unit, zero_velocity};
+use crate::surface::Surface;
 use crate::surface_geometry::LocalProperties;
 use nalgebra::{Vector2, Vector3};
 use spline_core::{ControlPoint, Error, ErrorKind, Result, Scalar, from_count, to_f64};
@@ -250,6 +251,10 @@ impl<T: Scalar, C: ParamCurve<T, Point = Vector2<T>> + ?Sized> PlanarCurve<T> fo
 pub trait ParamSurface<T: Scalar> {
     /// The points of the surface.
     type Point: ControlPoint<T>;
+    /// The control points of the tensor-product container behind the surface:
+    /// [`Self::Point`] for polynomial surfaces, [`crate::Homogeneous`] points for rational
+    /// ones.
+    type Coefficient: ControlPoint<T>;
 
     /// The parametric domain `((u_min, u_max), (v_min, v_max))`.
     fn domain(&self) -> ((T, T), (T, T));
@@ -270,6 +275,15 @@ pub trait ParamSurface<T: Scalar> {
 
     /// The ends of the pieces in `u` and in `v` (domain ends and distinct interior knots).
     fn breaks(&self) -> (Vec<T>, Vec<T>);
+
+    /// The Bézier patches of the container (`[a][b]` over the `a`-th non-empty span in `u`
+    /// and the `b`-th in `v`, see [`Surface::bezier_patches`]), whose Cartesian control
+    /// points ([`ParamSurface::project`]) bound each patch (convex hull property).
+    fn bezier_patches(&self) -> Vec<Vec<Surface<T, Self::Coefficient>>>;
+
+    /// The point of the surface that a container coefficient stands for (itself, or the
+    /// central projection of a homogeneous point).
+    fn project(coefficient: &Self::Coefficient) -> Self::Point;
 
     /// The points on the grid `us × vs`, row-major (`[a · vs.len() + b]` $= S(u_a, v_b)$).
     ///

@@ -144,6 +144,7 @@ impl<T: Scalar, const D: usize> ParamCurve<T> for NurbsCurve<T, D> {
 
 impl<T: Scalar, P: ControlPoint<T>> ParamSurface<T> for Surface<T, P> {
     type Point = P;
+    type Coefficient = P;
 
     fn domain(&self) -> ((T, T), (T, T)) {
         Surface::domain(self)
@@ -167,10 +168,19 @@ impl<T: Scalar, P: ControlPoint<T>> ParamSurface<T> for Surface<T, P> {
     fn eval_grid(&self, us: &[T], vs: &[T]) -> Result<Vec<P>> {
         Surface::eval_grid(self, us, vs)
     }
+
+    fn bezier_patches(&self) -> Vec<Vec<Surface<T, P>>> {
+        Surface::bezier_patches(self)
+    }
+
+    fn project(coefficient: &P) -> P {
+        *coefficient
+    }
 }
 
 impl<T: Scalar, const D: usize> ParamSurface<T> for NurbsSurface<T, D> {
     type Point = SVector<T, D>;
+    type Coefficient = Homogeneous<T, D>;
 
     fn domain(&self) -> ((T, T), (T, T)) {
         NurbsSurface::domain(self)
@@ -193,6 +203,14 @@ impl<T: Scalar, const D: usize> ParamSurface<T> for NurbsSurface<T, D> {
 
     fn eval_grid(&self, us: &[T], vs: &[T]) -> Result<Vec<SVector<T, D>>> {
         NurbsSurface::eval_grid(self, us, vs)
+    }
+
+    fn bezier_patches(&self) -> Vec<Vec<Surface<T, Homogeneous<T, D>>>> {
+        self.homogeneous().bezier_patches()
+    }
+
+    fn project(coefficient: &Homogeneous<T, D>) -> SVector<T, D> {
+        coefficient.project()
     }
 }
 

@@ -8,9 +8,14 @@
 //! up to rounding only.
 
 mod arcs;
+mod compatible;
+mod coons;
+mod frames;
 mod surfaces;
 
 pub use arcs::{CircleConstruction, ConicKind, MAX_ARC_PIECES};
+pub use compatible::{compatible_curves, compatible_surfaces};
+pub use frames::{MovingFrame, rotation_minimizing_frames};
 
 use nalgebra::{SVector, Vector3};
 use spline_core::{Error, ErrorKind, Result, Scalar, to_f64};

@@ -4,6 +4,7 @@
 use super::arcs::{
     CircleConstruction, arc_pieces, arc_template, full_circle_template, is_full_turn,
 };
+use super::compatible::compatible_curves;
 use super::{Axis, Frame, check_positive, check_vector, degenerate, perpendicular, safe_norm};
 use crate::bspline::BSpline;
 use crate::homogeneous::Homogeneous;
@@ -12,41 +13,15 @@ use crate::surface::Surface;
 use nalgebra::{SVector, Vector3};
 use spline_core::{ControlPoint, Error, ErrorKind, KnotVector, Result, Scalar, cast, to_f64};
 
-/// Elevates, clamps, reparametrises and refines two curves until they have the same degree
-/// and knot vector (the compatibility The NURBS Book §8.4 requires of ruled surfaces).
+/// Two curves made compatible ([`compatible_curves`], The NURBS Book §8.4).
 fn make_compatible<T: Scalar, Q: ControlPoint<T>>(
     a: &BSpline<T, Q>,
     b: &BSpline<T, Q>,
 ) -> Result<(BSpline<T, Q>, BSpline<T, Q>)> {
-    let p = a.degree().max(b.degree());
-    let a = a.clamped().elevate_degree(p - a.degree())?;
-    let b = b.clamped().elevate_degree(p - b.degree())?;
-    // b on the domain of a, with the end knots exactly equal.
-    let (s, e) = a.domain();
-    let (c, d) = b.domain();
-    let scale = (e - s) / (d - c);
-    let kb = b.knots().knots();
-    let mut knots = kb.to_vec();
-    for (k, &x) in knots.iter_mut().zip(kb) {
-        *k = if x == c {
-            s
-        } else if x == d {
-            e
-        } else {
-            s + (x - c) * scale
-        };
-    }
-    let b = BSpline::new(KnotVector::new(p, knots)?, b.control_points().to_vec())?;
-    let target = a.knots().merged(b.knots())?;
-    let missing = |curve: &BSpline<T, Q>| -> Vec<T> {
-        let mut extra = Vec::new();
-        for (k, m) in target.interior_breakpoints() {
-            extra.extend(std::iter::repeat_n(k, m - curve.knots().multiplicity(k)));
-        }
-        extra
-    };
-    let (ma, mb) = (missing(&a), missing(&b));
-    Ok((a.refine(&ma)?, b.refine(&mb)?))
+    let mut both = compatible_curves(&[a.clone(), b.clone()])?;
+    let b = both.pop().expect("two curves");
+    let a = both.pop().expect("two curves");
+    Ok((a, b))
 }
 
 /// The surface with two rows in `v` (degree 1 on `[0, 1]`): `P_i0 = first_i`, `P_i1 = second_i`.
