@@ -7,6 +7,10 @@
 //!   of any even order ([`natural_spline`], [`natural_cubic`]), surfaces through grids
 //!   ([`interpolate_surface`], by the two passes of seed 004 §7) and Bézier curves
 //!   ([`bezier_interpolate`], seed 003 TD2).
+//! - Surfaces through curves: skinning through sections ([`skin`]), sweeps along a path
+//!   with rotation-minimising frames ([`sweep`]), Gordon surfaces through a curve network
+//!   ([`gordon`]); grid interpolation with boundary derivatives
+//!   ([`interpolate_surface_with_derivatives`]).
 //! - Least squares ([`LeastSquares`], [`approximate`]) with weights, pinned ends, fixed
 //!   control-point coordinates (seed 000 §3.3), a smoothing term, normal equations or QR;
 //!   Bézier least squares ([`bezier_least_squares`], seed 003 TD3); surfaces from grids and
@@ -47,8 +51,11 @@ mod natural;
 mod params;
 mod project;
 mod report;
+mod skin;
 mod surface;
+mod surface_ends;
 mod surface_project;
+mod sweep;
 
 pub use bezier::{BezierFit, bezier_interpolate, bezier_least_squares};
 pub use correction::{
@@ -70,10 +77,13 @@ pub use params::{
 };
 pub use project::{Projection, closest_point, project_ordered};
 pub use report::{CurveFit, Deviation, deviation};
+pub use skin::{Gordon, Skinned, gordon, skin};
 pub use surface::{
     SurfaceFit, approximate_surface_grid, approximate_surface_scattered, interpolate_surface,
     surface_grid_params,
 };
+pub use surface_ends::{SurfaceEnds, interpolate_surface_with_derivatives};
 pub use surface_project::{
     SurfaceProjection, SurfaceProjector, closest_local, closest_point_on_surface,
 };
+pub use sweep::{MAX_SWEEP_SECTIONS, sweep};
