@@ -18,6 +18,9 @@
 //! - Parameter correction ([`correct_parameters`], seed 003) and robust closest points on
 //!   curves ([`closest_point`]) and surfaces ([`SurfaceProjector`], many queries on one
 //!   hierarchy of bounding boxes).
+//! - Intersections: curve–surface points, tangential ones flagged
+//!   ([`intersect_curve_surface`]), and surface–surface curves traced to a tolerance with
+//!   their parameters on both surfaces ([`intersect_surfaces`]).
 //! - Deviation reports ([`Deviation`]): maximum and RMS distance and which points.
 //!
 //! Every linear system is banded and solved in `O(n p²)` (collocation without pivoting,
@@ -46,6 +49,7 @@ mod correction;
 mod feature_knots;
 mod hausdorff;
 mod interpolate;
+mod intersect;
 mod lsq;
 mod natural;
 mod params;
@@ -67,6 +71,10 @@ pub use hausdorff::{TwoSidedDeviation, two_sided_deviation};
 pub use interpolate::{
     InterpolationOptions, interpolate, interpolate_closed, interpolate_function,
     interpolate_with_knots,
+};
+pub use intersect::{
+    CurveSurfaceHit, IntersectionCurve, MAX_TRACE_POINTS, Tolerances, intersect_curve_surface,
+    intersect_surfaces,
 };
 pub use lsq::{
     GridLeastSquares, GridNormalEquations, LeastSquares, LsqMethod, NormalEquations, approximate,

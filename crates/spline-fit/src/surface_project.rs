@@ -76,8 +76,6 @@ pub(crate) fn box_distance<T: Scalar, P: ControlPoint<T>>(lo: &P, hi: &P, q: &P)
 pub(crate) struct BoxTree<T, P> {
     pub(crate) nodes: Vec<Node<T, P>>,
     pub(crate) root: usize,
-    /// The diagonal of the whole box.
-    pub(crate) size: T,
 }
 
 impl<T: Scalar, P: ControlPoint<T>> BoxTree<T, P> {
@@ -98,7 +96,6 @@ impl<T: Scalar, P: ControlPoint<T>> BoxTree<T, P> {
         let mut tree = Self {
             nodes: Vec::new(),
             root: 0,
-            size,
         };
         let min_size = size * cast::<T>(LEAF_FRACTION);
         let (rows, cols) = (patches.len(), patches.first().map_or(0, Vec::len));
