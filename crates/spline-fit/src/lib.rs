@@ -14,7 +14,9 @@
 //! - Least squares ([`LeastSquares`], [`approximate`]) with weights, pinned ends, fixed
 //!   control-point coordinates (seed 000 §3.3), a smoothing term, normal equations or QR;
 //!   Bézier least squares ([`bezier_least_squares`], seed 003 TD3); surfaces from grids and
-//!   from scattered points ([`approximate_surface_grid`], [`approximate_surface_scattered`]).
+//!   from scattered points ([`approximate_surface_grid`], [`approximate_surface_scattered`]);
+//!   unorganised points and meshes with parameters by projection, parameter correction and
+//!   deviations both ways ([`fit_scattered`]).
 //! - Parameter correction ([`correct_parameters`], seed 003) and robust closest points on
 //!   curves ([`closest_point`]) and surfaces ([`SurfaceProjector`], many queries on one
 //!   hierarchy of bounding boxes).
@@ -55,6 +57,7 @@ mod natural;
 mod params;
 mod project;
 mod report;
+mod scattered;
 mod skin;
 mod surface;
 mod surface_ends;
@@ -85,6 +88,7 @@ pub use params::{
 };
 pub use project::{Projection, closest_point, project_ordered};
 pub use report::{CurveFit, Deviation, deviation};
+pub use scattered::{MAX_SCATTERED_SYSTEM, ScatteredFit, ScatteredOptions, fit_scattered};
 pub use skin::{Gordon, Skinned, gordon, skin};
 pub use surface::{
     SurfaceFit, approximate_surface_grid, approximate_surface_scattered, interpolate_surface,
