@@ -19,6 +19,7 @@ mod objects;
 mod plot;
 mod shape;
 mod structural;
+mod surfaces;
 
 use clap::{Parser, Subcommand};
 use std::process::ExitCode;
@@ -73,6 +74,12 @@ enum Command {
     Make(make::MakeArgs),
     /// Triangulate a surface into an OBJ or OFF mesh.
     Mesh(mesh::MeshArgs),
+    /// Closest points on a curve or a surface: [{"u"[, "v"], "point", "distance"}].
+    Closest(surfaces::ClosestArgs),
+    /// Intersections: curve–surface points, surface–surface curves.
+    Intersect(surfaces::IntersectArgs),
+    /// Least-squares surface through scattered points or a mesh, with parameter correction.
+    ApproximateSurface(surfaces::ApproximateSurfaceArgs),
 }
 
 fn run(command: Command) -> spline_core::Result<()> {
@@ -97,6 +104,9 @@ fn run(command: Command) -> spline_core::Result<()> {
         Command::Optimize(args) => shape::optimize(&args),
         Command::Make(args) => make::make(&args),
         Command::Mesh(args) => mesh::mesh(&args),
+        Command::Closest(args) => surfaces::closest(&args),
+        Command::Intersect(args) => surfaces::intersect(&args),
+        Command::ApproximateSurface(args) => surfaces::approximate_surface(&args),
     }
 }
 

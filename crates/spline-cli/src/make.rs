@@ -56,6 +56,65 @@ enum Shape {
     /// A NURBS torus: a circle revolved about an axis through the center (9 × 9 control
     /// points, degrees 2 and 2).
     Torus(TorusArgs),
+    /// The surface through section curves (skinning, lofting): u along the sections.
+    Skin(SkinArgs),
+    /// A B-spline profile swept along a path with rotation-minimising frames.
+    Sweep(SweepArgs),
+    /// The Coons patch of four boundary curves: bottom (v = 0), top, left (u = 0), right.
+    Coons(CoonsArgs),
+    /// The Gordon surface through a network of u-curves and v-curves (the first curve of
+    /// each family is the boundary where the other family starts).
+    Gordon(GordonArgs),
+}
+
+/// `make skin`.
+#[derive(Args)]
+struct SkinArgs {
+    /// The section curves (JSON files), in order.
+    #[arg(long, num_args = 1.., required = true)]
+    curves: Vec<String>,
+    /// The degree across the sections (lowered to the number of sections − 1).
+    #[arg(long, default_value_t = 3)]
+    degree: usize,
+}
+
+/// `make sweep`.
+#[derive(Args)]
+struct SweepArgs {
+    /// The profile curve in space, placed at the start of the path.
+    #[arg(long)]
+    profile: String,
+    /// The path curve in space.
+    #[arg(long)]
+    path: String,
+    /// Copies of the profile along the path that the surface interpolates.
+    #[arg(long, default_value_t = 16)]
+    sections: usize,
+}
+
+/// `make coons`.
+#[derive(Args)]
+struct CoonsArgs {
+    /// The four boundary curves: bottom, top, left, right.
+    #[arg(long, num_args = 4, required = true)]
+    curves: Vec<String>,
+}
+
+/// `make gordon`.
+#[derive(Args)]
+struct GordonArgs {
+    /// The curves along u, in order across v.
+    #[arg(long, num_args = 2.., required = true)]
+    u_curves: Vec<String>,
+    /// The curves along v, in order across u.
+    #[arg(long, num_args = 2.., required = true)]
+    v_curves: Vec<String>,
+    /// The degree across each family (lowered to the number of curves − 1).
+    #[arg(long, default_value_t = 3)]
+    degree: usize,
+    /// How far apart crossing curves may be.
+    #[arg(long, default_value_t = 1e-6)]
+    tolerance: f64,
 }
 
 /// Where a circle or an arc lies: its center, radius and plane.
@@ -283,6 +342,12 @@ fn curve_and_point(
 
 fn make_json(shape: &Shape) -> Result<Json> {
     Ok(match shape {
+        Shape::Skin(a) => crate::surfaces::make_skin(&a.curves, a.degree)?,
+        Shape::Sweep(a) => crate::surfaces::make_sweep(&a.profile, &a.path, a.sections)?,
+        Shape::Coons(a) => crate::surfaces::make_coons(&a.curves)?,
+        Shape::Gordon(a) => {
+            crate::surfaces::make_gordon(&a.u_curves, &a.v_curves, a.degree, a.tolerance)?
+        }
         Shape::Circle(a) => {
             let (frame, dim) = circle_frame(&a.on.center, a.on.normal.as_deref())?;
             let circle = NurbsCurve::circle(&frame, a.on.radius, construction(a.construction))?;

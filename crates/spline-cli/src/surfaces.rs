@@ -1,0 +1,489 @@
+//! Surfaces as people use them: `closest`, the surface cases of `intersect`, `make skin |
+//! sweep | coons | gordon` and `approximate-surface`. Parse → library → print.
+
+use crate::io::{self, Json, Pt};
+use crate::objects::{AnyCurve, Curve, Object, Sized, read_curve, read_object};
+use clap::Args;
+use nalgebra::Vector3;
+use serde_json::json;
+use spline_core::{Error, ErrorKind, Result};
+use spline_fit::{
+    ScatteredOptions, SurfaceProjector, Tolerances, closest_point, fit_scattered, gordon,
+    intersect_curve_surface, intersect_surfaces, skin, sweep,
+};
+use spline_geom::{NurbsCurve, NurbsSurface, ParamCurve, ParamSurface, Surface};
+
+fn invalid(message: impl Into<String>) -> Error {
+    Error::new(ErrorKind::InvalidArgument, message)
+}
+
+/// `spline closest OBJECT --points JSON`.
+#[derive(Args)]
+pub struct ClosestArgs {
+    /// The curve or surface (JSON file, `-` for stdin).
+    object: String,
+    /// The points to project, as JSON: `[[x, y, z], ...]`.
+    #[arg(long)]
+    points: String,
+}
+
+/// The points of `--points`, padded, checked against the object's dimension.
+fn query_points(text: &str, dim: usize) -> Result<Vec<Pt>> {
+    let rows: Vec<Vec<f64>> = io::parse_arg("--points", text)?;
+    rows.iter()
+        .enumerate()
+        .map(|(k, r)| {
+            if r.len() != dim {
+                return Err(Error::new(
+                    ErrorKind::DimensionMismatch,
+                    format!(
+                        "--points entry {k}: {} coordinates for an object with {dim}",
+                        r.len()
+                    ),
+                ));
+            }
+            io::pad(r).map_err(|e| e.context(format_args!("--points entry {k}")))
+        })
+        .collect()
+}
+
+/// Prints `[{"u"[, "v"], "point", "distance"}]` for each point.
+///
+/// # Errors
+/// Unreadable objects, bad points, non-finite coordinates.
+pub fn closest(args: &ClosestArgs) -> Result<()> {
+    let object = read_object(&args.object)?;
+    let out: Vec<serde_json::Value> = match &object {
+        Object::Curve(c) => curve_hits(&c.value, c.dim, &args.points)?,
+        Object::Nurbs(c) => curve_hits(&c.value, c.dim, &args.points)?,
+        Object::Surface(s) => surface_hits(&s.value, s.dim, &args.points)?,
+        Object::NurbsSurface(s) => surface_hits(&s.value, s.dim, &args.points)?,
+    };
+    io::print_json(&out)
+}
+
+fn curve_hits<C: ParamCurve<f64, Point = Pt>>(
+    c: &C,
+    dim: usize,
+    text: &str,
+) -> Result<Vec<serde_json::Value>> {
+    query_points(text, dim)?
+        .into_iter()
+        .enumerate()
+        .map(|(k, q)| {
+            let hit = closest_point(c, q).map_err(|e| e.context(format_args!("point {k}")))?;
+            Ok(json!({"u": hit.param, "point": io::unpad(&hit.point, dim), "distance": hit.distance}))
+        })
+        .collect()
+}
+
+fn surface_hits<S: ParamSurface<f64, Point = Pt>>(
+    s: &S,
+    dim: usize,
+    text: &str,
+) -> Result<Vec<serde_json::Value>> {
+    let points = query_points(text, dim)?;
+    let projector = SurfaceProjector::new(s)?;
+    projector
+        .closest_many(&points)?
+        .into_iter()
+        .map(|h| Ok(json!({"u": h.u, "v": h.v, "point": io::unpad(&h.point, dim), "distance": h.distance})))
+        .collect()
+}
+
+/// `spline intersect A [B] [--tolerance T]`.
+#[derive(Args)]
+pub struct IntersectArgs {
+    /// The first object (curve or surface).
+    a: String,
+    /// The second object (curve or surface); curves alone ask for self-intersections.
+    b: Option<String>,
+    /// Surface–surface: how far the traced polylines may stray from the true curves
+    /// (default 1e-4 of the objects' size).
+    #[arg(long)]
+    tolerance: Option<f64>,
+}
+
+/// A surface in space for the intersection algorithms.
+enum Spatial {
+    Plain(Surface<f64, Vector3<f64>>),
+    Rational(NurbsSurface<f64, 3>),
+}
+
+fn spatial_surface(object: &Object, path: &str) -> Result<Option<Spatial>> {
+    let to3 = |p: &Pt| Vector3::new(p[0], p[1], p[2]);
+    Ok(match object {
+        Object::Surface(s) => {
+            crate::objects::check_dim(s.dim, 3, "a surface in space")
+                .map_err(|e| e.context(path))?;
+            Some(Spatial::Plain(s.value.map_control_points(to3)))
+        }
+        Object::NurbsSurface(s) => {
+            crate::objects::check_dim(s.dim, 3, "a surface in space")
+                .map_err(|e| e.context(path))?;
+            Some(Spatial::Rational(
+                s.value.map_control_points::<3>(|p| to3(p)),
+            ))
+        }
+        _ => None,
+    })
+}
+
+/// Dispatches on the kinds of the objects: curve–surface (either order) and
+/// surface–surface here; curve–curve and self-intersections belong to the curve module.
+///
+/// # Errors
+/// Unreadable objects, objects not in space, bad tolerances.
+pub fn intersect(args: &IntersectArgs) -> Result<()> {
+    let a = read_object(&args.a)?;
+    let Some(path_b) = &args.b else {
+        return Err(Error::new(
+            ErrorKind::Unsupported,
+            "self-intersections of curves are not in this build",
+        ));
+    };
+    let b = read_object(path_b)?;
+    if let Some(t) = args.tolerance {
+        if !(t > 0.0 && t.is_finite()) {
+            return Err(Error::invalid_tolerance(
+                "--tolerance",
+                "positive and finite",
+                t,
+            ));
+        }
+    }
+    let tolerances = Tolerances {
+        trace: args.tolerance,
+        ..Tolerances::default()
+    };
+    let sa = spatial_surface(&a, &args.a)?;
+    let sb = spatial_surface(&b, path_b)?;
+    let out = match (sa, sb) {
+        (Some(x), Some(y)) => surface_surface(&x, &y, &tolerances)?,
+        (Some(s), None) => curve_surface(&b, path_b, &s, &tolerances)?,
+        (None, Some(s)) => curve_surface(&a, &args.a, &s, &tolerances)?,
+        (None, None) => {
+            return Err(Error::new(
+                ErrorKind::Unsupported,
+                "curve–curve intersection is not in this build",
+            ));
+        }
+    };
+    io::print_json(&out)
+}
+
+fn curve_surface(
+    curve: &Object,
+    path: &str,
+    s: &Spatial,
+    t: &Tolerances<f64>,
+) -> Result<serde_json::Value> {
+    let c = match curve {
+        Object::Curve(c) => c.with(NurbsCurve::from_bspline(&c.value)),
+        Object::Nurbs(c) => c.clone(),
+        _ => unreachable!("surfaces are handled by the caller"),
+    };
+    crate::objects::check_dim(c.dim, 3, "a curve in space").map_err(|e| e.context(path))?;
+    let c3: NurbsCurve<f64, 3> = c
+        .value
+        .map_control_points::<3>(|p| Vector3::new(p[0], p[1], p[2]));
+    let hits = match s {
+        Spatial::Plain(s) => intersect_curve_surface(&c3, s, t)?,
+        Spatial::Rational(s) => intersect_curve_surface(&c3, s, t)?,
+    };
+    Ok(hits
+        .iter()
+        .map(|h| json!({"t": h.t, "u": h.u, "v": h.v, "point": [h.point.x, h.point.y, h.point.z], "tangential": h.tangential}))
+        .collect())
+}
+
+fn surface_surface(a: &Spatial, b: &Spatial, t: &Tolerances<f64>) -> Result<serde_json::Value> {
+    let curves = match (a, b) {
+        (Spatial::Plain(x), Spatial::Plain(y)) => intersect_surfaces(x, y, t)?,
+        (Spatial::Plain(x), Spatial::Rational(y)) => intersect_surfaces(x, y, t)?,
+        (Spatial::Rational(x), Spatial::Plain(y)) => intersect_surfaces(x, y, t)?,
+        (Spatial::Rational(x), Spatial::Rational(y)) => intersect_surfaces(x, y, t)?,
+    };
+    let pairs = |v: &[(f64, f64)]| v.iter().map(|&(u, w)| [u, w]).collect::<Vec<_>>();
+    Ok(curves
+        .iter()
+        .map(|c| {
+            json!({
+                "points": c.points.iter().map(|p| [p.x, p.y, p.z]).collect::<Vec<_>>(),
+                "uv_a": pairs(&c.uv_a),
+                "uv_b": pairs(&c.uv_b),
+                "closed": c.closed,
+            })
+        })
+        .collect())
+}
+
+/// Curves of the same dimension, all polynomial (for the constructions that combine
+/// control points linearly).
+fn polynomial_curves(paths: &[String], what: &str) -> Result<(Vec<Curve>, usize)> {
+    let curves: Vec<AnyCurve> = paths.iter().map(|p| read_curve(p)).collect::<Result<_>>()?;
+    let dim = curves.first().map_or(0, |c| c.curve.dim);
+    for (c, path) in curves.iter().zip(paths) {
+        if c.curve.dim != dim {
+            return Err(Error::new(
+                ErrorKind::DimensionMismatch,
+                format!(
+                    "{path}: {} coordinates, the first {what} has {dim}",
+                    c.curve.dim
+                ),
+            ));
+        }
+        if c.rational {
+            return Err(Error::new(
+                ErrorKind::Unsupported,
+                format!("{path}: a rational curve; {what}s must be B-spline curves"),
+            ));
+        }
+    }
+    Ok((curves.iter().map(AnyCurve::polynomial).collect(), dim))
+}
+
+/// `make skin`: the surface through sections (B-spline or NURBS; all of one kind).
+///
+/// # Errors
+/// As [`spline_fit::skin`]; mixed kinds or dimensions.
+pub fn make_skin(paths: &[String], degree: usize) -> Result<Json> {
+    if paths.len() < 2 {
+        return Err(Error::new(
+            ErrorKind::TooFewPoints,
+            format!(
+                "--curves: skinning needs at least two sections, got {}",
+                paths.len()
+            ),
+        ));
+    }
+    let curves: Vec<AnyCurve> = paths.iter().map(|p| read_curve(p)).collect::<Result<_>>()?;
+    let dim = curves[0].curve.dim;
+    if let Some(k) = curves.iter().position(|c| c.curve.dim != dim) {
+        return Err(Error::new(
+            ErrorKind::DimensionMismatch,
+            format!(
+                "{}: {} coordinates, the first section has {dim}",
+                paths[k], curves[k].curve.dim
+            ),
+        ));
+    }
+    if curves.iter().any(|c| c.rational) {
+        let sections: Vec<_> = curves
+            .iter()
+            .map(|c| c.curve.value.homogeneous().clone())
+            .collect();
+        let s = skin(&sections, degree, None)?;
+        Sized {
+            value: NurbsSurface::from_homogeneous(s.surface)?,
+            dim,
+        }
+        .json()
+    } else {
+        let sections: Vec<Curve> = curves.iter().map(AnyCurve::polynomial).collect();
+        Sized {
+            value: skin(&sections, degree, None)?.surface,
+            dim,
+        }
+        .json()
+    }
+}
+
+/// `make coons`: the Coons patch of four B-spline curves (bottom, top, left, right).
+///
+/// # Errors
+/// As [`Surface::coons`]; not four curves.
+pub fn make_coons(paths: &[String]) -> Result<Json> {
+    if paths.len() != 4 {
+        return Err(invalid(format!(
+            "--curves: a Coons patch needs four curves (bottom, top, left, right), got {}",
+            paths.len()
+        )));
+    }
+    let (c, dim) = polynomial_curves(paths, "boundary curve")?;
+    Sized {
+        value: Surface::coons(&c[0], &c[1], &c[2], &c[3])?,
+        dim,
+    }
+    .json()
+}
+
+/// `make gordon`: the Gordon surface of a curve network.
+///
+/// # Errors
+/// As [`spline_fit::gordon`].
+pub fn make_gordon(
+    u_paths: &[String],
+    v_paths: &[String],
+    degree: usize,
+    tolerance: f64,
+) -> Result<Json> {
+    let (us, dim) = polynomial_curves(u_paths, "u-curve")?;
+    let (vs, dv) = polynomial_curves(v_paths, "v-curve")?;
+    if dim != dv {
+        return Err(Error::new(
+            ErrorKind::DimensionMismatch,
+            format!("the u-curves have {dim} coordinates, the v-curves {dv}"),
+        ));
+    }
+    Sized {
+        value: gordon(&us, &vs, (degree, degree), tolerance)?.surface,
+        dim,
+    }
+    .json()
+}
+
+/// `make sweep`: a B-spline profile swept along a path (B-spline or NURBS) in space.
+///
+/// # Errors
+/// As [`spline_fit::sweep`]; curves not in space.
+pub fn make_sweep(profile: &str, path: &str, sections: usize) -> Result<Json> {
+    let (p, dim) = polynomial_curves(&[profile.to_string()], "profile")?;
+    crate::objects::check_dim(dim, 3, "a profile in space").map_err(|e| e.context(profile))?;
+    let along = read_curve(path)?;
+    crate::objects::check_dim(along.curve.dim, 3, "a path in space")
+        .map_err(|e| e.context(path))?;
+    let to3 = |q: &Pt| Vector3::new(q[0], q[1], q[2]);
+    let prof = p[0].map_control_points(to3);
+    let path3: NurbsCurve<f64, 3> = along.curve.value.map_control_points::<3>(|q| to3(q));
+    let s = sweep(&prof, &path3, sections, None)?;
+    Sized {
+        value: s
+            .surface
+            .map_control_points(|q| io::pad(q.as_slice()).expect("3 coordinates")),
+        dim: 3,
+    }
+    .json()
+}
+
+/// `spline approximate-surface POINTS --control-points '[m, n]' ...`.
+#[derive(Args)]
+pub struct ApproximateSurfaceArgs {
+    /// Points in space (JSON array or text, one point per line) or a triangle mesh (`.obj`:
+    /// `v x y z` and `f i j k` lines).
+    points: String,
+    /// Control points in u and v, as JSON: `[m, n]`.
+    #[arg(long)]
+    control_points: String,
+    /// Degrees in u and v, as JSON (default `[3, 3]`).
+    #[arg(long)]
+    degree: Option<String>,
+    /// Parameter-correction sweeps (default 5).
+    #[arg(long, default_value_t = 5)]
+    correct_parameters: usize,
+    /// The weight of the thin-plate smoothing term (default 0).
+    #[arg(long, default_value_t = 0.0)]
+    smoothing: f64,
+}
+
+/// Vertices and triangles of a Wavefront OBJ text (`v` and `f` lines; `f` entries may be
+/// `i`, `i/t` or `i/t/n`, 1-based; polygons are fanned into triangles).
+fn parse_obj(text: &str) -> Result<(Vec<Vector3<f64>>, Vec<[usize; 3]>)> {
+    let mut vertices = Vec::new();
+    let mut faces = Vec::new();
+    for (n, line) in text.lines().enumerate() {
+        let mut words = line.split_whitespace();
+        let bad = |what: &str| Error::new(ErrorKind::Parse, format!("line {}: {what}", n + 1));
+        match words.next() {
+            Some("v") => {
+                let c: Vec<f64> = words
+                    .take(3)
+                    .map(str::parse)
+                    .collect::<std::result::Result<_, _>>()
+                    .map_err(|_| bad("a vertex needs three numbers"))?;
+                if c.len() != 3 {
+                    return Err(bad("a vertex needs three numbers"));
+                }
+                vertices.push(Vector3::new(c[0], c[1], c[2]));
+            }
+            Some("f") => {
+                let idx: Vec<usize> = words
+                    .map(|w| {
+                        w.split('/')
+                            .next()
+                            .unwrap_or("")
+                            .parse::<usize>()
+                            .ok()
+                            .filter(|&i| i >= 1)
+                            .map(|i| i - 1)
+                    })
+                    .collect::<Option<_>>()
+                    .ok_or_else(|| bad("face indices must be positive integers"))?;
+                if idx.len() < 3 {
+                    return Err(bad("a face needs three vertices"));
+                }
+                for k in 1..idx.len() - 1 {
+                    faces.push([idx[0], idx[k], idx[k + 1]]);
+                }
+            }
+            _ => {}
+        }
+    }
+    Ok((vertices, faces))
+}
+
+/// Prints `{"surface", "max_deviation", "rms", "max_deviation_to_data", "corrections"}`.
+///
+/// # Errors
+/// As [`spline_fit::fit_scattered`]; unreadable or malformed inputs.
+pub fn approximate_surface(args: &ApproximateSurfaceArgs) -> Result<()> {
+    let [nu, nv]: [usize; 2] = io::parse_arg("--control-points", &args.control_points)?;
+    let [p, q]: [usize; 2] = match &args.degree {
+        Some(text) => io::parse_arg("--degree", text)?,
+        None => [3, 3],
+    };
+    let (points, triangles) = if args.points.to_ascii_lowercase().ends_with(".obj") {
+        let (v, f) =
+            parse_obj(&io::read_text(&args.points)?).map_err(|e| e.context(&args.points))?;
+        (v, Some(f))
+    } else {
+        let rows = io::read_points(&args.points)?;
+        let points = rows
+            .iter()
+            .enumerate()
+            .map(|(k, r)| {
+                if r.len() == 3 {
+                    Ok(Vector3::new(r[0], r[1], r[2]))
+                } else {
+                    Err(Error::new(
+                        ErrorKind::DimensionMismatch,
+                        format!(
+                            "{}: point {k} has {} coordinates, expected 3",
+                            args.points,
+                            r.len()
+                        ),
+                    ))
+                }
+            })
+            .collect::<Result<Vec<_>>>()?;
+        (points, None)
+    };
+    let options = ScatteredOptions {
+        degrees: (p, q),
+        control_points: (nu, nv),
+        smoothing: args.smoothing,
+        corrections: args.correct_parameters,
+    };
+    if !(args.smoothing >= 0.0 && args.smoothing.is_finite()) {
+        return Err(invalid(format!(
+            "--smoothing must be finite and non-negative, got {}",
+            args.smoothing
+        )));
+    }
+    let none: Option<&Surface<f64, Vector3<f64>>> = None;
+    let fit = fit_scattered(&points, triangles.as_deref(), none, &options)?;
+    let surface = Sized {
+        value: fit
+            .surface
+            .map_control_points(|q| io::pad(q.as_slice()).expect("3 coordinates")),
+        dim: 3,
+    }
+    .json()?;
+    io::print_json(&json!({
+        "surface": surface,
+        "max_deviation": fit.to_surface.max,
+        "rms": fit.to_surface.rms,
+        "max_deviation_to_data": fit.to_data,
+        "corrections": fit.corrections,
+    }))
+}

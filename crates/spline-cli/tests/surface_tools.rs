@@ -1,0 +1,213 @@
+//! `closest`, `intersect` (surface cases), `make skin | sweep | coons | gordon` and
+//! `approximate-surface` through the binary: results against closed forms, and the error
+//! contract (exit status 2, one line).
+
+mod common;
+use common::{spline, temp_file};
+use serde_json::Value;
+
+fn line(a: [f64; 3], b: [f64; 3]) -> String {
+    format!(r#"{{"degree": 1, "knots": [0, 0, 1, 1], "control_points": [{a:?}, {b:?}]}}"#)
+}
+
+fn num(v: &Value) -> f64 {
+    v.as_f64().expect("a number")
+}
+
+#[test]
+fn closest_on_a_sphere_and_a_curve() {
+    let sphere = spline(&["make", "sphere", "--center", "[0,0,0]", "--radius", "2"]).json();
+    let path = temp_file("sphere.json", &sphere.to_string());
+    let out = spline(&["closest", &path, "--points", "[[3,4,0],[0,0,5]]"]).json();
+    assert!((num(&out[0]["distance"]) - 3.0).abs() < 1e-12);
+    assert!((num(&out[1]["point"][2]) - 2.0).abs() < 1e-12);
+    assert!(out[0]["v"].is_number());
+    let c = temp_file("line.json", &line([0.0, 0.0, 0.0], [2.0, 0.0, 0.0]));
+    let out = spline(&["closest", &c, "--points", "[[0.5,1,0]]"]).json();
+    assert!((num(&out[0]["u"]) - 0.25).abs() < 1e-12);
+    assert!(out[0].get("v").is_none());
+    // Errors: wrong dimension, malformed points, not finite.
+    spline(&["closest", &path, "--points", "[[1,2]]"]).assert_clean_error();
+    spline(&["closest", &path, "--points", "[1,2,3]"]).assert_clean_error();
+    spline(&["closest", &path, "--points", "[[1e999,0,0]]"]).assert_clean_error();
+}
+
+#[test]
+fn intersections() {
+    let sphere = spline(&["make", "sphere", "--center", "[0,0,0]", "--radius", "1"]).json();
+    let s = temp_file("sphere.json", &sphere.to_string());
+    let l = temp_file("line.json", &line([-2.0, 0.0, 0.0], [2.0, 0.0, 0.0]));
+    let hits = spline(&["intersect", &l, &s]).json();
+    assert_eq!(hits.as_array().unwrap().len(), 2);
+    assert!((num(&hits[0]["point"][0]) + 1.0).abs() < 1e-12);
+    assert_eq!(hits[0]["tangential"], Value::Bool(false));
+    // Either order.
+    let again = spline(&["intersect", &s, &l]).json();
+    assert_eq!(again.as_array().unwrap().len(), 2);
+    let plane = temp_file(
+        "plane.json",
+        r#"{"degree": [1, 1], "knots": [[0,0,1,1],[0,0,1,1]], "control_points": [[[-2,-2,0.5],[-2,2,0.5]],[[2,-2,0.5],[2,2,0.5]]]}"#,
+    );
+    let curves = spline(&["intersect", &s, &plane, "--tolerance", "1e-5"]).json();
+    assert_eq!(curves.as_array().unwrap().len(), 1);
+    assert_eq!(curves[0]["closed"], Value::Bool(true));
+    for p in curves[0]["points"].as_array().unwrap() {
+        let (x, y) = (num(&p[0]), num(&p[1]));
+        assert!(((x * x + y * y).sqrt() - 0.75f64.sqrt()).abs() < 1e-9);
+    }
+    assert_eq!(
+        curves[0]["uv_a"].as_array().unwrap().len(),
+        curves[0]["points"].as_array().unwrap().len()
+    );
+    spline(&["intersect", &s, &plane, "--tolerance", "-1"]).assert_clean_error();
+    spline(&["intersect", &l, &l]).assert_clean_error();
+    let flat = temp_file(
+        "flat.json",
+        r#"{"degree": 1, "knots": [0,0,1,1], "control_points": [[0,0],[1,1]]}"#,
+    );
+    spline(&["intersect", &flat, &s]).assert_clean_error();
+}
+
+#[test]
+fn constructions() {
+    let bottom = temp_file("b.json", &line([0.0, 0.0, 0.0], [1.0, 0.0, 0.0]));
+    let top = temp_file("t.json", &line([0.0, 1.0, 0.0], [1.0, 1.0, 0.0]));
+    let left = temp_file("l.json", &line([0.0, 0.0, 0.0], [0.0, 1.0, 0.0]));
+    let right = temp_file("r.json", &line([1.0, 0.0, 0.0], [1.0, 1.0, 0.0]));
+    let coons = spline(&["make", "coons", "--curves", &bottom, &top, &left, &right]).json();
+    let c = temp_file("coons.json", &coons.to_string());
+    let at = spline(&["eval", &c, "--at", "[[0.25,0.5]]"]).json();
+    assert!(
+        (num(&at[0][0][0][0]) - 0.25).abs() < 1e-15 && (num(&at[0][0][0][1]) - 0.5).abs() < 1e-15
+    );
+    // Skin through three lines at heights 0, 1, 3.
+    let l1 = temp_file("s1.json", &line([0.0, 0.0, 0.0], [1.0, 0.0, 0.0]));
+    let l2 = temp_file("s2.json", &line([0.0, 0.5, 1.0], [1.0, 0.5, 1.0]));
+    let l3 = temp_file("s3.json", &line([0.0, 0.0, 3.0], [1.0, 0.0, 3.0]));
+    let skinned = spline(&["make", "skin", "--curves", &l1, &l2, &l3, "--degree", "2"]).json();
+    assert_eq!(skinned["degree"][1], 2);
+    // Sweep a segment along a straight path.
+    let path = temp_file("path.json", &line([0.0, 0.0, 0.0], [0.0, 0.0, 4.0]));
+    let prof = temp_file("prof.json", &line([-1.0, 0.0, 0.0], [1.0, 0.0, 0.0]));
+    let swept = spline(&[
+        "make",
+        "sweep",
+        "--profile",
+        &prof,
+        "--path",
+        &path,
+        "--sections",
+        "3",
+    ])
+    .json();
+    let sw = temp_file("sweep.json", &swept.to_string());
+    let at = spline(&["eval", &sw, "--at", "[[1,1]]"]).json();
+    assert!((num(&at[0][0][0][2]) - 4.0).abs() < 1e-12);
+    // Gordon through the four lines of a square network.
+    let g = spline(&[
+        "make",
+        "gordon",
+        "--u-curves",
+        &bottom,
+        &top,
+        "--v-curves",
+        &left,
+        &right,
+    ])
+    .json();
+    assert!(g["control_points"].is_array());
+    // Errors.
+    spline(&["make", "coons", "--curves", &bottom, &top, &left, &l3]).assert_clean_error();
+    spline(&["make", "skin", "--curves", &l1]).assert_clean_error();
+    spline(&[
+        "make",
+        "sweep",
+        "--profile",
+        &prof,
+        "--path",
+        &path,
+        "--sections",
+        "1",
+    ])
+    .assert_clean_error();
+    spline(&[
+        "make",
+        "gordon",
+        "--u-curves",
+        &bottom,
+        &l3,
+        "--v-curves",
+        &left,
+        &right,
+    ])
+    .assert_clean_error();
+}
+
+#[test]
+fn approximate_surface_from_points_and_a_mesh() {
+    let mut pts = Vec::new();
+    for i in 0..=20 {
+        for j in 0..=20 {
+            let (x, y) = (i as f64 / 20.0, j as f64 / 20.0);
+            pts.push(vec![x, y, 0.2 * (3.0 * x).sin() * y]);
+        }
+    }
+    let file = temp_file("pts.json", &serde_json::to_string(&pts).unwrap());
+    let out = spline(&["approximate-surface", &file, "--control-points", "[8,8]"]).json();
+    assert!(
+        num(&out["max_deviation"]) < 1e-3,
+        "{}",
+        out["max_deviation"]
+    );
+    assert!(out["surface"]["control_points"].is_array());
+    assert!(out["rms"].is_number() && out["max_deviation_to_data"].is_number());
+    let mut obj = String::new();
+    for p in &pts {
+        obj += &format!("v {} {} {}\n", p[0], p[1], p[2]);
+    }
+    for i in 0..20 {
+        for j in 0..20 {
+            let k = i * 21 + j + 1;
+            obj += &format!(
+                "f {} {} {}\nf {} {} {}\n",
+                k,
+                k + 21,
+                k + 1,
+                k + 1,
+                k + 21,
+                k + 22
+            );
+        }
+    }
+    let mesh = temp_file("mesh.obj", &obj);
+    let out = spline(&[
+        "approximate-surface",
+        &mesh,
+        "--control-points",
+        "[8,8]",
+        "--degree",
+        "[2,2]",
+    ])
+    .json();
+    assert!(num(&out["max_deviation"]) < 1e-3);
+    // Errors: too many control points for the data, bad counts, bad mesh.
+    spline(&["approximate-surface", &file, "--control-points", "[30,30]"]).assert_clean_error();
+    spline(&[
+        "approximate-surface",
+        &file,
+        "--control-points",
+        "[18446744073709551615,4]",
+    ])
+    .assert_clean_error();
+    spline(&[
+        "approximate-surface",
+        &file,
+        "--control-points",
+        "[8,8]",
+        "--smoothing",
+        "-1",
+    ])
+    .assert_clean_error();
+    let bad = temp_file("bad.obj", "v 0 0 0\nf 1 2 x\n");
+    spline(&["approximate-surface", &bad, "--control-points", "[4,4]"]).assert_clean_error();
+}
