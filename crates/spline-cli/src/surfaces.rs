@@ -376,9 +376,12 @@ pub struct ApproximateSurfaceArgs {
     smoothing: f64,
 }
 
+/// The vertices and triangles of a mesh.
+type Mesh = (Vec<Vector3<f64>>, Vec<[usize; 3]>);
+
 /// Vertices and triangles of a Wavefront OBJ text (`v` and `f` lines; `f` entries may be
 /// `i`, `i/t` or `i/t/n`, 1-based; polygons are fanned into triangles).
-fn parse_obj(text: &str) -> Result<(Vec<Vector3<f64>>, Vec<[usize; 3]>)> {
+fn parse_obj(text: &str) -> Result<Mesh> {
     let mut vertices = Vec::new();
     let mut faces = Vec::new();
     for (n, line) in text.lines().enumerate() {

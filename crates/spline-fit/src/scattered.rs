@@ -196,7 +196,10 @@ pub fn fit_scattered<T: Scalar, S: ParamSurface<T, Point = Vector3<T>>>(
             ),
         ));
     }
-    if let Some(k) = points.iter().position(|x| !x.iter().all(|c| c.is_finite())) {
+    if let Some(k) = points
+        .iter()
+        .position(|x| !x.iter().all(|c| nalgebra::ComplexField::is_finite(c)))
+    {
         return Err(Error::non_finite(format_args!("data point {k}")));
     }
     if let Some(tris) = triangles {

@@ -66,6 +66,9 @@ impl<P> Default for SurfaceEnds<P> {
 /// [`ErrorKind::InvalidArgument`] when `du` and `dv` are both given without twists (or
 /// twists without both); [`ErrorKind::NonFinite`]; the errors of
 /// [`crate::interpolate_surface`] and [`crate::interpolate`].
+///
+/// # Panics
+/// Never: a valid grid has at least one control row.
 pub fn interpolate_surface_with_derivatives<T: Scalar, P: ControlPoint<T>>(
     grid: &[P],
     rows: usize,

@@ -283,6 +283,9 @@ impl<'a, T: Scalar, S: ParamSurface<T>> SurfaceProjector<'a, T, S> {
     ///
     /// # Errors
     /// [`ErrorKind::NonFinite`] if `target` is not finite.
+    ///
+    /// # Panics
+    /// Never: the root of the hierarchy is always visited.
     pub fn closest(&self, target: S::Point) -> Result<SurfaceProjection<T, S::Point>> {
         if !target.all_finite() {
             return Err(Error::new(

@@ -2,6 +2,9 @@
 //! forms (sphere, torus, plane) and the first-order conditions of a minimum, including
 //! targets whose closest point lies on the boundary of the domain.
 
+// Grid indices become coordinates: small integer counts, exact as f64.
+#![allow(clippy::cast_lossless)]
+
 use nalgebra::Vector3;
 use proptest::prelude::*;
 use spline_core::KnotVector;

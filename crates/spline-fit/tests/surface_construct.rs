@@ -1,6 +1,9 @@
 //! Surfaces through curves: skinning, sweeps, Coons and Gordon surfaces, interpolation with
 //! boundary derivatives; rotation-minimising frames against the helix's closed form.
 
+// Grid indices become coordinates: small integer counts, exact as f64.
+#![allow(clippy::cast_lossless)]
+
 use nalgebra::Vector3;
 use spline_core::KnotVector;
 use spline_fit::{
@@ -372,7 +375,7 @@ fn skinning_errors() {
     let mut rand = lcg(1);
     let c = random_curve(&mut rand, 2, 4, 0.0);
     assert_eq!(
-        skin(&[c.clone()], 2, None).unwrap_err().kind(),
+        skin(std::slice::from_ref(&c), 2, None).unwrap_err().kind(),
         ErrorKind::TooFewPoints
     );
     assert_eq!(

@@ -1,6 +1,9 @@
 //! Intersections against closed forms and dense sampling (none missed): curve–surface
 //! points (tangential touches flagged), surface–surface curves traced to a tolerance.
 
+// Grid indices become coordinates: small integer counts, exact as f64.
+#![allow(clippy::cast_lossless)]
+
 use nalgebra::Vector3;
 use spline_core::KnotVector;
 use spline_fit::{SurfaceProjector, Tolerances, intersect_curve_surface, intersect_surfaces};
@@ -91,10 +94,10 @@ fn curve_surface_against_dense_sampling() {
             );
         }
         let projector = SurfaceProjector::new(&s).unwrap();
-        let n = 2000;
+        let n: u32 = 2000;
         let samples: Vec<(f64, f64, bool)> = (0..=n)
             .map(|k| {
-                let t = k as f64 / n as f64;
+                let t = f64::from(k) / f64::from(n);
                 let (d, interior) = signed(&projector, c.eval(t).unwrap());
                 (t, d, interior)
             })
@@ -214,8 +217,8 @@ fn surface_plane_against_dense_sampling() {
             for j in 0..=n {
                 let p = grid[i * (n + 1) + j];
                 for q in [
-                    (i + 1 <= n).then(|| grid[(i + 1) * (n + 1) + j]),
-                    (j + 1 <= n).then(|| grid[i * (n + 1) + j + 1]),
+                    (i < n).then(|| grid[(i + 1) * (n + 1) + j]),
+                    (j < n).then(|| grid[i * (n + 1) + j + 1]),
                 ]
                 .into_iter()
                 .flatten()

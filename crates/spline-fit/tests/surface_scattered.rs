@@ -1,6 +1,9 @@
 //! Scattered fitting of a sampled analytic surface with noise: the fit reaches the stated
 //! deviation from the true surface; deviations both ways; meshes; errors.
 
+// Grid indices become coordinates: small integer counts, exact as f64.
+#![allow(clippy::cast_lossless)]
+
 use nalgebra::Vector3;
 use spline_fit::{ScatteredOptions, fit_scattered};
 use spline_geom::{ErrorKind, Surface};

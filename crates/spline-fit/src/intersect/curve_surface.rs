@@ -26,10 +26,13 @@ pub struct CurveSurfaceHit<T> {
     pub tangential: bool,
 }
 
+/// A leaf of a curve: the box `(lo, hi)` and the parameter interval `[a, b]`.
+type CurveLeaf<T> = (Vector3<T>, Vector3<T>, T, T);
+
 /// The leaves of a curve: its Bézier pieces subdivided until each box is small.
 fn curve_leaves<T: Scalar, C: ParamCurve<T, Point = Vector3<T>>>(
     curve: &C,
-) -> Result<Vec<(Vector3<T>, Vector3<T>, T, T)>> {
+) -> Result<Vec<CurveLeaf<T>>> {
     let pieces: Vec<Bezier<T, C::Coefficient>> = curve
         .bezier_pieces()
         .into_iter()
