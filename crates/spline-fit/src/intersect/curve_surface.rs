@@ -4,6 +4,8 @@
 use super::{Tolerances, check_tolerance, lm_solve, scale_of_boxes};
 use crate::surface_project::{BoxTree, Node, bounding_box};
 use nalgebra::{Matrix3, Vector3};
+#[cfg(doc)]
+use spline_core::ErrorKind;
 use spline_core::{Result, Scalar, cast, to_f64};
 use spline_geom::{Bezier, ParamCurve, ParamSurface};
 

@@ -38,7 +38,7 @@ impl<T: Scalar> MovingFrame<T> {
 /// The rotation-minimising frames of a space curve at increasing parameters `params`: the
 /// frame at `params[0]` has the given `normal` (projected onto the normal plane; by default
 /// the coordinate axis least aligned with the tangent), and each next frame follows from
-/// the previous one by the double reflection method on [`STEPS_PER_INTERVAL`] sub-steps,
+/// the previous one by the double reflection method on 64 sub-steps per interval,
 /// so the normal vector never turns about the tangent (its angular velocity has no tangent
 /// component: along a helix it turns against the Frenet frame at the rate of the torsion).
 ///
