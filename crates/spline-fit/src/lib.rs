@@ -59,6 +59,7 @@ mod project;
 mod report;
 mod scattered;
 mod skin;
+mod slab;
 mod surface;
 mod surface_ends;
 mod surface_project;

@@ -2,6 +2,7 @@
 //! Bézier patches, built once, then a best-first search with a box-constrained Newton
 //! iteration on the leaves.
 
+use crate::slab::Slab;
 use spline_core::{ControlPoint, Error, ErrorKind, Result, Scalar, cast, to_f64};
 use spline_geom::{Direction, ParamSurface, Surface};
 use std::cmp::Ordering;
@@ -32,13 +33,23 @@ pub struct SurfaceProjection<T, P> {
 pub(crate) type Rect<T> = ((T, T), (T, T));
 
 /// A node of the hierarchy: the box of its control points, its parameter rectangle and its
-/// children (none for a leaf).
+/// children (none for a leaf); leaves also hold the oriented slab of their control points.
 #[derive(Clone, Debug)]
 pub(crate) struct Node<T, P> {
     pub(crate) lo: P,
     pub(crate) hi: P,
     pub(crate) rect: Rect<T>,
     pub(crate) children: Option<(usize, usize)>,
+    pub(crate) slab: Option<Slab<T, P>>,
+}
+
+impl<T: Scalar, P: ControlPoint<T>> Node<T, P> {
+    /// A lower bound of the distance from `q` to the node's piece of surface: the distance
+    /// to its box, or to its slab where that is larger.
+    pub(crate) fn bound(&self, q: &P) -> T {
+        let d = box_distance(&self.lo, &self.hi, q);
+        self.slab.as_ref().map_or(d, |s| d.max(s.distance(q)))
+    }
 }
 
 /// The box `(min, max)` of points (not empty).
@@ -126,6 +137,7 @@ impl<T: Scalar, P: ControlPoint<T>> BoxTree<T, P> {
             hi,
             rect,
             children: Some((a, b)),
+            slab: None,
         })
     }
 
@@ -163,17 +175,21 @@ impl<T: Scalar, P: ControlPoint<T>> BoxTree<T, P> {
     ) -> Result<usize> {
         let (lo, hi) = bounding_box(patch.control_points().iter().map(S::project));
         let rect = patch.domain();
-        let node = Node {
-            lo,
-            hi,
-            rect,
-            children: None,
+        let (nu, nv) = patch.net_size();
+        let leaf = || {
+            let net: Vec<P> = patch.control_points().iter().map(S::project).collect();
+            Node {
+                lo,
+                hi,
+                rect,
+                children: None,
+                slab: Slab::of_net(&net, nu, nv),
+            }
         };
         if (hi - lo).length() <= min_size || splits >= MAX_SPLITS {
-            return Ok(self.push(node));
+            return Ok(self.push(leaf()));
         }
         // Split the direction along which the control net is longer.
-        let (nu, nv) = patch.net_size();
         let cp = patch.control_points();
         let mut along = [T::zero(); 2];
         for i in 0..nu {
@@ -198,7 +214,7 @@ impl<T: Scalar, P: ControlPoint<T>> BoxTree<T, P> {
         };
         let mid = (a + b) * cast::<T>(0.5);
         if !(mid > a && mid < b) {
-            return Ok(self.push(node));
+            return Ok(self.push(leaf()));
         }
         let (left, right) = patch.split(direction, mid)?;
         let l = self.build_patch::<S>(&left, splits + 1, min_size)?;
@@ -295,10 +311,11 @@ impl<'a, T: Scalar, S: ParamSurface<T>> SurfaceProjector<'a, T, S> {
         }
         let nodes = &self.tree.nodes;
         let mut best: Option<SurfaceProjection<T, S::Point>> = None;
+        let mut best_rect = self.surface.domain();
         let mut heap = BinaryHeap::new();
         let root = &nodes[self.tree.root];
         heap.push(Entry {
-            bound: to_f64(box_distance(&root.lo, &root.hi, &target)),
+            bound: to_f64(root.bound(&target)),
             node: self.tree.root,
         });
         while let Some(Entry { bound, node }) = heap.pop() {
@@ -310,23 +327,36 @@ impl<'a, T: Scalar, S: ParamSurface<T>> SurfaceProjector<'a, T, S> {
                 Some((a, b)) => {
                     for c in [a, b] {
                         let child = &nodes[c];
-                        heap.push(Entry {
-                            bound: to_f64(box_distance(&child.lo, &child.hi, &target)),
-                            node: c,
-                        });
+                        let bound = to_f64(child.bound(&target));
+                        if best.is_none_or(|b| bound <= to_f64(b.distance)) {
+                            heap.push(Entry { bound, node: c });
+                        }
                     }
                 }
                 None => {
-                    let (cu, cv) = center(n.rect);
-                    let found = newton_in(self.surface, &target, (cu, cv), n.rect)?;
+                    let start = n
+                        .slab
+                        .as_ref()
+                        .map_or_else(|| center(n.rect), |s| s.start(&target, n.rect));
+                    let found = newton_in(self.surface, &target, start, n.rect)?;
                     if best.is_none_or(|b| found.distance < b.distance) {
                         best = Some(found);
+                        best_rect = n.rect;
                     }
                 }
             }
         }
         let best = best.expect("the root is always visited");
-        // Polish on the whole domain (a leaf result on a leaf's edge inside the domain).
+        // Polish on the whole domain a leaf result on a leaf's edge inside the domain (one
+        // strictly inside its leaf, or on the domain's edge, is already a constrained
+        // minimum of the whole domain).
+        let ((a, b), (c, d)) = self.surface.domain();
+        let settled = |x: T, (lo, hi): (T, T), (first, last): (T, T)| {
+            (x > lo && x < hi) || x == first || x == last
+        };
+        if settled(best.u, best_rect.0, (a, b)) && settled(best.v, best_rect.1, (c, d)) {
+            return Ok(best);
+        }
         let polished = newton_in(
             self.surface,
             &target,
