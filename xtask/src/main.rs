@@ -9,6 +9,8 @@
 //!   points and one curvature maximum: the distribution of deviations and times.
 //! - `bench fit`, `bench eval`: criterion benchmarks of fitting and of curve evaluation against
 //!   scipy in the same run (a Python virtual environment with scipy is created under `target/`).
+//! - `bench surfaces`: criterion benchmarks of closest points on surfaces against
+//!   truck-geometry and of scattered least squares against scipy, in the same run.
 //! - `fuzz [--cases N | --seconds S] [--seed S] [--target T] [--coverage]`: structured mutation
 //!   fuzzing of the readers and of every operation, in process; with `--coverage`, the same
 //!   oracles under libFuzzer on nightly (see `fuzz/README.md`).
@@ -25,8 +27,10 @@ mod bench;
 mod bench_airfoils;
 mod bench_eval;
 mod bench_fit;
+mod bench_surfaces;
 mod campaign;
 mod demo;
+mod docs_constructions;
 mod docs_curves;
 mod docs_shape_functions;
 mod docs_surfaces;
@@ -70,6 +74,7 @@ fn run_docs(root: &Path) -> Result<(), String> {
     std::fs::create_dir_all(&out).map_err(|e| e.to_string())?;
     docs_curves::render(&out)?;
     docs_surfaces::render(&out)?;
+    docs_constructions::render(root, &out)?;
     docs_shape_functions::render(&out)?;
     demo::render(root, &out)?;
     println!("pictures written to {}", out.display());
@@ -98,6 +103,10 @@ const TASKS: &[(&str, &str)] = &[
     (
         "bench eval",
         "criterion benchmarks of curve evaluation, with scipy in the same run",
+    ),
+    (
+        "bench surfaces",
+        "closest points on surfaces vs truck-geometry, scattered least squares vs scipy",
     ),
     (
         "bench airfoils [--jobs J]",
@@ -150,8 +159,9 @@ fn main() -> ExitCode {
         Some("bench") => match args.get(1).map(String::as_str) {
             Some("fit") => bench_fit::run(&root),
             Some("eval") => bench_eval::run(&root),
+            Some("surfaces") => bench_surfaces::run(&root),
             Some("airfoils") => bench_airfoils::run_bench(&root, &args[2..]),
-            _ => Err("usage: cargo xtask bench fit | eval | airfoils [--jobs J]".into()),
+            _ => Err("usage: cargo xtask bench fit | eval | surfaces | airfoils [--jobs J]".into()),
         },
         _ => Err(usage()),
     };
