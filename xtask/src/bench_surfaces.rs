@@ -10,8 +10,9 @@
 //!    `<target>/criterion/surface_*/*/new/estimates.json` and the `closest-check`,
 //!    `fit-residual` and `fit-deviation` lines the benchmark prints.
 //! 4. Prints a table of medians, per-query times and speed-ups, and whether the issue's
-//!    targets hold: a few microseconds per closest-point query after setup (≤ 10 µs), no
+//!    targets hold: a few microseconds per closest-point query after setup (≤ 5 µs), no
 //!    query where truck finds a closer point than ours, least squares as small as scipy's.
+//!    Timings are wall-clock medians: on a loaded machine they grow, the ratios much less.
 
 use crate::bench::{self, seconds};
 use serde_json::Value;
@@ -81,22 +82,23 @@ pub(crate) fn run(repo_root: &Path) -> Result<(), String> {
             t / o
         );
         if ours.ends_with("global") {
-            let met = o <= 10e-6;
+            let met = o <= 5e-6;
             all_met &= met;
             println!(
-                "  target ≤ 10 µs per global query: {}",
+                "  target ≤ 5 µs per global query: {}",
                 if met { "met" } else { "MISSED" }
             );
         }
     }
-    let (farther, truck_farther, none, boundary) = (
+    let (farther, truck_farther, none, outside, boundary) = (
         count("ours_farther")?,
         count("truck_farther")?,
         count("truck_none")?,
+        count("truck_outside")?,
         count("boundary_answers")?,
     );
     println!(
-        "agreement (1e-9): ours farther {farther}, truck farther {truck_farther}, truck none {none}; answers on the boundary {boundary}"
+        "agreement (1e-9): ours farther {farther}; truck farther {truck_farther} (of which no answer {none}, outside the domain {outside}); our answers on the boundary {boundary}"
     );
     all_met &= farther == 0.0;
 
