@@ -91,6 +91,9 @@ const SUBCOMMANDS: &[&str] = &[
     "smooth",
     "make",
     "mesh",
+    "closest",
+    "intersect",
+    "approximate-surface",
 ];
 
 /// The seed files of the campaign, made with the tool itself.
@@ -159,6 +162,15 @@ fn make_seed_files(binary: &Path, dir: &Path, root: &Path) -> Result<(), String>
         "torus.json",
     )?;
     run(&["make", "ruled", "cubic.json", "line.json"], "ruled.json")?;
+    // Space curves and points for the surface commands.
+    write(
+        "line3.json",
+        r#"{"degree":1,"knots":[0.0,0.0,1.0,1.0],"control_points":[[-2.0,0.1,0.2],[2.0,0.3,-0.1]]}"#,
+    )?;
+    write(
+        "cloud.json",
+        "[[0,0,0],[1,0,0.1],[2,0,0],[0,1,0.2],[1,1,0.3],[2,1,0.1],[0,2,0],[1,2,0.2],[2,2,0.1],[0.5,0.5,0.1],[1.5,0.5,0.2],[0.5,1.5,0.1],[1.5,1.5,0.2],[1,0.5,0.15],[0.5,1,0.12],[1.5,1,0.2]]",
+    )?;
     Ok(())
 }
 
@@ -424,6 +436,37 @@ fn templates(sub: &str) -> Vec<Vec<&'static str>> {
             v(&["mesh", "torus.json", "-o", "OUT.off"]),
             v(&["mesh", "ruled.json", "-o", "OUT.svg", "--segments-u", "4"]),
         ],
+        "closest" => vec![
+            v(&["closest", "sphere.json", "--points", "[[3,4,0],[0,0,5]]"]),
+            v(&["closest", "torus.json", "--points", "[[0,0,0]]"]),
+            v(&["closest", "line3.json", "--points", "[[0,1,0]]"]),
+        ],
+        "intersect" => vec![
+            v(&["intersect", "line3.json", "sphere.json"]),
+            v(&[
+                "intersect",
+                "sphere.json",
+                "torus.json",
+                "--tolerance",
+                "1e-3",
+            ]),
+        ],
+        "approximate-surface" => vec![
+            v(&[
+                "approximate-surface",
+                "cloud.json",
+                "--control-points",
+                "[4,4]",
+            ]),
+            v(&[
+                "approximate-surface",
+                "cloud.json",
+                "--control-points",
+                "[5,5]",
+                "--smoothing",
+                "1e-3",
+            ]),
+        ],
         _ => Vec::new(),
     }
 }
@@ -435,7 +478,7 @@ struct Case {
     output: Option<String>,
 }
 
-/// Builds case `k`: a template of subcommand `k mod 19`, mutated one to three times.
+/// Builds case `k`: a template of subcommand `k mod 22` (the number of subcommands), mutated one to three times.
 fn build_case(k: usize, seed: u64, dir: &Path) -> Result<Case, String> {
     let sub = SUBCOMMANDS[k % SUBCOMMANDS.len()];
     let mut rng = Rng::new(seed.wrapping_mul(1_000_003).wrapping_add(k as u64));
