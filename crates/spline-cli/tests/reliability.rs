@@ -674,7 +674,7 @@ fn malformed_objects_name_the_field_and_the_file() {
 fn missing_and_unknown_subcommands_get_one_line() {
     assert_message(
         &spline(&["make"]),
-        "spline make needs one of: circle, arc, conic, extrude, ruled, cone, revolve, sphere, torus (see spline make --help)",
+        "spline make needs one of: circle, arc, conic, extrude, ruled, cone, revolve, sphere, torus, skin, sweep, coons, gordon (see spline make --help)",
     );
     assert_message(
         &spline(&["evall", "x"]),
