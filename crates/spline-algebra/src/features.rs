@@ -3,12 +3,12 @@
 //! curves through their homogeneous analogues, each a B-spline function whose sign changes
 //! are found by root isolation.
 
-use crate::curves::{Form, Invariant, PlanarInvariants};
-use crate::product::{linear_combination, product};
+use crate::curves::{Differentiated, Form, Invariant, PlanarInvariants};
+use crate::numerator::Tracked;
 use crate::roots::{sign_change_params, zeros};
-use nalgebra::Vector2;
+use nalgebra::{SVector, Vector2};
 use spline_core::{Error, ErrorKind, Result, Scalar, cast, to_f64};
-use spline_geom::{BSpline, Bezier, NurbsCurve};
+use spline_geom::{BSpline, Bezier, Homogeneous, NurbsCurve, PlanarCurve};
 
 /// The inflections and curvature extrema of a planar curve.
 #[derive(Clone, Debug, PartialEq)]
@@ -17,6 +17,9 @@ pub struct PlanarFeatures<T> {
     pub inflections: Vec<T>,
     /// Parameters where the signed curvature has a local extremum.
     pub curvature_extrema: Vec<T>,
+    /// The curvature, when it is constant (a circle, a straight line: the numerator of
+    /// `κ′` vanishes identically); there are then no extrema.
+    pub constant_curvature: Option<T>,
 }
 
 /// A planar curve whose inflections and curvature extrema can be located exactly: every
@@ -97,7 +100,7 @@ pub fn curvature_extrema<T: Scalar, C: CurveFeatures<T> + ?Sized>(
 /// A power of two near the largest coordinate step between consecutive points: dividing by
 /// it is exact, and the invariants (products of up to eight coordinates of derivatives) of
 /// the scaled points neither overflow nor underflow.
-fn leg_scale<T: Scalar>(points: &[Vector2<T>]) -> T {
+pub(crate) fn leg_scale<T: Scalar>(points: &[Vector2<T>]) -> T {
     let legs = points
         .windows(2)
         .fold(0.0f64, |m, w| m.max(to_f64((w[1] - w[0]).amax())));
@@ -106,7 +109,7 @@ fn leg_scale<T: Scalar>(points: &[Vector2<T>]) -> T {
 
 /// [`ErrorKind::DegenerateGeometry`] if the squared speed (or its rational analogue) has a
 /// zero.
-fn check_regular<T: Scalar>(squared_speed: &BSpline<T, T>, accuracy: T) -> Result<()> {
+pub(crate) fn check_regular<T: Scalar>(squared_speed: &BSpline<T, T>, accuracy: T) -> Result<()> {
     match zeros(squared_speed, accuracy)?.first() {
         Some(z) => Err(Error::new(
             ErrorKind::DegenerateGeometry,
@@ -129,9 +132,11 @@ impl<T: Scalar> CurveFeatures<T> for BSpline<T, Vector2<T>> {
         check_regular(&h1, accuracy)?;
         let h4 = algebra.invariant_value(Invariant::H4, &points, Form::Bernstein)?;
         let g = algebra.g_value(&points, Form::Bernstein)?;
+        let constant = g.control_points().iter().all(|c| *c == T::zero());
         Ok(PlanarFeatures {
             inflections: sign_change_params(&h4, accuracy)?,
             curvature_extrema: sign_change_params(&g, accuracy)?,
+            constant_curvature: constant.then(|| middle_curvature(self)).transpose()?,
         })
     }
 }
@@ -156,141 +161,211 @@ impl<T: Scalar> CurveFeatures<T> for NurbsCurve<T, 2> {
                 return polynomial.features(accuracy);
             }
         }
-        let p = self.degree();
-        if p < 2 {
-            return Err(Error::new(
-                ErrorKind::InvalidArgument,
-                format!(
-                    "curvature features need degree 2 or more, got {p} (a polyline has zero curvature wherever it is defined)"
-                ),
-            ));
-        }
-        if 8 * p - 6 > spline_core::MAX_DEGREE {
-            return Err(Error::new(
-                ErrorKind::DegreeTooHigh,
-                format!(
-                    "the curvature-extremum numerator of a rational curve of degree {p} has degree {}, above the supported maximum",
-                    8 * p - 6
-                ),
-            ));
-        }
+        check_feature_degree(self.degree(), (8, 6), "curvature-extremum")?;
         // Exact power-of-two scalings: of the points (the features do not depend on the
         // size of the curve) and of the weights (the curve does not depend on their scale).
-        let scale = leg_scale(self.control_points());
-        let largest = self.weights().iter().fold(0.0f64, |m, &w| m.max(to_f64(w)));
-        let wscale: T = cast(spline_core::power_of_two_scale(largest));
         // And a translation to the middle of the control points: the numerators combine
         // the coordinates themselves, whose rounding would otherwise grow with the distance
         // from the origin.
-        let (lo, hi) = self.control_points().iter().fold(
-            (self.control_points()[0], self.control_points()[0]),
-            |(lo, hi), p| (lo.inf(p), hi.sup(p)),
-        );
-        let half: T = cast(0.5);
-        let middle = (lo + hi) * half;
-        let h = self.homogeneous();
-        let coordinate =
-            |f: &dyn Fn(&spline_geom::Homogeneous<T, 2>) -> T| h.map_control_points(|q| f(q));
-        let x = Tracked::leaf(coordinate(&|q| {
-            (q.point.x - q.weight * middle.x) / scale / wscale
-        }));
-        let y = Tracked::leaf(coordinate(&|q| {
-            (q.point.y - q.weight * middle.y) / scale / wscale
-        }));
-        let w = Tracked::leaf(coordinate(&|q| q.weight / wscale));
-        let (x1, y1, w1) = (x.derivative(1)?, y.derivative(1)?, w.derivative(1)?);
-        let (x2, y2, w2) = (x.derivative(2)?, y.derivative(2)?, w.derivative(2)?);
-        let (one, three): (T, T) = (T::one(), cast(3.0));
-        // a · b − c · e
-        let cross = |a: &Tracked<T>, b: &Tracked<T>, c: &Tracked<T>, e: &Tracked<T>| {
-            Tracked::combination(one, &a.times(b)?, -one, &c.times(e)?)
-        };
-        // N, N' and D = X (Y'W'' − W'Y'') − Y (X'W'' − W'X'') + W (X'Y'' − Y'X'').
-        let nx = cross(&x1, &w, &x, &w1)?;
-        let ny = cross(&y1, &w, &y, &w1)?;
-        let nx1 = cross(&x2, &w, &x, &w2)?;
-        let ny1 = cross(&y2, &w, &y, &w2)?;
-        let det = Tracked::combination(
-            one,
-            &Tracked::combination(
-                one,
-                &x.times(&cross(&y1, &w2, &w1, &y2)?)?,
-                -one,
-                &y.times(&cross(&x1, &w2, &w1, &x2)?)?,
-            )?,
-            one,
-            &w.times(&cross(&x1, &y2, &y1, &x2)?)?,
-        )?
-        .cleaned();
-        let nn = Tracked::combination(one, &nx.times(&nx)?, one, &ny.times(&ny)?)?;
-        check_regular(&nn.value, accuracy)?;
-        let nn1 = Tracked::combination(one, &nx.times(&nx1)?, one, &ny.times(&ny1)?)?;
-        let lead =
-            Tracked::combination(one, &det.derivative(1)?.times(&w)?, three, &det.times(&w1)?)?;
-        let g = Tracked::combination(one, &lead.times(&nn)?, -three, &det.times(&w)?.times(&nn1)?)?
-            .cleaned();
+        let frame = Normalisation::of(self.control_points(), self.weights());
+        let (det, g) = rational_planar(self, &frame, false, accuracy)?;
+        let constant = g.is_zero();
         let (det, g) = (det.value, g.value);
         Ok(PlanarFeatures {
             inflections: sign_change_params(&det, accuracy)?,
             curvature_extrema: sign_change_params(&g, accuracy)?,
+            constant_curvature: constant.then(|| middle_curvature(self)).transpose()?,
         })
     }
 }
 
-/// A B-spline function with a bound on the magnitudes that entered each coefficient (sums
-/// of absolute values of the terms, through products and linear combinations): where a
-/// coefficient is below `1e-10` of its magnitude it is rounding left by cancellation, not
-/// a value. A circle's curvature-extremum numerator, a straight segment's curvature
-/// numerator cancel that way, and sign changes of the noise would be reported as features.
-struct Tracked<T: Scalar> {
-    value: BSpline<T, T>,
-    magnitude: BSpline<T, T>,
+/// The numerators of the curvature and of its derivative of a rational planar curve, each a
+/// B-spline function of the parameter, with their Jacobians with respect to the weighted
+/// control points: the variables are $[w_0 x_0, w_0 y_0, w_0, w_1 x_1, \dots]$.
+///
+/// For `C = (X, Y) / W` with homogeneous container `P = (X, Y, W)`: the inflection numerator
+/// is $D = \det(P, P', P'') = W^3\, C' \wedge C''$, the curvature-extremum numerator
+/// $G = (D' W + 3 D W')\, N \cdot N - 3 D W\, N \cdot N'$ with $N = W^2 C'$ and
+/// $N' = (X''W - XW'', Y''W - YW'')$, so that $\kappa = D W^3 / |N|^3$ and
+/// $\kappa' = W^2 G / |N|^5$ (both denominators positive). Degrees `3p − 3` and `8p − 6`.
+///
+/// ```
+/// use nalgebra::Vector2;
+/// use spline_geom::NurbsCurve;
+/// let w = std::f64::consts::FRAC_1_SQRT_2;
+/// let arc = NurbsCurve::from_knots(2, vec![0.0, 0.0, 0.0, 1.0, 1.0, 1.0],
+///     vec![Vector2::new(2.0, 0.0), Vector2::new(2.0, 1.0), Vector2::new(0.0, 1.0)],
+///     vec![1.0, w, 1.0])?;
+/// let n = spline_algebra::rational_planar_numerators(&arc)?;
+/// assert_eq!(n.curvature_extremum.jacobian.ncols(), 9); // three weighted points (wx, wy, w)
+/// // A quarter of an ellipse: D > 0 (no inflection), G < 0 (curvature decreasing).
+/// assert!(n.inflection.value.eval(0.5)? > 0.0 && n.curvature_extremum.value.eval(0.5)? < 0.0);
+/// # Ok::<(), spline_core::Error>(())
+/// ```
+///
+/// # Errors
+/// [`ErrorKind::InvalidArgument`] for degree below 2; [`ErrorKind::DegreeTooHigh`] if
+/// `8p − 6` exceeds [`spline_core::MAX_DEGREE`].
+pub fn rational_planar_numerators<T: Scalar>(
+    curve: &NurbsCurve<T, 2>,
+) -> Result<RationalNumerators<T>> {
+    check_feature_degree(curve.degree(), (8, 6), "curvature-extremum")?;
+    let (det, g) = rational_planar(curve, &Normalisation::identity(), true, T::zero())?;
+    Ok(RationalNumerators {
+        inflection: det.differentiated(),
+        curvature_extremum: g.differentiated(),
+    })
 }
 
-impl<T: Scalar> Tracked<T> {
-    /// An input (a coordinate or a derivative): its magnitudes are its coefficients' sizes.
-    fn leaf(value: BSpline<T, T>) -> Self {
-        let magnitude = value.map_control_points(|&c| c.abs());
-        Self { value, magnitude }
+/// The feature numerators of a curve with Jacobians ([`rational_planar_numerators`]).
+#[derive(Clone, Debug)]
+pub struct RationalNumerators<T> {
+    /// The numerator whose sign is the sign of the curvature (planar curves).
+    pub inflection: Differentiated<T>,
+    /// The numerator whose sign is the sign of the derivative of the curvature.
+    pub curvature_extremum: Differentiated<T>,
+}
+
+/// [`ErrorKind::InvalidArgument`] below degree 2, [`ErrorKind::DegreeTooHigh`] if the
+/// numerator of degree `factor · p − offset` is above [`spline_core::MAX_DEGREE`].
+pub(crate) fn check_feature_degree(
+    p: usize,
+    (factor, offset): (usize, usize),
+    what: &str,
+) -> Result<()> {
+    if p < 2 {
+        return Err(Error::new(
+            ErrorKind::InvalidArgument,
+            format!(
+                "curvature features need degree 2 or more, got {p} (a polyline has zero curvature wherever it is defined)"
+            ),
+        ));
+    }
+    let degree = factor * p - offset;
+    if degree > spline_core::MAX_DEGREE {
+        return Err(Error::new(
+            ErrorKind::DegreeTooHigh,
+            format!(
+                "the {what} numerator of a curve of degree {p} has degree {degree}, above the supported maximum"
+            ),
+        ));
+    }
+    Ok(())
+}
+
+/// The signed curvature in the middle of the domain (of a curve whose curvature is constant).
+fn middle_curvature<T: Scalar, C: PlanarCurve<T>>(curve: &C) -> Result<T> {
+    let (a, b) = curve.domain();
+    curve.signed_curvature((a + b) * cast::<T>(0.5))
+}
+
+/// An exact change of coordinates of homogeneous points: `(X − W m) / (s · ws)` for the
+/// coordinates, `W / ws` for the weight, with `s` and `ws` powers of two.
+pub(crate) struct Normalisation<T, const D: usize> {
+    pub(crate) middle: SVector<T, D>,
+    pub(crate) scale: T,
+    pub(crate) wscale: T,
+}
+
+impl<T: Scalar, const D: usize> Normalisation<T, D> {
+    pub(crate) fn identity() -> Self {
+        Self {
+            middle: SVector::zeros(),
+            scale: T::one(),
+            wscale: T::one(),
+        }
     }
 
-    fn derivative(&self, order: usize) -> Result<Self> {
-        Ok(Self::leaf(self.value.derivative(order)?))
-    }
-
-    /// The product; products of non-negative coefficients bound those of the product.
-    fn times(&self, other: &Self) -> Result<Self> {
-        Ok(Self {
-            value: product(&self.value, &other.value)?,
-            magnitude: product(&self.magnitude, &other.magnitude)?,
-        })
-    }
-
-    /// `alpha · a + beta · b`, with magnitude `|alpha| |a| + |beta| |b|`.
-    fn combination(alpha: T, a: &Self, beta: T, b: &Self) -> Result<Self> {
-        Ok(Self {
-            value: linear_combination(alpha, &a.value, beta, &b.value)?,
-            magnitude: linear_combination(alpha.abs(), &a.magnitude, beta.abs(), &b.magnitude)?,
-        })
-    }
-
-    /// The coefficients that are rounding of cancelled terms set to zero (and the
-    /// magnitudes of what remains restarted from the values).
-    fn cleaned(self) -> Self {
-        let threshold: T = cast(1e-10);
-        let points = self
-            .value
-            .control_points()
+    /// The middle of the control points' bounding box, a power of two near the largest step
+    /// between consecutive points and one near the largest weight.
+    pub(crate) fn of(points: &[SVector<T, D>], weights: &[T]) -> Self {
+        let legs = points
+            .windows(2)
+            .fold(0.0f64, |m, w| m.max(to_f64((w[1] - w[0]).amax())));
+        let largest = weights.iter().fold(0.0f64, |m, &w| m.max(to_f64(w)));
+        let (lo, hi) = points
             .iter()
-            .zip(self.magnitude.control_points())
-            .map(|(&v, &m)| {
-                if v.abs() <= threshold * m {
-                    T::zero()
-                } else {
-                    v
-                }
-            })
-            .collect();
-        Self::leaf(BSpline::new_unchecked(self.value.knots().clone(), points))
+            .fold((points[0], points[0]), |(lo, hi), p| (lo.inf(p), hi.sup(p)));
+        Self {
+            middle: (lo + hi) * cast::<T>(0.5),
+            scale: cast(spline_core::power_of_two_scale(legs)),
+            wscale: cast(spline_core::power_of_two_scale(largest)),
+        }
     }
+
+    /// The leaves: coordinate `k < D` and the weight (`k = D`), with Jacobians when asked.
+    pub(crate) fn leaves(
+        &self,
+        h: &BSpline<T, Homogeneous<T, D>>,
+        jacobian: bool,
+    ) -> Vec<Tracked<T>> {
+        let sw = self.scale * self.wscale;
+        (0..=D)
+            .map(|k| {
+                let mut d = vec![T::zero(); D + 1];
+                if k < D {
+                    d[k] = T::one() / sw;
+                    d[D] = -self.middle[k] / sw;
+                } else {
+                    d[D] = T::one() / self.wscale;
+                }
+                Tracked::coordinate(
+                    h,
+                    |q| {
+                        if k < D {
+                            (q.point[k] - q.weight * self.middle[k]) / sw
+                        } else {
+                            q.weight / self.wscale
+                        }
+                    },
+                    jacobian.then_some(d.as_slice()),
+                )
+            })
+            .collect()
+    }
+}
+
+/// `D` and `G` of [`rational_planar_numerators`] in the coordinates of `frame`, cleaned of
+/// rounding; with `accuracy > 0` the curve is first checked to be regular.
+fn rational_planar<T: Scalar>(
+    curve: &NurbsCurve<T, 2>,
+    frame: &Normalisation<T, 2>,
+    jacobian: bool,
+    accuracy: T,
+) -> Result<(Tracked<T>, Tracked<T>)> {
+    let [x, y, w]: [Tracked<T>; 3] = frame
+        .leaves(curve.homogeneous(), jacobian)
+        .try_into()
+        .map_err(|_| Error::new(ErrorKind::InvalidArgument, "three coordinates"))?;
+    let (x1, y1, w1) = (x.derivative(1)?, y.derivative(1)?, w.derivative(1)?);
+    let (x2, y2, w2) = (x.derivative(2)?, y.derivative(2)?, w.derivative(2)?);
+    // a · b − c · e
+    let cross = |a: &Tracked<T>, b: &Tracked<T>, c: &Tracked<T>, e: &Tracked<T>| {
+        a.times(b)?.minus(&c.times(e)?)
+    };
+    // N, N' and D = X (Y'W'' − W'Y'') − Y (X'W'' − W'X'') + W (X'Y'' − Y'X'').
+    let nx = cross(&x1, &w, &x, &w1)?;
+    let ny = cross(&y1, &w, &y, &w1)?;
+    let nx1 = cross(&x2, &w, &x, &w2)?;
+    let ny1 = cross(&y2, &w, &y, &w2)?;
+    let det = x
+        .times(&cross(&y1, &w2, &w1, &y2)?)?
+        .minus(&y.times(&cross(&x1, &w2, &w1, &x2)?)?)?
+        .plus(&w.times(&cross(&x1, &y2, &y1, &x2)?)?)?
+        .cleaned();
+    let nn = nx.times(&nx)?.plus(&ny.times(&ny)?)?;
+    if accuracy > T::zero() {
+        check_regular(&nn.value, accuracy)?;
+    }
+    let nn1 = nx.times(&nx1)?.plus(&ny.times(&ny1)?)?;
+    let three: T = cast(3.0);
+    let lead = det
+        .derivative(1)?
+        .times(&w)?
+        .plus(&det.times(&w1)?.scaled(three))?;
+    let g = lead
+        .times(&nn)?
+        .minus(&det.times(&w)?.times(&nn1)?.scaled(three))?
+        .cleaned();
+    Ok((det, g))
 }

@@ -56,16 +56,19 @@ mod bilinear;
 mod curves;
 mod features;
 mod maps;
+mod numerator;
 mod product;
 mod roots;
 mod segment_curvature;
+mod space;
 mod sparse;
 mod tensor;
 
 pub use bilinear::SparseBilinear;
 pub use curves::{Differentiated, Form, Invariant, PlanarInvariants};
 pub use features::{
-    CurveFeatures, PlanarFeatures, curvature_extrema, inflections, planar_features,
+    CurveFeatures, PlanarFeatures, RationalNumerators, curvature_extrema, inflections,
+    planar_features, rational_planar_numerators,
 };
 pub use maps::SplineMap;
 pub use nalgebra_sparse::CsrMatrix;
@@ -76,6 +79,7 @@ pub use product::{
 };
 pub use roots::{Zero, sign_change_params, zeros};
 pub use segment_curvature::{SegmentCurvature, SegmentWorkspace};
+pub use space::{SpaceCurveFeatures, SpaceFeatures, SpaceNumerators, space_numerators, torsion};
 pub use sparse::kron;
 pub use tensor::{
     Partial, QuadraticFunction, TensorMap, TensorProductMap, hessian_determinant, partial,

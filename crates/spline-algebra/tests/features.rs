@@ -1,6 +1,8 @@
 //! Inflections and curvature extrema of rational curves, against closed forms and against
 //! the sampled signed curvature.
 
+mod common;
+
 use nalgebra::Vector2;
 use spline_algebra::planar_features;
 use spline_geom::NurbsCurve;
@@ -139,4 +141,185 @@ fn circles_and_straight_segments_have_no_features() {
         f.inflections.is_empty() && f.curvature_extrema.is_empty(),
         "{f:?}"
     );
+}
+
+/// Circles report their constant curvature `1/r` (signed by the orientation), straight
+/// segments `0`, and neither an extremum.
+#[test]
+fn constant_curvature_is_reported_as_such() {
+    use spline_geom::{CircleConstruction, Frame};
+    for (radius, construction) in [
+        (1.0, CircleConstruction::Square),
+        (0.013, CircleConstruction::Triangle),
+        (7e4, CircleConstruction::Square),
+    ] {
+        let circle = NurbsCurve::circle(
+            &Frame::planar(Vector2::new(0.3, -2.0)),
+            radius,
+            construction,
+        )
+        .unwrap();
+        let f = planar_features(&circle, 1e-12).unwrap();
+        let kappa: f64 = f
+            .constant_curvature
+            .expect("a circle has constant curvature");
+        assert!(
+            (kappa.abs() * radius - 1.0).abs() < 1e-9,
+            "{radius}: {kappa}"
+        );
+        assert!(f.curvature_extrema.is_empty() && f.inflections.is_empty());
+    }
+    // A straight line as a polynomial cubic with exactly collinear points.
+    let line = spline_geom::BSpline::from_knots(
+        3,
+        vec![0.0, 0.0, 0.0, 0.0, 0.5, 1.0, 1.0, 1.0, 1.0],
+        vec![
+            Vector2::new(0.0, 0.0),
+            Vector2::new(1.0, 2.0),
+            Vector2::new(1.5, 3.0),
+            Vector2::new(4.0, 8.0),
+            Vector2::new(5.0, 10.0),
+        ],
+    )
+    .unwrap();
+    let f = planar_features(&line, 1e-12).unwrap();
+    assert_eq!(f.constant_curvature, Some(0.0));
+    // A curve of varying curvature reports none.
+    let w = std::f64::consts::FRAC_1_SQRT_2;
+    let arc = NurbsCurve::from_knots(
+        2,
+        vec![0.0, 0.0, 0.0, 1.0, 1.0, 1.0],
+        vec![
+            Vector2::new(2.0, 0.0),
+            Vector2::new(2.0, 1.0),
+            Vector2::new(0.0, 1.0),
+        ],
+        vec![1.0, w, 1.0],
+    )
+    .unwrap();
+    assert_eq!(
+        planar_features(&arc, 1e-12).unwrap().constant_curvature,
+        None
+    );
+}
+
+/// A full ellipse (a NURBS circle turned by 45° so that no vertex is at the seam, then
+/// squeezed to semi-axes 1 and ½): exactly four curvature extrema, each on an axis, and no
+/// inflection.
+#[test]
+fn an_ellipse_has_its_four_vertices_on_its_axes() {
+    use spline_geom::{CircleConstruction, Frame};
+    for construction in [CircleConstruction::Square, CircleConstruction::Triangle] {
+        let circle =
+            NurbsCurve::circle(&Frame::planar(Vector2::zeros()), 1.0, construction).unwrap();
+        let (s, c) = std::f64::consts::FRAC_PI_4.sin_cos();
+        let ellipse = circle
+            .map_control_points(|p| Vector2::new(c * p.x - s * p.y, 0.5 * (s * p.x + c * p.y)));
+        let f = planar_features(&ellipse, 1e-13).unwrap();
+        assert!(
+            f.inflections.is_empty() && f.constant_curvature.is_none(),
+            "{f:?}"
+        );
+        assert_eq!(f.curvature_extrema.len(), 4, "{construction:?}: {f:?}");
+        let mut on_x = 0;
+        for &u in &f.curvature_extrema {
+            let p = ellipse.eval(u).unwrap();
+            // Closed form: the vertices (±1, 0) and (0, ±½).
+            if p.y.abs() < 1e-10 {
+                assert!((p.x.abs() - 1.0).abs() < 1e-10, "{p}");
+                on_x += 1;
+            } else {
+                assert!(p.x.abs() < 1e-10 && (p.y.abs() - 0.5).abs() < 1e-10, "{p}");
+            }
+        }
+        assert_eq!(on_x, 2);
+    }
+}
+
+/// The Jacobians of the rational numerators with respect to the weighted control points
+/// against dual numbers (every column) and central differences.
+#[test]
+fn rational_numerator_jacobians_agree_with_dual_numbers_and_differences() {
+    use num_dual::Dual64;
+    use spline_algebra::rational_planar_numerators;
+    use spline_geom::{BSpline, Homogeneous};
+    let knots = vec![0.0, 0.0, 0.0, 0.0, 0.4, 1.0, 1.0, 1.0, 1.0];
+    let hom: Vec<[f64; 3]> = vec![
+        [0.0, 0.0, 1.0],
+        [1.2, 2.4, 1.2],
+        [1.25, -0.5, 0.5],
+        [6.0, 3.0, 2.0],
+        [5.0, 0.0, 1.0],
+    ];
+    let curve_of = |h: &[[f64; 3]]| {
+        NurbsCurve::from_homogeneous(
+            BSpline::from_knots(
+                3,
+                knots.clone(),
+                h.iter()
+                    .map(|q| Homogeneous::new(Vector2::new(q[0], q[1]), q[2]))
+                    .collect(),
+            )
+            .unwrap(),
+        )
+        .unwrap()
+    };
+    let n = rational_planar_numerators(&curve_of(&hom)).unwrap();
+    let jd = common::dense(&n.curvature_extremum.jacobian);
+    let jdet = common::dense(&n.inflection.jacobian);
+    assert_eq!(jd[0].len(), 15);
+    for col in 0..15 {
+        let dual = NurbsCurve::from_homogeneous(
+            BSpline::from_knots(
+                3,
+                knots.iter().map(|&k| Dual64::from(k)).collect(),
+                hom.iter()
+                    .enumerate()
+                    .map(|(i, q)| {
+                        let d =
+                            |k: usize| Dual64::new(q[k], if 3 * i + k == col { 1.0 } else { 0.0 });
+                        Homogeneous::new(Vector2::new(d(0), d(1)), d(2))
+                    })
+                    .collect(),
+            )
+            .unwrap(),
+        )
+        .unwrap();
+        let nd = rational_planar_numerators(&dual).unwrap();
+        for (which, jac, values) in [
+            ("G", &jd, nd.curvature_extremum.value.control_points()),
+            ("D", &jdet, nd.inflection.value.control_points()),
+        ] {
+            let scale = values
+                .iter()
+                .fold(0.0f64, |m, v| m.max(v.eps.abs()))
+                .max(1.0);
+            for (r, v) in values.iter().enumerate() {
+                assert!(
+                    (jac[r][col] - v.eps).abs() < 1e-10 * scale,
+                    "{which} row {r} col {col}: {} vs {}",
+                    jac[r][col],
+                    v.eps
+                );
+            }
+        }
+        // Central differences on the same column.
+        let h = 1e-6;
+        let shifted = |s: f64| {
+            let mut q = hom.clone();
+            q[col / 3][col % 3] += s;
+            rational_planar_numerators(&curve_of(&q)).unwrap()
+        };
+        let (plus, minus) = (shifted(h), shifted(-h));
+        let gp = plus.curvature_extremum.value.control_points();
+        let gm = minus.curvature_extremum.value.control_points();
+        let scale = gp.iter().fold(1.0f64, |m, v| m.max(v.abs()));
+        for r in 0..gp.len() {
+            let fd = (gp[r] - gm[r]) / (2.0 * h);
+            assert!(
+                (fd - jd[r][col]).abs() < 1e-5 * scale,
+                "fd row {r} col {col}"
+            );
+        }
+    }
 }
