@@ -58,7 +58,8 @@ enum Command {
     Product(algebra::ProductArgs),
     /// Signed curvature of a planar curve at parameters.
     Curvature(plot::CurvatureArgs),
-    /// Inflections and curvature extrema of a planar curve.
+    /// Inflections and curvature extrema of a planar curve; curvature extrema and torsion
+    /// zeros of a 3-D curve (B-spline or NURBS); constant curvature reported as such.
     Features(structural::ObjectArgs),
     /// Interpolate points with a B-spline curve.
     Interpolate(fitting::InterpolateArgs),

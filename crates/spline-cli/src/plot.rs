@@ -1,16 +1,17 @@
 //! The picture and curve-geometry subcommands: `plot`, `curvature`, `features`, for planar
-//! curves of every kind ([`PlanarCurve`], [`CurveFeatures`]).
+//! curves of every kind ([`PlanarCurve`], [`CurveFeatures`]) and, for `features`, 3-D
+//! curves ([`SpaceCurveFeatures`]).
 
 use crate::io;
 use crate::objects::{Object, check_dim, read_object};
 use crate::structural::ObjectArgs;
 use clap::Args;
-use nalgebra::Vector2;
+use nalgebra::{Vector2, Vector3};
 use serde_json::json;
-use spline_algebra::{CurveFeatures, PlanarFeatures};
+use spline_algebra::{CurveFeatures, PlanarFeatures, SpaceCurveFeatures, SpaceFeatures};
 use spline_core::{Error, ErrorKind, Result};
 use spline_geom::export::SvgPlot;
-use spline_geom::{BSpline, NurbsCurve, PlanarCurve};
+use spline_geom::{BSpline, NurbsCurve, ParamCurve, PlanarCurve};
 
 /// Root accuracy of `features`, relative to the length of the domain.
 const RELATIVE_ACCURACY: f64 = 1e-12;
@@ -48,9 +49,14 @@ enum Planar {
 
 /// Reads a planar curve; `what` says what needs it, for messages.
 fn read_planar(path: &str, what: &str) -> Result<Planar> {
+    planar_of(read_object(path)?, path, what)
+}
+
+/// The planar curve in an object read from `path`.
+fn planar_of(object: Object, path: &str, what: &str) -> Result<Planar> {
     let planar = |p: &crate::io::Pt| Vector2::new(p[0], p[1]);
     let dimension = |dim| check_dim(dim, 2, "a planar curve").map_err(|e| e.context(path));
-    match read_object(path)? {
+    match object {
         Object::Curve(c) => {
             dimension(c.dim)?;
             Ok(Planar::Polynomial(c.value.map_control_points(planar)))
@@ -126,13 +132,60 @@ pub fn curvature(args: &CurvatureArgs) -> Result<()> {
 }
 
 pub fn features(args: &ObjectArgs) -> Result<()> {
-    let features = match read_planar(&args.object, "features")? {
+    let path = &args.object;
+    let object = read_object(path)?;
+    let dim = match &object {
+        Object::Curve(c) => c.dim,
+        Object::Nurbs(c) => c.dim,
+        Object::Surface(_) | Object::NurbsSurface(_) => {
+            return Err(Error::new(
+                ErrorKind::InvalidArgument,
+                format!(
+                    "{path}: features needs a planar or 3-D curve, got a surface; use `spline surface-features` for surfaces"
+                ),
+            ));
+        }
+    };
+    if dim == 3 {
+        let spatial = |p: &crate::io::Pt| Vector3::new(p[0], p[1], p[2]);
+        let features = match object {
+            Object::Curve(c) => space_features_of(&c.value.map_control_points(spatial)),
+            Object::Nurbs(c) => space_features_of(&c.value.map_control_points(spatial)),
+            _ => unreachable!("surfaces are refused above"),
+        }
+        .map_err(|e| e.context(path))?;
+        let mut out = json!({
+            "curvature_extrema": features.curvature_extrema,
+            "torsion_zeros": features.torsion_zeros,
+        });
+        if let Some(k) = features.constant_curvature {
+            out["constant_curvature"] = json!(k);
+        }
+        if let Some(t) = features.constant_torsion {
+            out["constant_torsion"] = json!(t);
+        }
+        return io::print_json(&out);
+    }
+    let features = match planar_of(object, path, "features")? {
         Planar::Polynomial(c) => features_of(&c),
         Planar::Rational(c) => features_of(&c),
     }
-    .map_err(|e| e.context(&args.object))?;
-    io::print_json(&json!({
+    .map_err(|e| e.context(path))?;
+    let mut out = json!({
         "inflections": features.inflections,
         "curvature_extrema": features.curvature_extrema,
-    }))
+    });
+    if let Some(k) = features.constant_curvature {
+        out["constant_curvature"] = json!(k);
+    }
+    io::print_json(&out)
+}
+
+/// Curvature extrema and torsion zeros of a 3-D curve, located to `1e-12` times the domain
+/// length.
+fn space_features_of<C: ParamCurve<f64> + SpaceCurveFeatures<f64>>(
+    curve: &C,
+) -> Result<SpaceFeatures<f64>> {
+    let (a, b) = curve.domain();
+    curve.space_features(RELATIVE_ACCURACY * (b - a))
 }

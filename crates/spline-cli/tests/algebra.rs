@@ -270,6 +270,65 @@ fn features_of_known_curves() {
     );
 }
 
+/// NURBS and 3-D curves: a circle reports its constant curvature (and, in space, zero
+/// torsion); the twisted cubic `(u, u², u³)` on [−1, 1] has one curvature extremum at 0
+/// and no torsion zero; `(u, u², u⁴)` one torsion zero at 0.
+#[test]
+fn features_of_nurbs_and_space_curves() {
+    let circle = run(
+        &["make", "circle", "--center", "[1, 2]", "--radius", "4"],
+        None,
+    )
+    .1;
+    let (code, stdout, _) = run(&["features", "-"], Some(&circle));
+    assert_eq!(code, 0);
+    let out: Value = serde_json::from_str(&stdout).unwrap();
+    assert!(
+        (out["constant_curvature"].as_f64().unwrap().abs() - 0.25).abs() < 1e-12,
+        "{out}"
+    );
+    assert!(out["curvature_extrema"].as_array().unwrap().is_empty());
+    let circle3 = run(
+        &[
+            "make",
+            "circle",
+            "--center",
+            "[1, 2, 3]",
+            "--normal",
+            "[1, 1, 1]",
+            "--radius",
+            "2",
+        ],
+        None,
+    )
+    .1;
+    let (code, stdout, _) = run(&["features", "-"], Some(&circle3));
+    assert_eq!(code, 0);
+    let out: Value = serde_json::from_str(&stdout).unwrap();
+    assert!(
+        (out["constant_curvature"].as_f64().unwrap() - 0.5).abs() < 1e-12,
+        "{out}"
+    );
+    assert_eq!(out["constant_torsion"], json!(0.0));
+    let third = 1.0 / 3.0;
+    let twisted = TempFile::new(&json!({"degree": 3, "knots": [-1, -1, -1, -1, 1, 1, 1, 1],
+        "control_points": [[-1, 1, -1], [-third, -third, 1], [third, -third, -1], [1, 1, 1]]}));
+    let out = ok_json(&["features", twisted.path()]);
+    assert!(out["torsion_zeros"].as_array().unwrap().is_empty(), "{out}");
+    let extrema = out["curvature_extrema"].as_array().unwrap();
+    assert_eq!(extrema.len(), 1, "{out}");
+    assert!(extrema[0].as_f64().unwrap().abs() < 1e-12);
+    // (u, u², u⁴) on [0, 1] shifted to [−1, 1]: Bernstein points of (u, u², u⁴) on [−1, 1].
+    let quartic = TempFile::new(
+        &json!({"degree": 4, "knots": [-1, -1, -1, -1, -1, 1, 1, 1, 1, 1],
+        "control_points": [[-1, 1, 1], [-0.5, 0, -1], [0, -third, 1], [0.5, 0, -1], [1, 1, 1]]}),
+    );
+    let out = ok_json(&["features", quartic.path()]);
+    let zeros = out["torsion_zeros"].as_array().unwrap();
+    assert_eq!(zeros.len(), 1, "{out}");
+    assert!(zeros[0].as_f64().unwrap().abs() < 1e-12);
+}
+
 #[test]
 fn errors_exit_2_with_one_line() {
     let (a, b) = factors();
@@ -325,7 +384,10 @@ fn errors_exit_2_with_one_line() {
         "zero velocity",
     );
     assert_usage_error(&["curvature", planar.path(), "--at", "0.5,"], None, "--at");
-    assert_usage_error(&["features", spatial.path()], None, "planar");
+    let spatial_line = TempFile::new(
+        &json!({"degree": 1, "knots": [0, 0, 1, 1], "control_points": [[0, 0, 0], [1, 1, 0]]}),
+    );
+    assert_usage_error(&["features", spatial_line.path()], None, "degree");
     assert_usage_error(&["features", planar.path()], None, "degree");
     assert_usage_error(&["features", cusp.path()], None, "not regular");
     assert_usage_error(&["features", fa.path()], None, "planar");
