@@ -62,7 +62,9 @@ mod roots;
 mod segment_curvature;
 mod space;
 mod sparse;
+mod surface_numerators;
 mod tensor;
+mod zero_set;
 
 pub use bilinear::SparseBilinear;
 pub use curves::{Differentiated, Form, Invariant, PlanarInvariants};
@@ -81,7 +83,9 @@ pub use roots::{Zero, sign_change_params, zeros};
 pub use segment_curvature::{SegmentCurvature, SegmentWorkspace};
 pub use space::{SpaceCurveFeatures, SpaceFeatures, SpaceNumerators, space_numerators, torsion};
 pub use sparse::kron;
+pub use surface_numerators::{CurvatureNumerators, curvature_numerators, parabolic_lines};
 pub use tensor::{
     Partial, QuadraticFunction, TensorMap, TensorProductMap, hessian_determinant, partial,
     partials, ridge_polynomials, tensor_linear_combination, tensor_product,
 };
+pub use zero_set::{UvPolyline, ZeroSet, zero_set};

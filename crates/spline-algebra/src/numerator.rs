@@ -8,28 +8,141 @@ use crate::curves::Differentiated;
 use crate::maps::SplineMap;
 use crate::product::{ProductMap, common_space, linear_combination, product};
 use crate::sparse::{add_scaled, apply_points, csr_from_rows, matmul};
+use crate::tensor::{tensor_linear_combination, tensor_product};
 use nalgebra_sparse::CsrMatrix;
 use spline_core::{Result, Scalar, cast};
-use spline_geom::{BSpline, Homogeneous};
+use spline_geom::{BSpline, Homogeneous, Surface};
 
-/// A B-spline function with a bound on the magnitudes that entered each coefficient (sums
-/// of absolute values of the terms, through products and linear combinations): where a
-/// coefficient is below `1e-10` of its magnitude it is rounding left by cancellation, not
-/// a value. A circle's curvature-extremum numerator, a straight segment's curvature
-/// numerator cancel that way, and sign changes of the noise would be reported as features.
+/// What [`Tracked`] asks of a function: coefficients, products and linear combinations
+/// (the latter two with the Jacobians carried along where the kind supports them).
+pub(crate) trait Function<T: Scalar>: Sized {
+    fn coefficients(&self) -> &[T];
+    /// The same space with other coefficients.
+    fn with_coefficients(&self, coefficients: Vec<T>) -> Self;
+    /// The product, and its Jacobian from those of the factors (when both are given).
+    fn times(
+        a: &Self,
+        b: &Self,
+        jacobians: Option<(&CsrMatrix<T>, &CsrMatrix<T>)>,
+    ) -> Result<(Self, Option<CsrMatrix<T>>)>;
+    /// `alpha · a + beta · b`, and its Jacobian.
+    fn combination(
+        alpha: T,
+        a: &Self,
+        beta: T,
+        b: &Self,
+        jacobians: Option<(&CsrMatrix<T>, &CsrMatrix<T>)>,
+    ) -> Result<(Self, Option<CsrMatrix<T>>)>;
+}
+
+impl<T: Scalar> Function<T> for BSpline<T, T> {
+    fn coefficients(&self) -> &[T] {
+        self.control_points()
+    }
+
+    fn with_coefficients(&self, coefficients: Vec<T>) -> Self {
+        BSpline::new_unchecked(self.knots().clone(), coefficients)
+    }
+
+    fn times(
+        a: &Self,
+        b: &Self,
+        jacobians: Option<(&CsrMatrix<T>, &CsrMatrix<T>)>,
+    ) -> Result<(Self, Option<CsrMatrix<T>>)> {
+        let Some((ja, jb)) = jacobians else {
+            return Ok((product(a, b)?, None));
+        };
+        let map = ProductMap::new(a.knots(), b.knots())?;
+        let jacobian = add_scaled(
+            T::one(),
+            &matmul(&map.jacobian_left(b.control_points())?, ja),
+            T::one(),
+            &matmul(&map.jacobian_right(a.control_points())?, jb),
+        );
+        Ok((map.product(a, b)?, Some(jacobian)))
+    }
+
+    fn combination(
+        alpha: T,
+        a: &Self,
+        beta: T,
+        b: &Self,
+        jacobians: Option<(&CsrMatrix<T>, &CsrMatrix<T>)>,
+    ) -> Result<(Self, Option<CsrMatrix<T>>)> {
+        let Some((ja, jb)) = jacobians else {
+            return Ok((linear_combination(alpha, a, beta, b)?, None));
+        };
+        let (ma, mb) = common_space(a.knots(), b.knots())?;
+        let xa = ma.apply(a.control_points())?;
+        let xb = mb.apply(b.control_points())?;
+        let points = xa
+            .iter()
+            .zip(&xb)
+            .map(|(&x, &y)| alpha * x + beta * y)
+            .collect();
+        let jacobian = add_scaled(
+            alpha,
+            &matmul(ma.matrix(), ja),
+            beta,
+            &matmul(mb.matrix(), jb),
+        );
+        Ok((
+            BSpline::new_unchecked(ma.target().clone(), points),
+            Some(jacobian),
+        ))
+    }
+}
+
+/// Bivariate functions: no Jacobians (the variables would be the whole net).
+impl<T: Scalar> Function<T> for Surface<T, T> {
+    fn coefficients(&self) -> &[T] {
+        self.control_points()
+    }
+
+    fn with_coefficients(&self, coefficients: Vec<T>) -> Self {
+        Surface::new_unchecked(self.knots_u().clone(), self.knots_v().clone(), coefficients)
+    }
+
+    fn times(
+        a: &Self,
+        b: &Self,
+        _: Option<(&CsrMatrix<T>, &CsrMatrix<T>)>,
+    ) -> Result<(Self, Option<CsrMatrix<T>>)> {
+        Ok((tensor_product(a, b)?, None))
+    }
+
+    fn combination(
+        alpha: T,
+        a: &Self,
+        beta: T,
+        b: &Self,
+        _: Option<(&CsrMatrix<T>, &CsrMatrix<T>)>,
+    ) -> Result<(Self, Option<CsrMatrix<T>>)> {
+        Ok((tensor_linear_combination(alpha, a, beta, b)?, None))
+    }
+}
+
+/// A function (univariate [`BSpline`] or bivariate [`Surface`]) with a bound on the
+/// magnitudes that entered each coefficient (sums of absolute values of the terms, through
+/// products and linear combinations): where a coefficient is below `1e-10` of its magnitude
+/// it is rounding left by cancellation, not a value. A circle's curvature-extremum
+/// numerator, a straight segment's curvature numerator, a torus's Gaussian-curvature
+/// numerator on its parabolic circles cancel that way, and sign changes of the noise would
+/// be reported as features.
 ///
-/// With `jacobian`, the sparse Jacobian of the coefficients with respect to the variables
-/// of the leaves (rows: coefficients).
-pub(crate) struct Tracked<T: Scalar> {
-    pub(crate) value: BSpline<T, T>,
-    magnitude: BSpline<T, T>,
+/// With `jacobian` (curves), the sparse Jacobian of the coefficients with respect to the
+/// variables of the leaves (rows: coefficients).
+pub(crate) struct Tracked<T: Scalar, F = BSpline<T, T>> {
+    pub(crate) value: F,
+    magnitude: F,
     pub(crate) jacobian: Option<CsrMatrix<T>>,
 }
 
-impl<T: Scalar> Tracked<T> {
+impl<T: Scalar, F: Function<T>> Tracked<T, F> {
     /// An input (a coordinate or a derivative): its magnitudes are its coefficients' sizes.
-    pub(crate) fn leaf(value: BSpline<T, T>, jacobian: Option<CsrMatrix<T>>) -> Self {
-        let magnitude = value.map_control_points(|&c| c.abs());
+    pub(crate) fn leaf(value: F, jacobian: Option<CsrMatrix<T>>) -> Self {
+        let magnitude =
+            value.with_coefficients(value.coefficients().iter().map(|&c| c.abs()).collect());
         Self {
             value,
             magnitude,
@@ -37,6 +150,84 @@ impl<T: Scalar> Tracked<T> {
         }
     }
 
+    fn jacobians<'a>(a: &'a Self, b: &'a Self) -> Option<(&'a CsrMatrix<T>, &'a CsrMatrix<T>)> {
+        a.jacobian.as_ref().zip(b.jacobian.as_ref())
+    }
+
+    /// The product; products of non-negative coefficients bound those of the product.
+    pub(crate) fn times(&self, other: &Self) -> Result<Self> {
+        let (magnitude, _) = F::times(&self.magnitude, &other.magnitude, None)?;
+        let (value, jacobian) = F::times(&self.value, &other.value, Self::jacobians(self, other))?;
+        Ok(Self {
+            value,
+            magnitude,
+            jacobian,
+        })
+    }
+
+    /// `alpha · a + beta · b`, with magnitude `|alpha| |a| + |beta| |b|`.
+    pub(crate) fn combination(alpha: T, a: &Self, beta: T, b: &Self) -> Result<Self> {
+        let (magnitude, _) =
+            F::combination(alpha.abs(), &a.magnitude, beta.abs(), &b.magnitude, None)?;
+        let (value, jacobian) =
+            F::combination(alpha, &a.value, beta, &b.value, Self::jacobians(a, b))?;
+        Ok(Self {
+            value,
+            magnitude,
+            jacobian,
+        })
+    }
+
+    /// `a + b`.
+    pub(crate) fn plus(&self, other: &Self) -> Result<Self> {
+        Self::combination(T::one(), self, T::one(), other)
+    }
+
+    /// `a − b`.
+    pub(crate) fn minus(&self, other: &Self) -> Result<Self> {
+        Self::combination(T::one(), self, -T::one(), other)
+    }
+
+    /// `s · a`.
+    pub(crate) fn scaled(&self, s: T) -> Self {
+        let scale =
+            |f: &F, s: T| f.with_coefficients(f.coefficients().iter().map(|&c| c * s).collect());
+        Self {
+            value: scale(&self.value, s),
+            magnitude: scale(&self.magnitude, s.abs()),
+            jacobian: self.jacobian.as_ref().map(|j| j * s),
+        }
+    }
+
+    /// The coefficients that are rounding of cancelled terms set to zero (and the
+    /// magnitudes of what remains restarted from the values). The Jacobian is kept: a
+    /// numerator that vanishes identically need not have a vanishing derivative.
+    pub(crate) fn cleaned(self) -> Self {
+        let threshold: T = cast(1e-10);
+        let points = self
+            .value
+            .coefficients()
+            .iter()
+            .zip(self.magnitude.coefficients())
+            .map(|(&v, &m)| {
+                if v.abs() <= threshold * m {
+                    T::zero()
+                } else {
+                    v
+                }
+            })
+            .collect();
+        Self::leaf(self.value.with_coefficients(points), self.jacobian)
+    }
+
+    /// Whether every coefficient is exactly zero (after [`Tracked::cleaned`]: the function
+    /// vanishes identically up to rounding).
+    pub(crate) fn is_zero(&self) -> bool {
+        self.value.coefficients().iter().all(|c| *c == T::zero())
+    }
+}
+
+impl<T: Scalar> Tracked<T> {
     /// Coordinate `k` of the homogeneous control points (`k = D` is the weight) after the
     /// affine map `f`, with the Jacobian of `f`'s result with respect to the interleaved
     /// homogeneous coordinates $[w_i x_i, w_i y_i, \dots, w_i]$ when `derivative` gives
@@ -82,111 +273,6 @@ impl<T: Scalar> Tracked<T> {
         })
     }
 
-    /// The product; products of non-negative coefficients bound those of the product.
-    pub(crate) fn times(&self, other: &Self) -> Result<Self> {
-        let magnitude = product(&self.magnitude, &other.magnitude)?;
-        let (Some(ja), Some(jb)) = (&self.jacobian, &other.jacobian) else {
-            return Ok(Self {
-                value: product(&self.value, &other.value)?,
-                magnitude,
-                jacobian: None,
-            });
-        };
-        let map = ProductMap::new(self.value.knots(), other.value.knots())?;
-        let value = map.product(&self.value, &other.value)?;
-        let jacobian = add_scaled(
-            T::one(),
-            &matmul(&map.jacobian_left(other.value.control_points())?, ja),
-            T::one(),
-            &matmul(&map.jacobian_right(self.value.control_points())?, jb),
-        );
-        Ok(Self {
-            value,
-            magnitude,
-            jacobian: Some(jacobian),
-        })
-    }
-
-    /// `alpha · a + beta · b`, with magnitude `|alpha| |a| + |beta| |b|`.
-    pub(crate) fn combination(alpha: T, a: &Self, beta: T, b: &Self) -> Result<Self> {
-        let magnitude = linear_combination(alpha.abs(), &a.magnitude, beta.abs(), &b.magnitude)?;
-        let (Some(ja), Some(jb)) = (&a.jacobian, &b.jacobian) else {
-            return Ok(Self {
-                value: linear_combination(alpha, &a.value, beta, &b.value)?,
-                magnitude,
-                jacobian: None,
-            });
-        };
-        let (ma, mb) = common_space(a.value.knots(), b.value.knots())?;
-        let xa = ma.apply(a.value.control_points())?;
-        let xb = mb.apply(b.value.control_points())?;
-        let points = xa
-            .iter()
-            .zip(&xb)
-            .map(|(&x, &y)| alpha * x + beta * y)
-            .collect();
-        let jacobian = add_scaled(
-            alpha,
-            &matmul(ma.matrix(), ja),
-            beta,
-            &matmul(mb.matrix(), jb),
-        );
-        Ok(Self {
-            value: BSpline::new_unchecked(ma.target().clone(), points),
-            magnitude,
-            jacobian: Some(jacobian),
-        })
-    }
-
-    /// `a + b`.
-    pub(crate) fn plus(&self, other: &Self) -> Result<Self> {
-        Self::combination(T::one(), self, T::one(), other)
-    }
-
-    /// `a − b`.
-    pub(crate) fn minus(&self, other: &Self) -> Result<Self> {
-        Self::combination(T::one(), self, -T::one(), other)
-    }
-
-    /// `s · a`.
-    pub(crate) fn scaled(&self, s: T) -> Self {
-        Self {
-            value: self.value.map_control_points(|&c| c * s),
-            magnitude: self.magnitude.map_control_points(|&c| c * s.abs()),
-            jacobian: self.jacobian.as_ref().map(|j| j * s),
-        }
-    }
-
-    /// The coefficients that are rounding of cancelled terms set to zero (and the
-    /// magnitudes of what remains restarted from the values). The Jacobian is kept: a
-    /// numerator that vanishes identically need not have a vanishing derivative.
-    pub(crate) fn cleaned(self) -> Self {
-        let threshold: T = cast(1e-10);
-        let points = self
-            .value
-            .control_points()
-            .iter()
-            .zip(self.magnitude.control_points())
-            .map(|(&v, &m)| {
-                if v.abs() <= threshold * m {
-                    T::zero()
-                } else {
-                    v
-                }
-            })
-            .collect();
-        Self::leaf(
-            BSpline::new_unchecked(self.value.knots().clone(), points),
-            self.jacobian,
-        )
-    }
-
-    /// Whether every coefficient is exactly zero (after [`Tracked::cleaned`]: the function
-    /// vanishes identically up to rounding).
-    pub(crate) fn is_zero(&self) -> bool {
-        self.value.control_points().iter().all(|c| *c == T::zero())
-    }
-
     /// The value with its Jacobian (empty if none was tracked).
     pub(crate) fn differentiated(self) -> Differentiated<T> {
         let n = self.value.control_points().len();
@@ -198,17 +284,20 @@ impl<T: Scalar> Tracked<T> {
 }
 
 /// `a · b` for 3-vectors of functions.
-pub(crate) fn dot3<T: Scalar>(a: &[Tracked<T>; 3], b: &[Tracked<T>; 3]) -> Result<Tracked<T>> {
+pub(crate) fn dot3<T: Scalar, F: Function<T>>(
+    a: &[Tracked<T, F>; 3],
+    b: &[Tracked<T, F>; 3],
+) -> Result<Tracked<T, F>> {
     a[0].times(&b[0])?
         .plus(&a[1].times(&b[1])?)?
         .plus(&a[2].times(&b[2])?)
 }
 
 /// `a × b` for 3-vectors of functions.
-pub(crate) fn cross3<T: Scalar>(
-    a: &[Tracked<T>; 3],
-    b: &[Tracked<T>; 3],
-) -> Result<[Tracked<T>; 3]> {
+pub(crate) fn cross3<T: Scalar, F: Function<T>>(
+    a: &[Tracked<T, F>; 3],
+    b: &[Tracked<T, F>; 3],
+) -> Result<[Tracked<T, F>; 3]> {
     let c = |i: usize, j: usize| a[i].times(&b[j])?.minus(&a[j].times(&b[i])?);
     Ok([c(1, 2)?, c(2, 0)?, c(0, 1)?])
 }

@@ -80,8 +80,8 @@ impl<T: Scalar> SpaceCurveFeatures<T> for NurbsCurve<T, 3> {
 /// $C' = N / W^2$) and $M = W \bar X' \times \bar X'' + W' \bar X'' \times \bar X + W''
 /// \bar X \times \bar X'$ (so $C' \times C'' = M / W^3$), the curvature is
 /// $\kappa^2 = W^6 |M|^2 / |N|^6$ and
-/// $$(\kappa^2)' = \frac{2 W^5}{|N|^8} \Big( (M \cdot M') W |N|^2 + 3 W' |M|^2 |N|^2
-/// - 3 W |M|^2 (N \cdot N') \Big),$$
+/// $$(\kappa^2)' = \frac{2 W^5}{|N|^8} \Big( (M \cdot M') W |N|^2 + 3 W' |M|^2 |N|^2 -
+/// 3 W |M|^2 (N \cdot N') \Big),$$
 /// the bracket being the curvature numerator (degree `11p − 7`). The torsion numerator is
 /// $-\det(P, P', P'', P''') = W^4 \det(C', C'', C''')$ (degree `4p − 6`), positive where
 /// the torsion is.

@@ -1,6 +1,8 @@
 //! Curvature extrema and torsion zeros of space curves, against closed forms, dense
 //! sampling, dual numbers and finite differences.
 
+#![allow(clippy::needless_range_loop)]
+
 mod common;
 
 use nalgebra::Vector3;
@@ -123,16 +125,16 @@ fn rational_space_features_match_dense_sampling() {
     };
     let mut seen = (0, 0);
     for case in 0..12 {
-        let n = 6;
+        let n: usize = 6;
         let points: Vec<Vector3<f64>> = (0..n)
             .map(|i| Vector3::new(i as f64 + next(), 3.0 * next() - 1.5, 3.0 * next() - 1.5))
             .collect();
         let weights: Vec<f64> = (0..n)
-            .map(|i| {
+            .map(|_| {
                 if case % 2 == 0 {
                     1.0
                 } else {
-                    0.4 + 2.0 * next() + 0.0 * i as f64
+                    0.4 + 2.0 * next()
                 }
             })
             .collect();

@@ -1,0 +1,224 @@
+//! Curvature numerators of surfaces and their zero sets (parabolic lines), against closed
+//! forms (the torus), the pointwise curvatures of spline-geom and dense sampling.
+
+use nalgebra::Vector3;
+use spline_algebra::{curvature_numerators, parabolic_lines, zero_set};
+use spline_core::KnotVector;
+use spline_geom::{NurbsSurface, Surface};
+
+/// Deterministic uniform numbers in [0, 1).
+fn rng(mut seed: u64) -> impl FnMut() -> f64 {
+    move || {
+        seed ^= seed << 13;
+        seed ^= seed >> 7;
+        seed ^= seed << 17;
+        (seed >> 11) as f64 / (1u64 << 53) as f64
+    }
+}
+
+/// A bicubic surface over [0, 1]² with two interior knots each way: a random height
+/// field over a slightly sheared grid, random weights when `rational`.
+fn random_surface(seed: u64, rational: bool) -> NurbsSurface<f64, 3> {
+    let mut next = rng(seed);
+    let knots = KnotVector::new(3, vec![0.0, 0.0, 0.0, 0.0, 0.4, 0.7, 1.0, 1.0, 1.0, 1.0]).unwrap();
+    let n = knots.num_basis();
+    let mut points = Vec::new();
+    let mut weights = Vec::new();
+    for i in 0..n {
+        for j in 0..n {
+            points.push(Vector3::new(
+                i as f64 + 0.3 * j as f64 + 0.2 * next(),
+                j as f64 + 0.2 * next(),
+                2.0 * next() - 1.0,
+            ));
+            weights.push(if rational { 0.5 + 1.5 * next() } else { 1.0 });
+        }
+    }
+    NurbsSurface::new(knots.clone(), knots, points, weights).unwrap()
+}
+
+/// The torus's parabolic lines are exactly its top and bottom circles: two closed curves on
+/// parameter lines, every point at height ±r above the centre plane and at distance R from
+/// the axis; nothing else, whatever the centre, axis and radii.
+#[test]
+fn torus_parabolic_lines_are_its_top_and_bottom_circles() {
+    for (center, axis, major, minor) in [
+        (Vector3::zeros(), Vector3::z(), 2.0, 1.0),
+        (
+            Vector3::new(1.0, -2.0, 0.5),
+            Vector3::new(1.0, 2.0, 2.0),
+            5.0,
+            0.3,
+        ),
+        (
+            Vector3::new(-3e3, 1e3, 7.0),
+            Vector3::new(0.0, 1.0, 0.0),
+            0.02,
+            0.015,
+        ),
+    ] {
+        let torus = NurbsSurface::torus(center, axis, major, minor).unwrap();
+        let lines = parabolic_lines(&torus, 8).unwrap();
+        assert_eq!(lines.curves.len(), 2, "{lines:?}");
+        assert!(lines.regions.is_empty() && lines.singular.is_empty());
+        let a = axis.normalize();
+        let mut heights = Vec::new();
+        for curve in &lines.curves {
+            // A parameter line spanning the whole revolution.
+            let fixed = (0..2).find(|&k| curve.iter().all(|p| p[k] == curve[0][k]));
+            assert!(fixed.is_some(), "not a parameter line: {curve:?}");
+            let k = 1 - fixed.unwrap();
+            let (lo, hi) = curve
+                .iter()
+                .fold((1.0f64, 0.0f64), |(lo, hi), p| (lo.min(p[k]), hi.max(p[k])));
+            assert!(lo == 0.0 && hi == 1.0, "{lo} {hi}");
+            let h = a.dot(&(torus.eval(curve[0][0], curve[0][1]).unwrap() - center));
+            heights.push(h);
+            for p in curve {
+                let x = torus.eval(p[0], p[1]).unwrap() - center;
+                let along = a.dot(&x);
+                let radial = (x - a * along).norm();
+                assert!(
+                    (along.abs() - minor).abs() < 1e-12 * major.max(1.0),
+                    "{along}"
+                );
+                assert!((radial - major).abs() < 1e-12 * major.max(1.0), "{radial}");
+            }
+        }
+        assert!(
+            heights[0] * heights[1] < 0.0,
+            "one top, one bottom: {heights:?}"
+        );
+    }
+}
+
+/// The signs of the numerators are the signs of K and H computed pointwise by spline-geom
+/// (fundamental forms from the derivatives), on random polynomial and rational bicubics.
+#[test]
+fn numerator_signs_are_the_curvature_signs() {
+    for (seed, rational) in [(1, false), (2, true), (3, true)] {
+        let s = random_surface(seed, rational);
+        let n = curvature_numerators(&s).unwrap();
+        let mut next = rng(seed + 100);
+        let mut checked = [0, 0];
+        for _ in 0..400 {
+            let (u, v) = (next(), next());
+            let lp = s.local_properties(u, v).unwrap();
+            let (k, h) = (n.gaussian.eval(u, v).unwrap(), n.mean.eval(u, v).unwrap());
+            // Skip points too close to a zero to have a well-defined sign.
+            if lp.gaussian_curvature.abs() > 1e-6 {
+                assert_eq!(
+                    k.signum(),
+                    lp.gaussian_curvature.signum(),
+                    "K at ({u}, {v})"
+                );
+                checked[0] += 1;
+            }
+            if lp.mean_curvature.abs() > 1e-6 {
+                assert_eq!(h.signum(), lp.mean_curvature.signum(), "H at ({u}, {v})");
+                checked[1] += 1;
+            }
+        }
+        assert!(checked[0] > 300 && checked[1] > 300, "{checked:?}");
+    }
+}
+
+/// Dense sampling: along many lines `v = c` (and `u = c`), the sign changes of the
+/// pointwise K are exactly where the reported parabolic lines cross the line — every sign
+/// change found, none invented.
+#[test]
+fn parabolic_lines_match_dense_sampling() {
+    let mut total = 0;
+    for (seed, rational) in [(11, false), (12, true), (13, false), (14, true)] {
+        let s = random_surface(seed, rational);
+        let lines = parabolic_lines(&s, 16).unwrap();
+        assert!(lines.regions.is_empty());
+        let m = 4000;
+        for axis in 0..2 {
+            for c in [0.1234, 0.3321, 0.5077, 0.6941, 0.8813] {
+                let at = |t: f64| if axis == 0 { (t, c) } else { (c, t) };
+                let k: Vec<f64> = (0..=m)
+                    .map(|j| {
+                        let (u, v) = at(j as f64 / m as f64);
+                        s.local_properties(u, v).unwrap().gaussian_curvature
+                    })
+                    .collect();
+                let sampled: Vec<f64> = (1..=m)
+                    .filter(|&j| k[j - 1] * k[j] < 0.0)
+                    .map(|j| (j as f64 - 0.5) / m as f64)
+                    .collect();
+                // Crossings of the polylines with the line (the other coordinate = c).
+                let o = 1 - axis;
+                let mut found: Vec<f64> = Vec::new();
+                for curve in &lines.curves {
+                    for w in curve.windows(2) {
+                        let (a, b) = (w[0][o] - c, w[1][o] - c);
+                        if a * b < 0.0 || (a == 0.0 && b != 0.0) {
+                            let t = a / (a - b);
+                            found.push(w[0][axis] + t * (w[1][axis] - w[0][axis]));
+                        }
+                    }
+                }
+                found.sort_by(f64::total_cmp);
+                assert_eq!(
+                    found.len(),
+                    sampled.len(),
+                    "seed {seed} axis {axis} c {c}: {found:?} vs {sampled:?}"
+                );
+                for (f, e) in found.iter().zip(&sampled) {
+                    // The polyline is a chord between exact points: within a sample step
+                    // plus the chord's sagitta.
+                    assert!(
+                        (f - e).abs() < 5e-3,
+                        "seed {seed}: {found:?} vs {sampled:?}"
+                    );
+                }
+                total += sampled.len();
+            }
+        }
+    }
+    assert!(total > 20, "the check is not vacuous: {total}");
+}
+
+/// The zero set of closed-form functions: a circle `(u − ½)² + (v − ½)² = ¼²` is one closed
+/// curve; `(u − ½)(v − ½)` is the two lines `u = ½` and `v = ½` (the subdivision meets the
+/// crossing exactly: every quarter has one sign and zero edges).
+#[test]
+fn zero_sets_of_closed_forms() {
+    // Bernstein coefficients of (u − a)² on [0, 1]: a², a² − a, (1 − a)².
+    let k = KnotVector::new(2, vec![0.0, 0.0, 0.0, 1.0, 1.0, 1.0]).unwrap();
+    let sq = |a: f64| [a * a, a * a - a, (1.0 - a) * (1.0 - a)];
+    let (su, sv) = (sq(0.5), sq(0.5));
+    let coefficients: Vec<f64> = (0..3)
+        .flat_map(|i| (0..3).map(move |j| su[i] + sv[j] - 0.0625))
+        .collect();
+    let f = Surface::new(k.clone(), k.clone(), coefficients).unwrap();
+    let zs = zero_set(&f, 32).unwrap();
+    assert_eq!(zs.curves.len(), 1, "{zs:?}");
+    let curve = &zs.curves[0];
+    assert_eq!(curve.first(), curve.last(), "closed");
+    for p in curve {
+        assert!(((p[0] - 0.5).hypot(p[1] - 0.5) - 0.25).abs() < 1e-12);
+    }
+    let k1 = KnotVector::new(1, vec![0.0, 0.0, 1.0, 1.0]).unwrap();
+    let saddle = Surface::new(k1.clone(), k1, vec![0.25, -0.25, -0.25, 0.25]).unwrap();
+    let zs = zero_set(&saddle, 4).unwrap();
+    assert_eq!(zs.curves.len(), 2, "{zs:?}");
+    for (k, curve) in zs.curves.iter().enumerate() {
+        let fixed = if curve[0][0] == 0.5 && curve[1][0] == 0.5 {
+            0
+        } else {
+            1
+        };
+        assert!(curve.iter().all(|p| p[fixed] == 0.5), "{k}: {curve:?}");
+        let span: Vec<f64> = curve.iter().map(|p| p[1 - fixed]).collect();
+        assert_eq!(
+            (
+                span[0].min(span[span.len() - 1]),
+                span[0].max(span[span.len() - 1])
+            ),
+            (0.0, 1.0)
+        );
+    }
+    assert!(zero_set(&f, 0).is_err());
+}
