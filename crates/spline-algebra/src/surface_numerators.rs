@@ -38,6 +38,9 @@ pub struct CurvatureNumerators<T> {
     pub gaussian: Surface<T, T>,
     /// The numerator of the mean curvature.
     pub mean: Surface<T, T>,
+    /// $\hat E \hat G - \hat F^2$, a positive multiple of $|S_u \times S_v|^2$: zero where
+    /// the parametrisation is singular (the poles of a sphere).
+    pub area: Surface<T, T>,
 }
 
 type Bivariate<T> = Tracked<T, Surface<T, T>>;
@@ -172,7 +175,9 @@ pub fn curvature_numerators<T: Scalar>(
         .minus(&f.times(&m)?.scaled(two))?
         .plus(&g.times(&l)?)?
         .cleaned();
+    let area = e.times(&g)?.minus(&f.times(&f)?)?.cleaned();
     Ok(CurvatureNumerators {
+        area: area.value,
         first: [e.value, f.value, g.value],
         second: [l.value, m.value, n.value],
         gaussian: gaussian.value,
@@ -183,7 +188,9 @@ pub fn curvature_numerators<T: Scalar>(
 /// The parabolic lines (`K = 0`) of a surface: the [`crate::zero_set`] of the numerator of
 /// its Gaussian curvature ([`curvature_numerators`]), as polylines in `(u, v)` with
 /// `samples` points per patch width; regions where `K ≡ 0` (developable pieces) are
-/// reported as regions.
+/// reported as regions. Where the parametrisation is singular (`S_u × S_v = 0`, as on the
+/// lines of a sphere's net that map to its poles) the numerator vanishes too; those pieces
+/// are not parabolic lines and are left out.
 ///
 /// ```
 /// use nalgebra::Vector3;
@@ -200,5 +207,28 @@ pub fn curvature_numerators<T: Scalar>(
 /// # Errors
 /// As [`curvature_numerators`] and [`crate::zero_set`].
 pub fn parabolic_lines(surface: &NurbsSurface<f64, 3>, samples: usize) -> Result<ZeroSet> {
-    zero_set(&curvature_numerators(surface)?.gaussian, samples)
+    let numerators = curvature_numerators(surface)?;
+    let mut set = zero_set(&numerators.gaussian, samples)?;
+    let regular = |p: &[f64; 2]| numerators.area.eval(p[0], p[1]).map(|a| a != 0.0);
+    let mut curves = Vec::new();
+    for curve in set.curves {
+        let flags = curve.iter().map(regular).collect::<Result<Vec<_>>>()?;
+        // Keep the segments with a regular end; split where both ends are singular.
+        let mut run: Vec<([f64; 2], bool)> = Vec::new();
+        let mut flush = |run: &mut Vec<([f64; 2], bool)>| {
+            if run.len() >= 2 && run.iter().any(|x| x.1) {
+                curves.push(run.iter().map(|x| x.0).collect());
+            }
+            run.clear();
+        };
+        for (p, f) in curve.iter().zip(flags) {
+            if run.last().is_some_and(|last| !last.1 && !f) {
+                flush(&mut run);
+            }
+            run.push((*p, f));
+        }
+        flush(&mut run);
+    }
+    set.curves = curves;
+    Ok(set)
 }

@@ -20,6 +20,7 @@ mod plot;
 mod shape;
 mod structural;
 mod surfaces;
+mod surface_features;
 
 use clap::{Parser, Subcommand};
 use std::process::ExitCode;
@@ -81,6 +82,8 @@ enum Command {
     Intersect(surfaces::IntersectArgs),
     /// Least-squares surface through scattered points or a mesh, with parameter correction.
     ApproximateSurface(surfaces::ApproximateSurfaceArgs),
+    /// Parabolic lines (K = 0) of a surface as polylines in (u, v) and in space.
+    SurfaceFeatures(surface_features::SurfaceFeaturesArgs),
 }
 
 fn run(command: Command) -> spline_core::Result<()> {
@@ -108,6 +111,7 @@ fn run(command: Command) -> spline_core::Result<()> {
         Command::Closest(args) => surfaces::closest(&args),
         Command::Intersect(args) => surfaces::intersect(&args),
         Command::ApproximateSurface(args) => surfaces::approximate_surface(&args),
+        Command::SurfaceFeatures(args) => surface_features::surface_features(&args),
     }
 }
 

@@ -1,0 +1,89 @@
+//! `spline surface-features` through the binary: the torus's parabolic circles, none on a
+//! sphere, and the error contract.
+
+mod common;
+
+use common::{spline, temp_file};
+
+/// A torus (radii 3 and 1, centre (1, 2, 3), axis z) has exactly two parabolic lines, its
+/// top and bottom circles; a sphere has none (its poles are singular points of the
+/// parametrisation, not parabolic lines).
+#[test]
+fn torus_and_sphere() {
+    let torus = spline(&[
+        "make",
+        "torus",
+        "--center",
+        "[1, 2, 3]",
+        "--major",
+        "3",
+        "--minor",
+        "1",
+    ]);
+    let path = temp_file("torus.json", &torus.stdout);
+    let out = spline(&["surface-features", &path, "--samples", "4"]).json();
+    let lines = out["parabolic_lines"].as_array().unwrap();
+    assert_eq!(lines.len(), 2, "{out}");
+    let mut heights = Vec::new();
+    for line in lines {
+        let points = line["points"].as_array().unwrap();
+        assert_eq!(points.len(), line["uv"].as_array().unwrap().len());
+        assert!(points.len() >= 16);
+        for p in points {
+            let (x, y, z) = (
+                p[0].as_f64().unwrap() - 1.0,
+                p[1].as_f64().unwrap() - 2.0,
+                p[2].as_f64().unwrap() - 3.0,
+            );
+            assert!((z.abs() - 1.0).abs() < 1e-12 && (x.hypot(y) - 3.0).abs() < 1e-12);
+        }
+        heights.push(points[0][2].as_f64().unwrap() - 3.0);
+    }
+    assert!(heights[0] * heights[1] < 0.0);
+    let sphere = spline(&["make", "sphere", "--center", "[0, 0, 0]", "--radius", "2"]);
+    let path = temp_file("sphere.json", &sphere.stdout);
+    let out = spline(&["surface-features", &path]).json();
+    assert!(
+        out["parabolic_lines"].as_array().unwrap().is_empty(),
+        "{out}"
+    );
+}
+
+#[test]
+fn bad_input_exits_2_with_one_line() {
+    let curve = temp_file(
+        "curve.json",
+        r#"{"degree": 2, "knots": [0, 0, 0, 1, 1, 1], "control_points": [[0, 0, 0], [1, 1, 0], [2, 0, 1]]}"#,
+    );
+    assert!(
+        spline(&["surface-features", &curve])
+            .assert_clean_error()
+            .contains("surface")
+    );
+    let flat = temp_file(
+        "flat.json",
+        r#"{"degree": [1, 1], "knots": [[0, 0, 1, 1], [0, 0, 1, 1]], "control_points": [[[0, 0], [0, 1]], [[1, 0], [1, 1]]]}"#,
+    );
+    assert!(
+        spline(&["surface-features", &flat])
+            .assert_clean_error()
+            .contains("3-D")
+    );
+    let torus = spline(&[
+        "make",
+        "torus",
+        "--center",
+        "[0, 0, 0]",
+        "--major",
+        "3",
+        "--minor",
+        "1",
+    ]);
+    let path = temp_file("torus.json", &torus.stdout);
+    assert!(
+        spline(&["surface-features", &path, "--samples", "0"])
+            .assert_clean_error()
+            .contains("samples")
+    );
+    spline(&["surface-features", "/nonexistent.json"]).assert_clean_error();
+}
