@@ -64,6 +64,7 @@ mod space;
 mod sparse;
 mod surface_numerators;
 mod tensor;
+mod umbilics;
 mod zero_set;
 
 pub use bilinear::SparseBilinear;
@@ -88,4 +89,5 @@ pub use tensor::{
     Partial, QuadraticFunction, TensorMap, TensorProductMap, hessian_determinant, partial,
     partials, ridge_polynomials, tensor_linear_combination, tensor_product,
 };
+pub use umbilics::{CommonZeros, common_zeros, umbilics};
 pub use zero_set::{UvPolyline, ZeroSet, zero_set};

@@ -41,6 +41,10 @@ pub struct CurvatureNumerators<T> {
     /// $\hat E \hat G - \hat F^2$, a positive multiple of $|S_u \times S_v|^2$: zero where
     /// the parametrisation is singular (the poles of a sphere).
     pub area: Surface<T, T>,
+    /// $[\hat E \hat M - \hat F \hat L,\ \hat E \hat N - \hat G \hat L]$: both vanish
+    /// where the second fundamental form is proportional to the first (where `E ≠ 0`): the
+    /// umbilics are their common zeros.
+    pub umbilic: [Surface<T, T>; 2],
 }
 
 type Bivariate<T> = Tracked<T, Surface<T, T>>;
@@ -176,8 +180,11 @@ pub fn curvature_numerators<T: Scalar>(
         .plus(&g.times(&l)?)?
         .cleaned();
     let area = e.times(&g)?.minus(&f.times(&f)?)?.cleaned();
+    let umbilic_m = e.times(&m)?.minus(&f.times(&l)?)?.cleaned();
+    let umbilic_n = e.times(&n)?.minus(&g.times(&l)?)?.cleaned();
     Ok(CurvatureNumerators {
         area: area.value,
+        umbilic: [umbilic_m.value, umbilic_n.value],
         first: [e.value, f.value, g.value],
         second: [l.value, m.value, n.value],
         gaussian: gaussian.value,

@@ -222,3 +222,102 @@ fn zero_sets_of_closed_forms() {
     }
     assert!(zero_set(&f, 0).is_err());
 }
+
+/// The umbilics of the ellipsoid `x²/b² + y²/a² + z²/c² = 1` (a > b > c, the largest axis
+/// along y so that the umbilics are off the seam) sit at the closed form
+/// `y = ±a √((a² − b²)/(a² − c²))`, `z = ±c √((b² − c²)/(a² − c²))`, `x = 0`; and the
+/// principal curvatures computed pointwise agree there.
+#[test]
+fn ellipsoid_umbilics_sit_at_the_closed_form() {
+    use spline_algebra::umbilics;
+    for (a, b, c) in [(2.0f64, 1.5, 1.0), (3.0, 1.2, 0.5), (1.1, 1.05, 1.0)] {
+        let sphere = NurbsSurface::sphere(Vector3::zeros(), 1.0).unwrap();
+        let e = sphere.map_control_points(|p| Vector3::new(b * p.x, a * p.y, c * p.z));
+        let found = umbilics(&e).unwrap();
+        assert!(!found.not_isolated);
+        assert_eq!(found.points.len(), 4, "{a} {b} {c}: {found:?}");
+        let y = a * ((a * a - b * b) / (a * a - c * c)).sqrt();
+        let z = c * ((b * b - c * c) / (a * a - c * c)).sqrt();
+        let mut signs = Vec::new();
+        for p in &found.points {
+            let x = e.eval(p[0], p[1]).unwrap();
+            assert!(x.x.abs() < 1e-9, "{x}");
+            assert!(
+                (x.y.abs() - y).abs() < 1e-9 && (x.z.abs() - z).abs() < 1e-9,
+                "{x} vs {y} {z}"
+            );
+            signs.push((x.y.signum() as i32, x.z.signum() as i32));
+            let lp = e.local_properties(p[0], p[1]).unwrap();
+            assert!((lp.max_curvature - lp.min_curvature).abs() < 1e-6, "{lp:?}");
+        }
+        signs.sort_unstable();
+        assert_eq!(signs, vec![(-1, -1), (-1, 1), (1, -1), (1, 1)]);
+    }
+    // A sphere: every point is umbilic; none reported, flagged as not isolated.
+    let sphere = NurbsSurface::sphere(Vector3::new(1.0, 2.0, 3.0), 2.0).unwrap();
+    let found = umbilics(&sphere).unwrap();
+    assert!(found.points.is_empty() && found.not_isolated, "{found:?}");
+    // A torus has none.
+    let torus = NurbsSurface::torus(Vector3::zeros(), Vector3::z(), 2.0, 1.0).unwrap();
+    let found = umbilics(&torus).unwrap();
+    assert!(found.points.is_empty() && !found.not_isolated, "{found:?}");
+}
+
+/// Random surfaces: every reported umbilic has equal principal curvatures (pointwise), and
+/// on a dense grid no point with nearly equal principal curvatures is far from a reported
+/// one.
+#[test]
+fn umbilics_of_random_surfaces_match_sampling() {
+    use spline_algebra::umbilics;
+    let (mut total, mut sampled) = (0, 0);
+    for (seed, rational) in [(21, false), (22, true), (23, false)] {
+        let s = random_surface(seed, rational);
+        let found = umbilics(&s).unwrap();
+        for p in &found.points {
+            let lp = s.local_properties(p[0], p[1]).unwrap();
+            let scale = lp.max_curvature.abs().max(lp.min_curvature.abs()).max(1e-3);
+            assert!(
+                (lp.max_curvature - lp.min_curvature).abs() < 1e-7 * scale,
+                "{p:?} {lp:?}"
+            );
+        }
+        // Dense sampling of the umbilic defect (k1 − k2)² / (k1² + k2²): its local minima
+        // below 1e-4 on a 200 × 200 grid must lie near reported umbilics.
+        let m = 200;
+        let defect = |u: f64, v: f64| {
+            let lp = s.local_properties(u, v).unwrap();
+            let d = lp.max_curvature - lp.min_curvature;
+            d * d / (lp.max_curvature.powi(2) + lp.min_curvature.powi(2))
+        };
+        let grid: Vec<Vec<f64>> = (0..=m)
+            .map(|i| {
+                (0..=m)
+                    .map(|j| defect(i as f64 / m as f64, j as f64 / m as f64))
+                    .collect()
+            })
+            .collect();
+        for i in 1..m {
+            for j in 1..m {
+                let d = grid[i][j];
+                let is_min = (i - 1..=i + 1).all(|k| (j - 1..=j + 1).all(|l| grid[k][l] >= d));
+                if is_min && d < 1e-4 {
+                    let (u, v) = (i as f64 / m as f64, j as f64 / m as f64);
+                    sampled += 1;
+                    assert!(
+                        found
+                            .points
+                            .iter()
+                            .any(|p| (p[0] - u).abs() < 0.02 && (p[1] - v).abs() < 0.02),
+                        "seed {seed}: a sampled near-umbilic at ({u}, {v}) (defect {d}) is not reported: {found:?}"
+                    );
+                }
+            }
+        }
+        total += found.points.len();
+    }
+    assert!(
+        total > 0 && sampled > 0,
+        "the check is not vacuous: {total} {sampled}"
+    );
+    eprintln!("umbilics: {total} reported, {sampled} sampled near-umbilics");
+}

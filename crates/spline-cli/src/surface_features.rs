@@ -1,5 +1,6 @@
 //! `spline surface-features`: the parabolic lines of a surface of either kind
-//! ([`spline_algebra::parabolic_lines`]), as polylines in `(u, v)` and in space.
+//! ([`spline_algebra::parabolic_lines`]), as polylines in `(u, v)` and in space, and its
+//! umbilics ([`spline_algebra::umbilics`]).
 
 use crate::io::{self, Pt};
 use crate::objects::{Object, read_object};
@@ -64,14 +65,26 @@ pub fn polylines(surface: &NurbsSurface<f64, 3>, set: &ZeroSet) -> Result<Vec<Va
 }
 
 /// `spline surface-features SURFACE [--samples N]`: prints `{"parabolic_lines": [{"uv",
-/// "points"}], "parabolic_regions": [[[u0, v0], [u1, v1]]], "singular_points": [[u, v]]}`.
+/// "points"}], "parabolic_regions": [[[u0, v0], [u1, v1]]], "singular_points": [[u, v]],
+/// "umbilics": [{"uv", "point"}], "umbilics_isolated": bool}`.
 pub fn surface_features(args: &SurfaceFeaturesArgs) -> Result<()> {
     let surface = read_surface3(&args.surface, "surface-features")?;
     let set = spline_algebra::parabolic_lines(&surface, args.samples)
         .map_err(|e| e.context(&args.surface))?;
+    let umbilics = spline_algebra::umbilics(&surface).map_err(|e| e.context(&args.surface))?;
+    let points = umbilics
+        .points
+        .iter()
+        .map(|p| {
+            let x = surface.eval(p[0], p[1])?;
+            Ok(json!({"uv": p, "point": [x.x, x.y, x.z]}))
+        })
+        .collect::<Result<Vec<_>>>()?;
     io::print_json(&json!({
         "parabolic_lines": polylines(&surface, &set)?,
         "parabolic_regions": set.regions,
         "singular_points": set.singular,
+        "umbilics": points,
+        "umbilics_isolated": !umbilics.not_isolated,
     }))
 }

@@ -47,6 +47,9 @@ fn torus_and_sphere() {
         out["parabolic_lines"].as_array().unwrap().is_empty(),
         "{out}"
     );
+    // Every point of a sphere is umbilic: none listed, and not isolated.
+    assert!(out["umbilics"].as_array().unwrap().is_empty());
+    assert_eq!(out["umbilics_isolated"], false);
 }
 
 #[test]
@@ -86,4 +89,42 @@ fn bad_input_exits_2_with_one_line() {
             .contains("samples")
     );
     spline(&["surface-features", "/nonexistent.json"]).assert_clean_error();
+}
+
+/// An ellipsoid with semi-axes 1.5 (x), 2 (y), 1 (z): four umbilics at x = 0,
+/// |y| = 2 √(1.75/3), |z| = √(1.25/3); no parabolic line.
+#[test]
+fn ellipsoid_umbilics() {
+    let sphere = spline(&["make", "sphere", "--center", "[0, 0, 0]", "--radius", "1"]).json();
+    let mut ellipsoid = sphere.clone();
+    for p in ellipsoid["control_points"]
+        .as_array_mut()
+        .unwrap()
+        .iter_mut()
+        .flat_map(|row| row.as_array_mut().unwrap())
+    {
+        let q = p.as_array_mut().unwrap();
+        q[0] = (1.5 * q[0].as_f64().unwrap()).into();
+        q[1] = (2.0 * q[1].as_f64().unwrap()).into();
+    }
+    let path = temp_file("ellipsoid.json", &ellipsoid.to_string());
+    let out = spline(&["surface-features", &path]).json();
+    assert!(
+        out["parabolic_lines"].as_array().unwrap().is_empty(),
+        "{out}"
+    );
+    let umbilics = out["umbilics"].as_array().unwrap();
+    assert_eq!(umbilics.len(), 4, "{out}");
+    assert_eq!(out["umbilics_isolated"], true);
+    for u in umbilics {
+        let p: Vec<f64> = u["point"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|x| x.as_f64().unwrap())
+            .collect();
+        assert!(p[0].abs() < 1e-9);
+        assert!((p[1].abs() - 2.0 * (1.75f64 / 3.0).sqrt()).abs() < 1e-9);
+        assert!((p[2].abs() - (1.25f64 / 3.0).sqrt()).abs() < 1e-9);
+    }
 }
