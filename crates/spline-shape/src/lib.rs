@@ -38,6 +38,7 @@ pub mod constrained;
 pub mod constrained_surface;
 pub mod eraser;
 mod problem;
+pub mod revolution;
 
 pub use adaptive::{
     AdaptiveIteration, AdaptiveOptions, optimise_perimeter_over_area, perimeter_squared_over_area,
@@ -56,3 +57,6 @@ pub use eraser::{
     SmoothedCurve, SmoothingOptions, sampled_curvature_extrema, smooth, smooth_to_tolerance,
 };
 pub use problem::{ApproximationProblem, Sign};
+pub use revolution::{
+    MeridianControl, ParabolicCircles, control_parabolic_circles, revolution_surface,
+};
