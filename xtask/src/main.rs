@@ -33,6 +33,7 @@ mod demo;
 mod docs_constructions;
 mod docs_curves;
 mod docs_shape_functions;
+mod docs_surface_features;
 mod docs_surfaces;
 mod fuzz;
 mod fuzz_coverage;
@@ -75,6 +76,7 @@ fn run_docs(root: &Path) -> Result<(), String> {
     docs_curves::render(&out)?;
     docs_surfaces::render(&out)?;
     docs_constructions::render(root, &out)?;
+    docs_surface_features::render(&out)?;
     docs_shape_functions::render(&out)?;
     demo::render(root, &out)?;
     println!("pictures written to {}", out.display());

@@ -128,3 +128,38 @@ fn ellipsoid_umbilics() {
         assert!((p[2].abs() - (1.25f64 / 3.0).sqrt()).abs() < 1e-9);
     }
 }
+
+/// `mesh --features` draws the parabolic lines over the shaded surface (SVG only).
+#[test]
+fn mesh_draws_the_features() {
+    let torus = spline(&[
+        "make",
+        "torus",
+        "--center",
+        "[0, 0, 0]",
+        "--major",
+        "3",
+        "--minor",
+        "1",
+    ]);
+    let path = temp_file("torus.json", &torus.stdout);
+    let dir = std::env::temp_dir().join(format!("spline-mesh-features-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let svg = dir.join("torus.svg");
+    let svg = svg.to_str().unwrap();
+    spline(&["mesh", &path, "-o", svg, "--features"]).json();
+    let text = std::fs::read_to_string(svg).unwrap();
+    // Two circles of 4 patches × 8 samples: 64 segments, in the torus's orange.
+    assert_eq!(text.matches("<line").count(), 64);
+    assert!(text.contains("rgb(235,110,20)"));
+    let plain = dir.join("plain.svg");
+    spline(&["mesh", &path, "-o", plain.to_str().unwrap()]).json();
+    assert!(!std::fs::read_to_string(plain).unwrap().contains("<line"));
+    let obj = dir.join("torus.obj");
+    assert!(
+        spline(&["mesh", &path, "-o", obj.to_str().unwrap(), "--features"])
+            .assert_clean_error()
+            .contains("svg")
+    );
+    let _ = std::fs::remove_dir_all(&dir);
+}

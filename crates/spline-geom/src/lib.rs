@@ -60,7 +60,7 @@ pub use construct::{
     compatible_surfaces, rotation_minimizing_frames,
 };
 pub use homogeneous::Homogeneous;
-pub use mesh::{MAX_MESH_SEGMENTS, MeshView, TriangleMesh};
+pub use mesh::{MAX_MESH_SEGMENTS, MeshView, SvgOverlay, TriangleMesh};
 pub use nurbs::{
     HomogeneousContainer, NurbsCurve, NurbsCurve2, NurbsCurve3, NurbsSurface, NurbsSurface3,
     Rational,

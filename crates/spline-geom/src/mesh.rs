@@ -284,6 +284,14 @@ impl TriangleMesh {
     /// Lambert shading (two-sided); back faces are skipped when the mesh is closed.
     #[must_use]
     pub fn to_svg(&self, view: &MeshView) -> String {
+        self.to_svg_with(view, &[])
+    }
+
+    /// [`TriangleMesh::to_svg`] with curves and points drawn over the surface (feature
+    /// lines, umbilics): each segment and point is painted in depth order with the
+    /// triangles, slightly in front of them, so that the surface hides what lies behind it.
+    #[must_use]
+    pub fn to_svg_with(&self, view: &MeshView, overlays: &[SvgOverlay]) -> String {
         let (az, el) = (view.azimuth.to_radians(), view.elevation.to_radians());
         let eye = Vector3::new(el.cos() * az.cos(), el.cos() * az.sin(), el.sin());
         let right = Vector3::z().cross(&eye);
@@ -315,6 +323,29 @@ impl TriangleMesh {
                 })
             })
             .collect();
+        // In front of every triangle it lies on: the largest depth spread of a triangle.
+        let bias = self
+            .triangles
+            .iter()
+            .map(|t| {
+                let d = t.map(|k| project(&self.vertices[k]).2);
+                d[0].max(d[1]).max(d[2]) - d[0].min(d[1]).min(d[2])
+            })
+            .fold(0.0f64, f64::max);
+        let mut strokes: Vec<Stroke> = Vec::new();
+        for (k, overlay) in overlays.iter().enumerate() {
+            for w in overlay.points.windows(2) {
+                let (a, b) = (project(&w[0]), project(&w[1]));
+                strokes.push((0.5 * (a.2 + b.2) + bias, k, [(a.0, a.1), (b.0, b.1)]));
+            }
+            if overlay.points.len() == 1 || overlay.markers {
+                for q in &overlay.points {
+                    let a = project(q);
+                    strokes.push((a.2 + bias, k, [(a.0, a.1), (a.0, a.1)]));
+                }
+            }
+        }
+        strokes.sort_by(|a, b| a.0.total_cmp(&b.0));
         faces.sort_by(|a, b| a.depth.total_cmp(&b.depth));
         let (mut xmin, mut xmax, mut ymin, mut ymax) = (f64::MAX, f64::MIN, f64::MAX, f64::MIN);
         for v in &self.vertices {
@@ -347,7 +378,34 @@ impl TriangleMesh {
         );
         out.push_str("<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n");
         let stroke_width = if view.wireframe { 0.4 } else { 0.6 };
-        for Face { corners, shade, .. } in &faces {
+        let mut pending = strokes.iter().peekable();
+        let mut draw_strokes = |out: &mut String, depth: f64| {
+            while let Some((_, k, [a, b])) = pending.next_if(|s| s.0 <= depth) {
+                let o = &overlays[*k];
+                let [r, g, bl] = o.color;
+                let ((x0, y0), (x1, y1)) = (map(*a), map(*b));
+                if a == b {
+                    let _ = writeln!(
+                        out,
+                        r#"<circle cx="{x0:.2}" cy="{y0:.2}" r="{:.1}" fill="rgb({r},{g},{bl})" stroke="black" stroke-width="0.6"/>"#,
+                        2.0 * o.width
+                    );
+                } else {
+                    let _ = writeln!(
+                        out,
+                        r#"<line x1="{x0:.2}" y1="{y0:.2}" x2="{x1:.2}" y2="{y1:.2}" stroke="rgb({r},{g},{bl})" stroke-width="{:.1}" stroke-linecap="round"/>"#,
+                        o.width
+                    );
+                }
+            }
+        };
+        for Face {
+            corners,
+            shade,
+            depth,
+        } in &faces
+        {
+            draw_strokes(&mut out, *depth);
             let [r, g, b] = view.color.map(|c| {
                 #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]
                 let v = (f64::from(c) * shade).round().clamp(0.0, 255.0) as u8;
@@ -371,6 +429,7 @@ impl TriangleMesh {
                 pts.join(" ")
             );
         }
+        draw_strokes(&mut out, f64::INFINITY);
         if let Some(title) = &view.title {
             let escaped = title
                 .replace('&', "&amp;")
@@ -385,6 +444,22 @@ impl TriangleMesh {
         out
     }
 }
+
+/// A curve (or, with `markers`, points) drawn over a mesh by [`TriangleMesh::to_svg_with`].
+#[derive(Clone, Debug, PartialEq)]
+pub struct SvgOverlay {
+    /// The points in space: a polyline, or single points.
+    pub points: Vec<Vector3<f64>>,
+    /// The colour, as RGB.
+    pub color: [u8; 3],
+    /// The stroke width in pixels (points are drawn with twice this radius).
+    pub width: f64,
+    /// Draw every point as a dot (and the segments between them unless there is one point).
+    pub markers: bool,
+}
+
+/// A projected overlay segment (equal ends: a point): depth, overlay index, screen ends.
+type Stroke = (f64, usize, [(f64, f64); 2]);
 
 /// A projected triangle of an SVG picture.
 struct Face {
