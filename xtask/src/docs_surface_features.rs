@@ -3,49 +3,26 @@
 //! revolution before and after the control of its parabolic circles through the meridian.
 
 use nalgebra::Vector3;
-use spline::algebra::{parabolic_lines, umbilics};
-use spline::geom::{Axis, MeshView, NurbsCurve, NurbsSurface, SvgOverlay};
+use spline::algebra::{feature_overlays, parabolic_lines};
+use spline::geom::{Axis, MeshView, NurbsCurve, NurbsSurface};
 use spline::shape::{ParabolicCircles, Sign, control_parabolic_circles, revolution_surface};
 use spline::{Error, Result};
 use std::path::Path;
 
-const PARABOLIC: [u8; 3] = [235, 110, 20];
-const UMBILIC: [u8; 3] = [250, 220, 0];
-
-/// The surface shaded, with its parabolic lines and umbilics drawn over it; the number of
-/// each.
+/// The surface shaded, with its parabolic lines and umbilics drawn over it
+/// ([`feature_overlays`]); the number of each.
 fn picture(
     surface: &NurbsSurface<f64, 3>,
     segments: (usize, usize),
     view: &MeshView,
 ) -> Result<(String, usize, usize)> {
-    let mut overlays = Vec::new();
-    let lines = parabolic_lines(surface, 16)?;
-    for curve in &lines.curves {
-        overlays.push(SvgOverlay {
-            points: curve
-                .iter()
-                .map(|p| surface.eval(p[0], p[1]))
-                .collect::<Result<_>>()?,
-            color: PARABOLIC,
-            width: 2.5,
-            markers: false,
-        });
-    }
-    let found = umbilics(surface)?;
-    for p in &found.points {
-        overlays.push(SvgOverlay {
-            points: vec![surface.eval(p[0], p[1])?],
-            color: UMBILIC,
-            width: 3.0,
-            markers: true,
-        });
-    }
+    let overlays = feature_overlays(surface, 16)?;
+    let umbilics = overlays.iter().filter(|o| o.markers).count();
     let mesh = surface.tessellate(segments.0, segments.1)?;
     Ok((
         mesh.to_svg_with(view, &overlays),
-        lines.curves.len(),
-        found.points.len(),
+        overlays.len() - umbilics,
+        umbilics,
     ))
 }
 

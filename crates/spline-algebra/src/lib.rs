@@ -84,7 +84,9 @@ pub use roots::{Zero, sign_change_params, zeros};
 pub use segment_curvature::{SegmentCurvature, SegmentWorkspace};
 pub use space::{SpaceCurveFeatures, SpaceFeatures, SpaceNumerators, space_numerators, torsion};
 pub use sparse::kron;
-pub use surface_numerators::{CurvatureNumerators, curvature_numerators, parabolic_lines};
+pub use surface_numerators::{
+    CurvatureNumerators, curvature_numerators, feature_overlays, parabolic_lines,
+};
 pub use tensor::{
     Partial, QuadraticFunction, TensorMap, TensorProductMap, hessian_determinant, partial,
     partials, ridge_polynomials, tensor_linear_combination, tensor_product,

@@ -239,3 +239,36 @@ pub fn parabolic_lines(surface: &NurbsSurface<f64, 3>, samples: usize) -> Result
     set.curves = curves;
     Ok(set)
 }
+
+/// The parabolic lines (orange) and umbilics (yellow dots) of a surface as overlays of its
+/// picture ([`spline_geom::TriangleMesh::to_svg_with`]), the lines with `samples` points per
+/// patch width.
+///
+/// # Errors
+/// As [`parabolic_lines`] and [`crate::umbilics`].
+pub fn feature_overlays(
+    surface: &NurbsSurface<f64, 3>,
+    samples: usize,
+) -> Result<Vec<spline_geom::SvgOverlay>> {
+    let mut overlays = Vec::new();
+    for curve in &parabolic_lines(surface, samples)?.curves {
+        overlays.push(spline_geom::SvgOverlay {
+            points: curve
+                .iter()
+                .map(|p| surface.eval(p[0], p[1]))
+                .collect::<Result<_>>()?,
+            color: [235, 110, 20],
+            width: 2.5,
+            markers: false,
+        });
+    }
+    for p in &crate::umbilics(surface)?.points {
+        overlays.push(spline_geom::SvgOverlay {
+            points: vec![surface.eval(p[0], p[1])?],
+            color: [250, 220, 0],
+            width: 3.0,
+            markers: true,
+        });
+    }
+    Ok(overlays)
+}

@@ -1,9 +1,8 @@
 //! Common zeros of two bivariate splines (Bernstein subdivision, then Newton's method), and
 //! the umbilics of a surface as the common zeros of its umbilic numerators.
 
-use crate::maps::SplineMap;
 use crate::surface_numerators::curvature_numerators;
-use crate::tensor::TensorMap;
+use crate::zero_set::bezier_patches;
 use spline_core::{Error, ErrorKind, KnotVector, Result};
 use spline_geom::{Direction, NurbsSurface, Surface};
 
@@ -71,8 +70,8 @@ pub fn common_zeros(a: &Surface<f64, f64>, b: &Surface<f64, f64>) -> Result<Comm
     };
     let bu = merged(a.knots_u().domain_breaks(), b.knots_u().domain_breaks());
     let bv = merged(a.knots_v().domain_breaks(), b.knots_v().domain_breaks());
-    let pa = patches(a, &bu, &bv)?;
-    let pb = patches(b, &bu, &bv)?;
+    let pa = bezier_patches(a, &bu, &bv)?;
+    let pb = bezier_patches(b, &bu, &bv)?;
     let mut search = Search {
         budget: BOX_BUDGET,
         candidates: Vec::new(),
@@ -103,34 +102,6 @@ pub fn common_zeros(a: &Surface<f64, f64>, b: &Surface<f64, f64>) -> Result<Comm
         points,
         not_isolated: search.not_isolated,
     })
-}
-
-/// The Bézier patches of `f` on the grid of breaks, row by row in `u`.
-fn patches(f: &Surface<f64, f64>, bu: &[f64], bv: &[f64]) -> Result<Vec<Surface<f64, f64>>> {
-    let (p, q) = f.degrees();
-    let bern = TensorMap::new(
-        SplineMap::transfer(f.knots_u(), &KnotVector::bernstein(p, bu)?)?,
-        SplineMap::transfer(f.knots_v(), &KnotVector::bernstein(q, bv)?)?,
-    )
-    .apply(f)?;
-    let nv = bern.net_size().1;
-    let mut out = Vec::new();
-    for a in 0..bu.len() - 1 {
-        for b in 0..bv.len() - 1 {
-            let c: Vec<f64> = (0..=p)
-                .flat_map(|i| {
-                    let row = (a * (p + 1) + i) * nv + b * (q + 1);
-                    bern.control_points()[row..=row + q].to_vec()
-                })
-                .collect();
-            out.push(Surface::new_unchecked(
-                KnotVector::bernstein(p, &[bu[a], bu[a + 1]])?,
-                KnotVector::bernstein(q, &[bv[b], bv[b + 1]])?,
-                c,
-            ));
-        }
-    }
-    Ok(out)
 }
 
 /// The edges of a Bézier patch on which it vanishes: `[u = u₀, u = u₁, v = v₀, v = v₁]`.

@@ -64,32 +64,14 @@ pub fn zero_set(f: &Surface<f64, f64>, samples: usize) -> Result<ZeroSet> {
             format!("coefficient {i} of the function is not finite"),
         ));
     }
-    let (p, q) = f.degrees();
     let (bu, bv) = (f.knots_u().domain_breaks(), f.knots_v().domain_breaks());
-    let bern = TensorMap::new(
-        SplineMap::transfer(f.knots_u(), &KnotVector::bernstein(p, &bu)?)?,
-        SplineMap::transfer(f.knots_v(), &KnotVector::bernstein(q, &bv)?)?,
-    )
-    .apply(f)?;
-    let nv = bern.net_size().1;
     let mut tracer = Tracer {
         samples,
         out: ZeroSet::default(),
         pieces: Vec::new(),
     };
-    for a in 0..bu.len() - 1 {
-        for b in 0..bv.len() - 1 {
-            let c: Vec<f64> = (0..=p)
-                .flat_map(|i| {
-                    let row = (a * (p + 1) + i) * nv + b * (q + 1);
-                    bern.control_points()[row..=row + q].to_vec()
-                })
-                .collect();
-            let ku = KnotVector::bernstein(p, &[bu[a], bu[a + 1]])?;
-            let kv = KnotVector::bernstein(q, &[bv[b], bv[b + 1]])?;
-            let patch = Surface::new_unchecked(ku, kv, c);
-            tracer.patch(&patch, 0)?;
-        }
+    for patch in bezier_patches(f, &bu, &bv)? {
+        tracer.patch(&patch, 0)?;
     }
     let scale = (bu[bu.len() - 1] - bu[0]).max(bv[bv.len() - 1] - bv[0]);
     let width = [
@@ -99,6 +81,39 @@ pub fn zero_set(f: &Surface<f64, f64>, samples: usize) -> Result<ZeroSet> {
     let pieces = merge_lines(std::mem::take(&mut tracer.pieces), width, samples);
     tracer.out.curves = chain(pieces, 1e-9 * scale);
     Ok(tracer.out)
+}
+
+/// The Bézier patches of a bivariate spline on the grid of `breaks` (which must contain its
+/// own), row by row in `u`: the per-patch Bernstein form, cut into patches.
+pub(crate) fn bezier_patches(
+    f: &Surface<f64, f64>,
+    bu: &[f64],
+    bv: &[f64],
+) -> Result<Vec<Surface<f64, f64>>> {
+    let (p, q) = f.degrees();
+    let bern = TensorMap::new(
+        SplineMap::transfer(f.knots_u(), &KnotVector::bernstein(p, bu)?)?,
+        SplineMap::transfer(f.knots_v(), &KnotVector::bernstein(q, bv)?)?,
+    )
+    .apply(f)?;
+    let nv = bern.net_size().1;
+    let mut out = Vec::new();
+    for a in 0..bu.len() - 1 {
+        for b in 0..bv.len() - 1 {
+            let c: Vec<f64> = (0..=p)
+                .flat_map(|i| {
+                    let row = (a * (p + 1) + i) * nv + b * (q + 1);
+                    bern.control_points()[row..=row + q].to_vec()
+                })
+                .collect();
+            out.push(Surface::new_unchecked(
+                KnotVector::bernstein(p, &[bu[a], bu[a + 1]])?,
+                KnotVector::bernstein(q, &[bv[b], bv[b + 1]])?,
+                c,
+            ));
+        }
+    }
+    Ok(out)
 }
 
 struct Tracer {

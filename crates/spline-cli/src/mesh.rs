@@ -2,12 +2,12 @@
 //! ([`TriangleMesh::from_surface`]).
 
 use crate::io::{self, Pt};
-use crate::objects::{Object, read_object};
+use crate::objects::{Object, read_object, surface3};
 use clap::Args;
 use nalgebra::Vector3;
 use serde_json::json;
 use spline_core::{Error, ErrorKind, Result};
-use spline_geom::{MeshView, NurbsSurface, SvgOverlay, TriangleMesh};
+use spline_geom::{MeshView, TriangleMesh};
 
 fn invalid(message: impl Into<String>) -> Error {
     Error::new(ErrorKind::InvalidArgument, message)
@@ -99,7 +99,8 @@ pub fn mesh(args: &MeshArgs) -> Result<()> {
         MeshFormat::Off => mesh.to_off(),
         MeshFormat::Svg if args.features => mesh.to_svg_with(
             &MeshView::default(),
-            &feature_overlays(&args.surface, &object)?,
+            &spline_algebra::feature_overlays(&surface3(&object, &args.surface, "--features")?, 8)
+                .map_err(|e| e.context(&args.surface))?,
         ),
         MeshFormat::Svg => mesh.to_svg(&MeshView::default()),
     };
@@ -109,46 +110,4 @@ pub fn mesh(args: &MeshArgs) -> Result<()> {
         "vertices": mesh.vertices.len(),
         "triangles": mesh.triangles.len(),
     }))
-}
-
-/// The parabolic lines and umbilics of a 3-D surface as overlays of its picture.
-fn feature_overlays(path: &str, object: &Object) -> Result<Vec<SvgOverlay>> {
-    let to3 = |p: &Pt| Vector3::new(p[0], p[1], p[2]);
-    let (dim, surface) = match object {
-        Object::Surface(s) => (
-            s.dim,
-            NurbsSurface::from_surface(&s.value.map_control_points(to3)),
-        ),
-        Object::NurbsSurface(s) => (s.dim, s.value.map_control_points(to3)),
-        Object::Curve(_) | Object::Nurbs(_) => unreachable!("checked by the caller"),
-    };
-    if dim != 3 {
-        return Err(Error::new(
-            ErrorKind::DimensionMismatch,
-            format!("{path}: --features needs a surface in 3-D space, got {dim} coordinates"),
-        ));
-    }
-    let lines = spline_algebra::parabolic_lines(&surface, 8).map_err(|e| e.context(path))?;
-    let mut overlays = Vec::new();
-    for curve in &lines.curves {
-        overlays.push(SvgOverlay {
-            points: curve
-                .iter()
-                .map(|p| surface.eval(p[0], p[1]))
-                .collect::<Result<_>>()?,
-            color: [235, 110, 20],
-            width: 2.5,
-            markers: false,
-        });
-    }
-    let umbilics = spline_algebra::umbilics(&surface).map_err(|e| e.context(path))?;
-    for p in &umbilics.points {
-        overlays.push(SvgOverlay {
-            points: vec![surface.eval(p[0], p[1])?],
-            color: [250, 220, 0],
-            width: 2.5,
-            markers: true,
-        });
-    }
-    Ok(overlays)
 }

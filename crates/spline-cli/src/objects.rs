@@ -235,3 +235,31 @@ pub fn check_dim(dim: usize, wanted: usize, what: &str) -> Result<()> {
         ))
     }
 }
+
+/// The 3-D surface in an object read from `path`, as a NURBS surface (a B-spline surface
+/// with unit weights); `what` says what needs it, for messages.
+pub fn surface3(object: &Object, path: &str, what: &str) -> Result<spline_geom::NurbsSurface3> {
+    let to3 = |p: &Pt| nalgebra::Vector3::new(p[0], p[1], p[2]);
+    let (dim, surface) = match object {
+        Object::Surface(s) => (
+            s.dim,
+            NurbsSurface::from_surface(&s.value.map_control_points(to3)),
+        ),
+        Object::NurbsSurface(s) => (s.dim, s.value.map_control_points(to3)),
+        Object::Curve(_) | Object::Nurbs(_) => {
+            return Err(Error::new(
+                ErrorKind::InvalidArgument,
+                format!(
+                    "{path}: {what} needs a surface (degree [p, q]); use `spline features` for curves"
+                ),
+            ));
+        }
+    };
+    if dim != 3 {
+        return Err(Error::new(
+            ErrorKind::DimensionMismatch,
+            format!("{path}: {what} needs a surface in 3-D space, got {dim} coordinates"),
+        ));
+    }
+    Ok(surface)
+}

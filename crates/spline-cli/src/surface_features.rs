@@ -2,13 +2,12 @@
 //! ([`spline_algebra::parabolic_lines`]), as polylines in `(u, v)` and in space, and its
 //! umbilics ([`spline_algebra::umbilics`]).
 
-use crate::io::{self, Pt};
-use crate::objects::{Object, read_object};
+use crate::io;
+use crate::objects::{read_object, surface3};
 use clap::Args;
-use nalgebra::Vector3;
 use serde_json::{Value, json};
 use spline_algebra::ZeroSet;
-use spline_core::{Error, ErrorKind, Result};
+use spline_core::Result;
 use spline_geom::NurbsSurface;
 
 /// Curves of curvature features of a surface.
@@ -21,33 +20,6 @@ pub struct SurfaceFeaturesArgs {
     /// decided by the Bernstein coefficients, every vertex is on the curve to rounding).
     #[arg(long, default_value_t = 8)]
     samples: usize,
-}
-
-/// Reads a 3-D surface of either kind as a NURBS surface.
-pub fn read_surface3(path: &str, what: &str) -> Result<NurbsSurface<f64, 3>> {
-    let to3 = |p: &Pt| Vector3::new(p[0], p[1], p[2]);
-    let (dim, surface) = match read_object(path)? {
-        Object::Surface(s) => (
-            s.dim,
-            NurbsSurface::from_surface(&s.value.map_control_points(to3)),
-        ),
-        Object::NurbsSurface(s) => (s.dim, s.value.map_control_points(to3)),
-        Object::Curve(_) | Object::Nurbs(_) => {
-            return Err(Error::new(
-                ErrorKind::InvalidArgument,
-                format!(
-                    "{path}: {what} needs a surface (degree [p, q]); use `spline features` for curves"
-                ),
-            ));
-        }
-    };
-    if dim != 3 {
-        return Err(Error::new(
-            ErrorKind::DimensionMismatch,
-            format!("{path}: {what} needs a surface in 3-D space, got {dim} coordinates"),
-        ));
-    }
-    Ok(surface)
 }
 
 /// The polylines of a zero set in `(u, v)` and on the surface.
@@ -68,7 +40,11 @@ pub fn polylines(surface: &NurbsSurface<f64, 3>, set: &ZeroSet) -> Result<Vec<Va
 /// "points"}], "parabolic_regions": [[[u0, v0], [u1, v1]]], "singular_points": [[u, v]],
 /// "umbilics": [{"uv", "point"}], "umbilics_isolated": bool}`.
 pub fn surface_features(args: &SurfaceFeaturesArgs) -> Result<()> {
-    let surface = read_surface3(&args.surface, "surface-features")?;
+    let surface = surface3(
+        &read_object(&args.surface)?,
+        &args.surface,
+        "surface-features",
+    )?;
     let set = spline_algebra::parabolic_lines(&surface, args.samples)
         .map_err(|e| e.context(&args.surface))?;
     let umbilics = spline_algebra::umbilics(&surface).map_err(|e| e.context(&args.surface))?;
