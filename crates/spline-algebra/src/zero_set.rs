@@ -10,6 +10,10 @@ use spline_geom::{BSpline, Direction, Surface};
 
 /// Largest number of halvings of a patch before it is reported as a singular point.
 const MAX_DEPTH: usize = 24;
+/// Largest number of boxes examined in all: a zero curve along which `f` does not change
+/// sign (a double zero) is never separated by subdivision; past the budget the remaining
+/// boxes are reported as singular points instead of halved further.
+const BOX_BUDGET: usize = 50_000;
 
 /// Points of a polyline in the parameter domain.
 pub type UvPolyline = Vec<[f64; 2]>;
@@ -23,7 +27,9 @@ pub struct ZeroSet {
     /// Rectangles `[[u0, v0], [u1, v1]]` on which `f` vanishes identically.
     pub regions: Vec<[[f64; 2]; 2]>,
     /// Points where the subdivision stopped without separating the branches (a crossing or
-    /// an isolated zero of the curves, within `2⁻²⁴` of the patch size).
+    /// an isolated zero of the curves, within `2⁻²⁴` of the patch size), or the centres of
+    /// the boxes left when the budget of 50 000 boxes ran out (zero curves without a sign
+    /// change, which subdivision cannot separate).
     pub singular: Vec<[f64; 2]>,
 }
 
@@ -69,6 +75,7 @@ pub fn zero_set(f: &Surface<f64, f64>, samples: usize) -> Result<ZeroSet> {
         samples,
         out: ZeroSet::default(),
         pieces: Vec::new(),
+        budget: BOX_BUDGET,
     };
     for patch in bezier_patches(f, &bu, &bv)? {
         tracer.patch(&patch, 0)?;
@@ -120,6 +127,7 @@ struct Tracer {
     samples: usize,
     out: ZeroSet,
     pieces: Vec<UvPolyline>,
+    budget: usize,
 }
 
 impl Tracer {
@@ -154,11 +162,12 @@ impl Tracer {
                 return self.trace(s, direction);
             }
         }
-        if depth >= MAX_DEPTH {
+        if depth >= MAX_DEPTH || self.budget == 0 {
             self.out.singular.push([0.5 * (u0 + u1), 0.5 * (v0 + v1)]);
             return Ok(());
         }
-        // Halve the longer side relative to the patch's own extent alternately.
+        self.budget -= 1;
+        // Halve the two directions alternately.
         let direction = if depth % 2 == 0 {
             Direction::U
         } else {

@@ -321,3 +321,24 @@ fn umbilics_of_random_surfaces_match_sampling() {
     );
     eprintln!("umbilics: {total} reported, {sampled} sampled near-umbilics");
 }
+
+/// A double zero curve (no sign change: `(u − v)²`) is not separable
+/// by subdivision: the box budget stops the work and reports singular points on it.
+#[test]
+fn double_zero_curves_stop_at_the_budget() {
+    let k = KnotVector::new(2, vec![0.0, 0.0, 0.0, 1.0, 1.0, 1.0]).unwrap();
+    // (u − v)² = u² − 2uv + v²: Bernstein coefficients b_ij = [i = j = 1 ? …] from the
+    // blossom: u² → (0, 0, 1), uv → (0, ½, 1) ⊗ …, v² → (0, 0, 1).
+    let sq = [0.0, 0.0, 1.0];
+    let lin = [0.0, 0.5, 1.0];
+    let c: Vec<f64> = (0..3)
+        .flat_map(|i| (0..3).map(move |j| sq[i] - 2.0 * lin[i] * lin[j] + sq[j]))
+        .collect();
+    let f = Surface::new(k.clone(), k, c).unwrap();
+    assert!((f.eval(0.3, 0.7).unwrap() - 0.16).abs() < 1e-15);
+    let zs = zero_set(&f, 4).unwrap();
+    assert!(!zs.singular.is_empty());
+    for p in &zs.singular {
+        assert!((p[0] - p[1]).abs() < 0.01, "{p:?}");
+    }
+}
