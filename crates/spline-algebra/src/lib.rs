@@ -58,6 +58,7 @@ mod features;
 mod maps;
 mod numerator;
 mod product;
+mod ridges;
 mod roots;
 mod segment_curvature;
 mod space;
@@ -80,6 +81,7 @@ pub use product::{
     linear_combination, product, product_knots, product_with_jacobians, scale, square, sum,
     wedge_product,
 };
+pub use ridges::{Ridges, ridges};
 pub use roots::{Zero, sign_change_params, zeros};
 pub use segment_curvature::{SegmentCurvature, SegmentWorkspace};
 pub use space::{SpaceCurveFeatures, SpaceFeatures, SpaceNumerators, space_numerators, torsion};

@@ -1,6 +1,8 @@
 //! Curvature numerators of surfaces and their zero sets (parabolic lines), against closed
 //! forms (the torus), the pointwise curvatures of spline-geom and dense sampling.
 
+#![allow(clippy::needless_range_loop)]
+
 use nalgebra::Vector3;
 use spline_algebra::{curvature_numerators, parabolic_lines, zero_set};
 use spline_core::KnotVector;
@@ -340,5 +342,64 @@ fn double_zero_curves_stop_at_the_budget() {
     assert!(!zs.singular.is_empty());
     for p in &zs.singular {
         assert!((p[0] - p[1]).abs() < 0.01, "{p:?}");
+    }
+}
+
+/// Bernstein coefficients on [0, 1]² of bidegree (4, 4) of `Σ sign · (α u + β v + γ)⁴`.
+fn quartic_ridges(terms: &[(f64, f64, f64, f64)]) -> Surface<f64, f64> {
+    let binom = |n: usize, k: usize| -> f64 {
+        (0..k).fold(1.0, |acc, i| acc * (n - i) as f64 / (i + 1) as f64)
+    };
+    let fact = |n: usize| -> f64 { (1..=n).map(|k| k as f64).product() };
+    // Power coefficients c[a][b] of u^a v^b.
+    let mut c = [[0.0f64; 5]; 5];
+    for &(sign, alpha, beta, gamma) in terms {
+        for i in 0..=4 {
+            for j in 0..=4 - i {
+                let k = 4 - i - j;
+                c[i][j] += sign * fact(4) / (fact(i) * fact(j) * fact(k))
+                    * alpha.powi(i as i32)
+                    * beta.powi(j as i32)
+                    * gamma.powi(k as i32);
+            }
+        }
+    }
+    let coefficients: Vec<f64> = (0..=4)
+        .flat_map(|ii| {
+            (0..=4).map(move |jj| {
+                let mut sum = 0.0;
+                for a in 0..=ii {
+                    for b in 0..=jj {
+                        sum += c[a][b] * binom(ii, a) / binom(4, a) * binom(jj, b) / binom(4, b);
+                    }
+                }
+                sum
+            })
+        })
+        .collect();
+    let k = KnotVector::new(4, vec![0.0, 0.0, 0.0, 0.0, 0.0, 1.0, 1.0, 1.0, 1.0, 1.0]).unwrap();
+    Surface::new(k.clone(), k, coefficients).unwrap()
+}
+
+/// `s = (u + v − 1)⁴ − (u − v − 0.2)⁴`: Hessian eigenvalues `12(u + v − 1)² · 2 ≥ 0` along
+/// `(1, 1)` and `−12(u − v − 0.2)² · 2 ≤ 0` along `(1, −1)`, each extremal along its own
+/// direction on one line: the blue ridge (larger eigenvalue) is `u + v = 1`, the red ridge
+/// `u − v = 0.2`; nothing else.
+#[test]
+fn ridges_of_a_closed_form() {
+    use spline_algebra::ridges;
+    let s = quartic_ridges(&[(1.0, 1.0, 1.0, -1.0), (-1.0, 1.0, -1.0, -0.2)]);
+    let f = |u: f64, v: f64| (u + v - 1.0).powi(4) - (u - v - 0.2).powi(4);
+    assert!((s.eval(0.3, 0.8).unwrap() - f(0.3, 0.8)).abs() < 1e-13);
+    let r = ridges(&s, 16).unwrap();
+    assert!(!r.blue.is_empty() && !r.red.is_empty(), "{r:?}");
+    let blue: usize = r.blue.iter().map(Vec::len).sum();
+    let red: usize = r.red.iter().map(Vec::len).sum();
+    assert!(blue >= 10 && red >= 10, "{blue} {red}");
+    for p in r.blue.iter().flatten() {
+        assert!((p[0] + p[1] - 1.0).abs() < 1e-7, "blue {p:?}");
+    }
+    for p in r.red.iter().flatten() {
+        assert!((p[0] - p[1] - 0.2).abs() < 1e-7, "red {p:?}");
     }
 }

@@ -163,3 +163,35 @@ fn mesh_draws_the_features() {
     );
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// A function `s(u, v) = (u − ½)³ + v²` as its graph: the Hessian determinant is
+/// `12 (u − ½)`, so the one parabolic line is `u = ½`; the output carries the ridges with
+/// their colours and the graph's points.
+#[test]
+fn functions_as_graphs() {
+    let b = [-0.125, 0.125, -0.125, 0.125];
+    let w = [0.0, 0.0, 1.0];
+    let rows: Vec<Vec<[f64; 1]>> = b
+        .iter()
+        .map(|bi| w.iter().map(|wj| [bi + wj]).collect())
+        .collect();
+    let json = serde_json::json!({"degree": [3, 2], "knots": [[0, 0, 0, 0, 1, 1, 1, 1], [0, 0, 0, 1, 1, 1]],
+        "control_points": rows});
+    let path = temp_file("function.json", &json.to_string());
+    let out = spline(&["surface-features", &path]).json();
+    let lines = out["parabolic_lines"].as_array().unwrap();
+    assert_eq!(lines.len(), 1, "{out}");
+    for (uv, p) in lines[0]["uv"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .zip(lines[0]["points"].as_array().unwrap())
+    {
+        let (u, v) = (uv[0].as_f64().unwrap(), uv[1].as_f64().unwrap());
+        assert!((u - 0.5).abs() < 1e-12);
+        assert!((p[2].as_f64().unwrap() - ((u - 0.5).powi(3) + v * v)).abs() < 1e-12);
+    }
+    for r in out["ridges"].as_array().unwrap() {
+        assert!(r["colour"] == "red" || r["colour"] == "blue");
+    }
+}
