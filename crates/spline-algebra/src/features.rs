@@ -217,6 +217,67 @@ pub fn rational_planar_numerators<T: Scalar>(
     })
 }
 
+/// The Hessians of the numerators of [`rational_planar_numerators`] with respect to the
+/// weighted control points `x`: `[inflection, curvature_extremum]`, row `k` of each the
+/// symmetric matrix $\partial^2 c_k / \partial x \partial x$. The Jacobian computation is
+/// run on dual numbers ([`num_dual::Dual64`]) with the seed on one variable at a time: the
+/// dual parts of its exact Jacobian are the Hessian's columns (forward mode over the product
+/// rule), `3n` runs for `n` control points.
+///
+/// ```
+/// use nalgebra::Vector2;
+/// use spline_geom::NurbsCurve;
+/// let w = std::f64::consts::FRAC_1_SQRT_2;
+/// let arc = NurbsCurve::from_knots(2, vec![0.0, 0.0, 0.0, 1.0, 1.0, 1.0],
+///     vec![Vector2::new(2.0, 0.0), Vector2::new(2.0, 1.0), Vector2::new(0.0, 1.0)],
+///     vec![1.0, w, 1.0])?;
+/// let [d, g] = spline_algebra::rational_planar_hessians(&arc)?;
+/// assert_eq!((d.left_dim(), g.left_dim()), (9, 9));
+/// # Ok::<(), spline_core::Error>(())
+/// ```
+///
+/// # Errors
+/// As [`rational_planar_numerators`].
+pub fn rational_planar_hessians(
+    curve: &NurbsCurve<f64, 2>,
+) -> Result<[crate::SparseBilinear<f64>; 2]> {
+    use num_dual::Dual64;
+    let h = curve.homogeneous();
+    let nx = 3 * h.control_points().len();
+    let knots: Vec<Dual64> = h.knots().knots().iter().map(|&k| Dual64::from(k)).collect();
+    let mut rows: [Vec<Vec<(usize, usize, f64)>>; 2] = [Vec::new(), Vec::new()];
+    for j in 0..nx {
+        let seeded = h
+            .control_points()
+            .iter()
+            .enumerate()
+            .map(|(i, q)| {
+                let d = |k: usize, v: f64| Dual64::new(v, if 3 * i + k == j { 1.0 } else { 0.0 });
+                Homogeneous::new(
+                    Vector2::new(d(0, q.point.x), d(1, q.point.y)),
+                    d(2, q.weight),
+                )
+            })
+            .collect();
+        let dual =
+            NurbsCurve::from_homogeneous(BSpline::from_knots(h.degree(), knots.clone(), seeded)?)?;
+        let n = rational_planar_numerators(&dual)?;
+        for (target, numerator) in rows.iter_mut().zip([n.inflection, n.curvature_extremum]) {
+            target.resize_with(numerator.jacobian.nrows(), Vec::new);
+            for (r, c, v) in numerator.jacobian.triplet_iter() {
+                if v.eps != 0.0 {
+                    target[r].push((c, j, v.eps));
+                }
+            }
+        }
+    }
+    let [d, g] = rows;
+    Ok([
+        crate::SparseBilinear::from_rows(nx, nx, d)?,
+        crate::SparseBilinear::from_rows(nx, nx, g)?,
+    ])
+}
+
 /// The feature numerators of a curve with Jacobians ([`rational_planar_numerators`]).
 #[derive(Clone, Debug)]
 pub struct RationalNumerators<T> {
@@ -325,8 +386,9 @@ impl<T: Scalar, const D: usize> Normalisation<T, D> {
     }
 }
 
-/// `D` and `G` of [`rational_planar_numerators`] in the coordinates of `frame`, cleaned of
-/// rounding; with `accuracy > 0` the curve is first checked to be regular.
+/// `D` and `G` of [`rational_planar_numerators`] in the coordinates of `frame` (without
+/// Jacobians: cleaned of rounding); with `accuracy > 0` the curve is first checked to be
+/// regular.
 fn rational_planar<T: Scalar>(
     curve: &NurbsCurve<T, 2>,
     frame: &Normalisation<T, 2>,
@@ -352,7 +414,7 @@ fn rational_planar<T: Scalar>(
         .times(&cross(&y1, &w2, &w1, &y2)?)?
         .minus(&y.times(&cross(&x1, &w2, &w1, &x2)?)?)?
         .plus(&w.times(&cross(&x1, &y2, &y1, &x2)?)?)?
-        .cleaned();
+        .cleaned_if(!jacobian);
     let nn = nx.times(&nx)?.plus(&ny.times(&ny)?)?;
     if accuracy > T::zero() {
         check_regular(&nn.value, accuracy)?;
@@ -366,6 +428,6 @@ fn rational_planar<T: Scalar>(
     let g = lead
         .times(&nn)?
         .minus(&det.times(&w)?.times(&nn1)?.scaled(three))?
-        .cleaned();
+        .cleaned_if(!jacobian);
     Ok((det, g))
 }

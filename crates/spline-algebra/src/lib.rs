@@ -72,7 +72,7 @@ pub use bilinear::SparseBilinear;
 pub use curves::{Differentiated, Form, Invariant, PlanarInvariants};
 pub use features::{
     CurveFeatures, PlanarFeatures, RationalNumerators, curvature_extrema, inflections,
-    planar_features, rational_planar_numerators,
+    planar_features, rational_planar_hessians, rational_planar_numerators,
 };
 pub use maps::SplineMap;
 pub use nalgebra_sparse::CsrMatrix;

@@ -220,6 +220,13 @@ impl<T: Scalar, F: Function<T>> Tracked<T, F> {
         Self::leaf(self.value.with_coefficients(points), self.jacobian)
     }
 
+    /// [`Tracked::cleaned`] when `clean`: the numerators with derivatives keep their
+    /// rounding, so that derivatives of their derivatives (dual numbers run through the
+    /// Jacobians) stay exact.
+    pub(crate) fn cleaned_if(self, clean: bool) -> Self {
+        if clean { self.cleaned() } else { self }
+    }
+
     /// Whether every coefficient is exactly zero (after [`Tracked::cleaned`]: the function
     /// vanishes identically up to rounding).
     pub(crate) fn is_zero(&self) -> bool {

@@ -191,8 +191,8 @@ fn build<T: Scalar>(
             None => (mm.scaled(T::zero()), mm.times(&h3)?.scaled(-three)),
         };
         return Ok(Numerators {
-            curvature: curvature.cleaned(),
-            torsion: torsion.cleaned(),
+            curvature: curvature.cleaned_if(!jacobian),
+            torsion: torsion.cleaned_if(!jacobian),
         });
     }
     let w1 = w.derivative(1)?;
@@ -246,7 +246,7 @@ fn build<T: Scalar>(
         None => mm.scaled(T::zero()),
     };
     Ok(Numerators {
-        curvature: curvature.cleaned(),
-        torsion: torsion.cleaned(),
+        curvature: curvature.cleaned_if(!jacobian),
+        torsion: torsion.cleaned_if(!jacobian),
     })
 }

@@ -323,3 +323,88 @@ fn rational_numerator_jacobians_agree_with_dual_numbers_and_differences() {
         }
     }
 }
+
+/// The Hessians of the rational numerators against hyper-dual numbers (second derivatives
+/// of the values, independent of the Jacobian code) on every pair of variables of two
+/// control points, and symmetric.
+#[test]
+fn rational_numerator_hessians_agree_with_hyper_dual_numbers() {
+    use num_dual::HyperDual64;
+    use spline_algebra::{rational_planar_hessians, rational_planar_numerators};
+    use spline_geom::{BSpline, Homogeneous};
+    let knots = vec![0.0, 0.0, 0.0, 0.0, 0.4, 1.0, 1.0, 1.0, 1.0];
+    let hom: Vec<[f64; 3]> = vec![
+        [0.0, 0.0, 1.0],
+        [1.2, 2.4, 1.2],
+        [1.25, -0.5, 0.5],
+        [6.0, 3.0, 2.0],
+        [5.0, 0.0, 1.0],
+    ];
+    let curve = NurbsCurve::from_homogeneous(
+        BSpline::from_knots(
+            3,
+            knots.clone(),
+            hom.iter()
+                .map(|q| Homogeneous::new(Vector2::new(q[0], q[1]), q[2]))
+                .collect(),
+        )
+        .unwrap(),
+    )
+    .unwrap();
+    let [hd, hg] = rational_planar_hessians(&curve).unwrap();
+    let dense = |h: &spline_algebra::SparseBilinear<f64>, k: usize| common::dense(&h.matrix(k));
+    let rows = rational_planar_numerators(&curve)
+        .unwrap()
+        .curvature_extremum
+        .value
+        .control_points()
+        .len();
+    let mut checked = 0;
+    for a in 3..9 {
+        for b in a..9 {
+            let hyper = NurbsCurve::from_homogeneous(
+                BSpline::from_knots(
+                    3,
+                    knots.iter().map(|&k| HyperDual64::from(k)).collect(),
+                    hom.iter()
+                        .enumerate()
+                        .map(|(i, q)| {
+                            let d = |k: usize| {
+                                let j = 3 * i + k;
+                                HyperDual64::new(
+                                    q[k],
+                                    if j == a { 1.0 } else { 0.0 },
+                                    if j == b { 1.0 } else { 0.0 },
+                                    0.0,
+                                )
+                            };
+                            Homogeneous::new(Vector2::new(d(0), d(1)), d(2))
+                        })
+                        .collect(),
+                )
+                .unwrap(),
+            )
+            .unwrap();
+            let n = rational_planar_numerators(&hyper).unwrap();
+            for (which, h, values) in [
+                ("G", &hg, n.curvature_extremum.value.control_points()),
+                ("D", &hd, n.inflection.value.control_points()),
+            ] {
+                let scale = values.iter().fold(1.0f64, |m, v| m.max(v.eps1eps2.abs()));
+                for (k, v) in values.iter().enumerate() {
+                    let m = dense(h, k);
+                    assert!(
+                        (m[a][b] - v.eps1eps2).abs() < 1e-10 * scale,
+                        "{which} row {k} ({a}, {b}): {} vs {}",
+                        m[a][b],
+                        v.eps1eps2
+                    );
+                    assert!((m[a][b] - m[b][a]).abs() < 1e-10 * scale);
+                    checked += 1;
+                }
+            }
+        }
+    }
+    assert_eq!(hg.nrows(), rows);
+    assert!(checked > 100);
+}
