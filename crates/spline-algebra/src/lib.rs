@@ -24,6 +24,13 @@
 //!   their row-major nets as `A_u ⊗ A_v`): [`partials`], [`tensor_product`],
 //!   [`hessian_determinant`] (`s_uu s_vv − s_uv²` with gradient and constant Hessian),
 //!   [`ridge_polynomials`].
+//! - Curves of every kind: [`CurveFeatures`] (planar: inflections, curvature extrema,
+//!   constant curvature), [`SpaceCurveFeatures`] (curvature extrema, torsion zeros),
+//!   [`rational_planar_numerators`] / [`space_numerators`] with Jacobians w.r.t. the weighted
+//!   control points, [`rational_planar_hessians`].
+//! - Surfaces: [`curvature_numerators`] (`K`, `H`, umbilic conditions as bivariate splines),
+//!   [`zero_set`] and [`common_zeros`] of bivariate splines, [`parabolic_lines`],
+//!   [`umbilics`], [`ridges`] of functions, [`feature_overlays`] for pictures.
 //! - Roots: [`zeros`] and [`sign_change_params`] of any B-spline function.
 //!
 //! Everything is generic over [`spline_core::Scalar`], so the same code runs on dual numbers
