@@ -82,7 +82,8 @@ enum Command {
     Intersect(surfaces::IntersectArgs),
     /// Least-squares surface through scattered points or a mesh, with parameter correction.
     ApproximateSurface(surfaces::ApproximateSurfaceArgs),
-    /// Parabolic lines (K = 0) of a surface as polylines in (u, v) and in space.
+    /// Parabolic lines (K = 0) and umbilics of a surface (ridges of a function s(u, v)),
+    /// as polylines in (u, v) and in space.
     SurfaceFeatures(surface_features::SurfaceFeaturesArgs),
 }
 
