@@ -19,8 +19,8 @@ mod objects;
 mod plot;
 mod shape;
 mod structural;
-mod surfaces;
 mod surface_features;
+mod surfaces;
 
 use clap::{Parser, Subcommand};
 use std::process::ExitCode;
