@@ -35,6 +35,7 @@ mod arclength;
 mod bezier;
 mod bspline;
 mod construct;
+mod curve_tools;
 #[cfg(feature = "serde")]
 pub mod exchange;
 pub mod export;
@@ -44,6 +45,7 @@ mod nurbs;
 mod operations;
 mod param;
 mod param_impls;
+mod periodic;
 mod planar;
 mod point_text;
 mod structural;
@@ -66,6 +68,8 @@ pub use nurbs::{
     Rational,
 };
 pub use operations::{Operation, Outcome, StructuralCurve, StructuralSurface};
+pub use curve_tools::{BoundingBox, MAX_TESSELLATION_SEGMENTS, hull_box, param_at_length, pieces_box, tessellate};
+pub use periodic::PeriodicBSpline;
 pub use param::{ParamCurve, ParamSurface, PlanarCurve, SpatialSurface};
 pub use planar::wedge;
 pub use spline_core::{ControlPoint, Error, ErrorKind, KnotVector, Result, Scalar};
