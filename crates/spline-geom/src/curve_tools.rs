@@ -189,8 +189,8 @@ pub(crate) fn distance_to_segment<T: Scalar, P: ControlPoint<T>>(q: &P, a: &P, b
 /// // A straight segment of length 2, parametrised non-uniformly.
 /// let c = BSpline::from_knots(2, vec![0.0, 0.0, 0.0, 1.0, 1.0, 1.0],
 ///     vec![Vector2::new(0.0, 0.0), Vector2::new(0.2, 0.0), Vector2::new(2.0, 0.0)])?;
-/// let u = param_at_length(&c, 1.0, 1e-12)?;
-/// assert!((c.eval(u)?.x - 1.0).abs() < 1e-11);
+/// let u: f64 = param_at_length(&c, 1.0, 1e-12)?;
+/// assert!((c.eval(u)?.x - 1.0f64).abs() < 1e-11);
 /// # Ok::<(), spline_core::Error>(())
 /// ```
 ///
