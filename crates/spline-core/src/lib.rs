@@ -33,7 +33,7 @@ pub use basis::{BasisValues, SpanBasis, bernstein, bernstein_all, binomial};
 pub use batch::BatchBasis;
 pub use error::{Error, ErrorKind, Result, Short, overflow};
 pub use knots::{
-    KnotVector, MAX_DEGREE, PeriodicKnots, MAX_DERIVATIVE_ORDER, MAX_ORDER, check_derivative_order,
+    KnotVector, MAX_DEGREE, MAX_DERIVATIVE_ORDER, MAX_ORDER, check_derivative_order,
     check_elevated_degree, check_params,
 };
 pub use point::{ControlPoint, SymbolicPoint, VectorSpace, lerp};

@@ -1,9 +1,6 @@
 //! Knot vectors: validated once at construction, then trusted.
 
-mod periodic;
 mod rules;
-
-pub use periodic::PeriodicKnots;
 
 use crate::error::{Error, ErrorKind, Result};
 use crate::scalar::{Scalar, from_count, to_f64};
