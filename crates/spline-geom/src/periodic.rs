@@ -1,321 +1,419 @@
-//! Periodic B-splines: closed curves and periodic functions as a kind of their own.
-//!
-//! A [`PeriodicBSpline`] holds `n` control points on [`PeriodicKnots`] and evaluates at any
-//! parameter (modulo the period). Its structural operations are the open ones run on the
-//! same spline written over three periods ([`PeriodicKnots::extended`]), where the middle
-//! period is exact: knot insertion and refinement, the derivative, degree elevation and
-//! opening into a clamped curve reuse the one implementation of each in
-//! [`crate::BSpline`].
+//! Periodic B-splines: closed curves (and periodic functions) as a first-class kind.
 
 use crate::bspline::BSpline;
-use spline_core::{ControlPoint, Error, ErrorKind, KnotVector, PeriodicKnots, Result, Scalar};
+use crate::param::ParamCurve;
+use spline_core::{
+    ControlPoint, Error, ErrorKind, KnotVector, MAX_DEGREE, Result, Scalar, VectorSpace, cast,
+    from_count, to_f64,
+};
 
-/// A periodic B-spline $C(u + T) = C(u)$ of degree `p` with `n` control points:
+/// A periodic B-spline of degree `p`: knots $t_0 \le … \le t_{N-1}$ in one period
+/// $[a, a + T)$, extended by $t_{j+N} = t_j + T$, and `N` control points $c_0 … c_{N-1}$,
+/// extended by $c_{i+N} = c_i$:
 ///
-/// $$ C(u) = \sum_{i=0}^{n-1} P_i \sum_{m \in \mathbb{Z}} N_{i + mn, p}(u) $$
+/// $$ C(u) = \sum_{i} c_{i \bmod N} N_{i,p}(u), \qquad C(u + T) = C(u). $$
 ///
-/// on the bi-infinite knots of [`PeriodicKnots`]. Evaluation takes any finite parameter;
-/// the domain of one turn is $[t_0, t_0 + T]$, and the curve is $C^{p - m}$ at a knot of
-/// multiplicity `m`, across $t_0$ as everywhere else. [`PeriodicBSpline::to_bspline`] gives
-/// the wrapped open form (the last `p` control points repeating the first `p`), which is
-/// what scipy's periodic `BSpline` holds.
+/// The curve is closed and $C^{p-m}$ at a knot of multiplicity `m ≤ p`, also across the
+/// closing point. It is stored as the *wrapped* container of the period $[a, a + T]$ (the
+/// form of scipy's periodic `BSpline` and of `spline_fit::interpolate_closed`): `N + 2p + 1`
+/// knots $t_{-p} … t_{N+p}$ and `N + p` control points whose last `p` repeat the first `p`
+/// ([`PeriodicBSpline::wrapped`]); basis function `i` has the support $[t_{i-p}, t_{i+1}]$.
+/// Evaluation accepts every finite parameter and reduces it to the period.
 ///
 /// ```
 /// use nalgebra::Vector2;
-/// use spline_core::PeriodicKnots;
 /// use spline_geom::PeriodicBSpline;
+/// // A closed uniform cubic on the control polygon of a square.
 /// let square = vec![
 ///     Vector2::new(1.0, 0.0), Vector2::new(0.0, 1.0),
 ///     Vector2::new(-1.0, 0.0), Vector2::new(0.0, -1.0),
 /// ];
-/// let knots = PeriodicKnots::uniform(2, 4, 0.0, 4.0)?;
-/// let c = PeriodicBSpline::new(knots, square)?;
-/// assert_eq!(c.eval(0.5)?, c.eval(4.5)?);           // any parameter, modulo the period
-/// let d = c.derivatives(0.0, 1)?[1];
-/// assert!((d - c.derivatives(4.0, 1)?[1]).norm() < 1e-15); // smooth across the seam
-/// let open = c.to_open(1.0)?;                          // clamped on [1, 5]
-/// assert!((open.eval(1.0)? - c.eval(1.0)?).norm() < 1e-15);
+/// let curve = PeriodicBSpline::new(3, vec![0.0, 1.0, 2.0, 3.0], 4.0, square)?;
+/// let (a, b) = curve.domain();
+/// assert_eq!((a, b), (0.0, 4.0));
+/// assert!((curve.eval(0.3)? - curve.eval(4.3)?).norm() < 1e-14); // periodic
+/// let d0 = curve.derivatives(a, 2)?;
+/// let d1 = curve.derivatives(b - 1e-12, 2)?;
+/// assert!((d0[1] - d1[1]).norm() < 1e-9); // C² across the closing point
 /// # Ok::<(), spline_core::Error>(())
 /// ```
 #[derive(Clone, Debug, PartialEq)]
 pub struct PeriodicBSpline<T, P> {
-    knots: PeriodicKnots<T>,
-    /// The wrapped form: `n + p` control points, the last `p` repeating the first `p`.
     wrapped: BSpline<T, P>,
+    count: usize,
 }
 
 impl<T: Scalar, P: ControlPoint<T>> PeriodicBSpline<T, P> {
-    /// A periodic spline from its knots and its `n` control points.
+    /// The periodic B-spline of degree `p` with the knots `knots` of one period
+    /// ($t_0 \le … \le t_{N-1} < t_0 + T$), the period `T` and `N` control points.
     ///
     /// # Errors
-    /// [`ErrorKind::InvalidLength`] unless there is one control point per knot of the
-    /// period; [`ErrorKind::NonFinite`] for a control point that is not finite.
-    pub fn new(knots: PeriodicKnots<T>, control_points: Vec<P>) -> Result<Self> {
-        let n = knots.num_basis();
-        if control_points.len() != n {
-            return Err(Error::invalid_length(
-                format_args!(
-                    "a periodic spline with {n} knots per period needs {n} control points"
-                ),
-                n,
-                control_points.len(),
+    /// [`ErrorKind::DegreeTooHigh`] above [`MAX_DEGREE`]; [`ErrorKind::InvalidLength`] unless
+    /// there are as many knots as control points; [`ErrorKind::TooFewPoints`] unless
+    /// `N ≥ p + 1`; [`ErrorKind::NonFinite`]; [`ErrorKind::UnsortedKnots`] for decreasing
+    /// knots; [`ErrorKind::EmptyDomain`] unless $t_{N-1} < t_0 + T$;
+    /// [`ErrorKind::KnotMultiplicity`] for a knot repeated more than `p` times (the curve
+    /// would not be continuous).
+    pub fn new(degree: usize, knots: Vec<T>, period: T, control_points: Vec<P>) -> Result<Self> {
+        check_periodic_shape(degree, knots.len(), control_points.len())?;
+        if let Some(j) = knots.iter().position(|k| !k.is_finite()) {
+            return Err(Error::non_finite(format_args!("knot {j}")).with_index(j));
+        }
+        if !period.is_finite() {
+            return Err(Error::non_finite("the period"));
+        }
+        if let Some(j) = (1..knots.len()).find(|&j| knots[j] < knots[j - 1]) {
+            return Err(Error::new(
+                ErrorKind::UnsortedKnots,
+                format!("periodic knots decrease at index {j}"),
             ));
         }
-        let p = knots.degree();
-        let wrapped_points: Vec<P> = (0..n + p).map(|i| control_points[i % n]).collect();
-        let wrapped = BSpline::new(knots.wrapped(), wrapped_points)?;
-        Ok(Self { knots, wrapped })
+        let n = knots.len();
+        if !(knots[n - 1] < knots[0] + period) {
+            return Err(Error::new(
+                ErrorKind::EmptyDomain,
+                format!(
+                    "the period {} must exceed the span of one period's knots ({} to {})",
+                    to_f64(period),
+                    to_f64(knots[0]),
+                    to_f64(knots[n - 1])
+                ),
+            ));
+        }
+        let extended = extend_knots(&knots, period, degree, 1);
+        let knot_vector = KnotVector::new(degree, extended)?;
+        check_multiplicities(&knot_vector, degree, n)?;
+        if let Some(i) = control_points.iter().position(|c| !c.all_finite()) {
+            return Err(Error::non_finite(format_args!("control point {i}")).with_index(i));
+        }
+        let wrapped: Vec<P> = (0..n + degree).map(|i| control_points[i % n]).collect();
+        Ok(Self {
+            wrapped: BSpline::new_unchecked(knot_vector, wrapped),
+            count: n,
+        })
     }
 
-    /// The periodic spline behind a wrapped open B-spline: knots with
-    /// $u_{i+n} - u_i$ equal to the length of the domain and the last `p` control points
-    /// equal to the first `p`, each within `tolerance` relative to the period and to the
-    /// size of the control polygon (the form [`PeriodicBSpline::to_bspline`] and
-    /// `spline_fit::interpolate_closed` return).
+    /// The periodic B-spline whose wrapped container is `curve` (scipy's periodic form, the
+    /// result of `spline_fit::interpolate_closed`): `N + 2p + 1` knots whose first and last
+    /// `2p + 1` differ by the period $T = u_{N+p} - u_p$, and `N + p` control points whose last
+    /// `p` repeat the first `p`.
     ///
     /// # Errors
-    /// [`ErrorKind::SpaceMismatch`] when the knots are not periodic;
-    /// [`ErrorKind::ToleranceExceeded`] when the control points do not wrap.
-    pub fn from_wrapped(curve: &BSpline<T, P>, tolerance: T) -> Result<Self> {
-        let knots = PeriodicKnots::from_wrapped(curve.knots(), tolerance)?;
-        let n = knots.num_basis();
-        let points = curve.control_points();
-        let size = points.iter().fold(T::one(), |m, q| m.max(q.max_abs()));
-        if let Some(i) = (0..knots.degree()).find(|&i| (points[i + n] - points[i]).max_abs() > tolerance * size) {
+    /// [`ErrorKind::InvalidArgument`] if the knots or control points do not repeat with the
+    /// period (knots to 8 ulps of the largest knot, control points exactly); the errors of
+    /// [`PeriodicBSpline::new`].
+    pub fn from_wrapped(curve: &BSpline<T, P>) -> Result<Self> {
+        let p = curve.degree();
+        let m = curve.len();
+        if m < 2 * p + 1 {
             return Err(Error::new(
-                ErrorKind::ToleranceExceeded,
+                ErrorKind::TooFewPoints,
                 format!(
-                    "the curve is not closed: control point {} does not repeat control point {i}",
+                    "a wrapped periodic curve of degree {p} needs at least {} control points, got {m}",
+                    2 * p + 1
+                ),
+            ));
+        }
+        let n = m - p;
+        let u = curve.knots().knots();
+        let period = u[n + p] - u[p];
+        let scale = u.iter().fold(period.abs(), |s, k| s.max(k.abs()));
+        let slack = scale * cast::<T>(8.0 * f64::EPSILON);
+        for k in 0..=2 * p {
+            if (u[k + n] - u[k] - period).abs() > slack {
+                return Err(Error::new(
+                    ErrorKind::InvalidArgument,
+                    format!(
+                        "knots {k} and {} do not differ by the period {}",
+                        k + n,
+                        to_f64(period)
+                    ),
+                ));
+            }
+        }
+        let points = curve.control_points();
+        if let Some(i) = (0..p).find(|&i| points[i] != points[i + n]) {
+            return Err(Error::new(
+                ErrorKind::InvalidArgument,
+                format!(
+                    "control point {} does not repeat control point {i}: the curve is not wrapped",
                     i + n
                 ),
             ));
         }
-        Self::new(knots, points[..n].to_vec())
-    }
-
-    /// The periodic knots.
-    #[must_use]
-    pub fn knots(&self) -> &PeriodicKnots<T> {
-        &self.knots
+        Self::new(p, u[p..p + n].to_vec(), period, points[..n].to_vec())
     }
 
     /// The degree `p`.
     #[must_use]
     pub fn degree(&self) -> usize {
-        self.knots.degree()
+        self.wrapped.degree()
     }
 
     /// The period `T`.
     #[must_use]
     pub fn period(&self) -> T {
-        self.knots.period()
+        let (a, b) = self.wrapped.domain();
+        b - a
     }
 
-    /// The `n` control points.
-    #[must_use]
-    pub fn control_points(&self) -> &[P] {
-        &self.wrapped.control_points()[..self.knots.num_basis()]
-    }
-
-    /// The domain of one turn, $[t_0, t_0 + T]$.
+    /// The period's parameter interval $[a, a + T]$ (`a` is the first knot).
     #[must_use]
     pub fn domain(&self) -> (T, T) {
-        self.knots.domain()
+        self.wrapped.domain()
     }
 
-    /// The wrapped open form: the B-spline on [`PeriodicKnots::wrapped`] with `n + p`
-    /// control points, equal to this spline on one period.
+    /// The knots of one period, $t_0 … t_{N-1}$.
     #[must_use]
-    pub fn to_bspline(&self) -> BSpline<T, P> {
-        self.wrapped.clone()
+    pub fn period_knots(&self) -> &[T] {
+        let p = self.degree();
+        &self.wrapped.knots().knots()[p..p + self.count]
     }
 
-    /// The wrapped open form, borrowed.
+    /// The `N` distinct control points.
     #[must_use]
-    pub fn as_bspline(&self) -> &BSpline<T, P> {
+    pub fn control_points(&self) -> &[P] {
+        &self.wrapped.control_points()[..self.count]
+    }
+
+    /// The number `N` of distinct control points (of knots in one period).
+    #[must_use]
+    pub fn len(&self) -> usize {
+        self.count
+    }
+
+    /// Never: a periodic B-spline has at least `p + 1` control points.
+    #[must_use]
+    pub fn is_empty(&self) -> bool {
+        false
+    }
+
+    /// The wrapped container on the period (`N + p` control points, the last `p` repeating
+    /// the first): the same curve on $[a, a + T]$ as an ordinary unclamped B-spline.
+    #[must_use]
+    pub fn wrapped(&self) -> &BSpline<T, P> {
         &self.wrapped
     }
 
-    /// The parameter at which the wrapped form is evaluated: `u` itself on the closed
-    /// domain (so that the end of the domain is a left limit, as for open curves), else
-    /// `u` moved into it by whole periods.
-    fn local(&self, u: T) -> Result<T> {
+    /// `u` reduced to the period: $a + ((u - a) \bmod T)$.
+    ///
+    /// # Errors
+    /// [`ErrorKind::NonFinite`] for a parameter that is not finite.
+    pub fn reduce(&self, u: T) -> Result<T> {
         if !u.is_finite() {
             return Err(
-                Error::non_finite(format_args!("parameter {}", spline_core::to_f64(u)))
-                    .with_value(spline_core::to_f64(u)),
+                Error::non_finite(format_args!("parameter {}", to_f64(u))).with_value(to_f64(u))
             );
         }
         let (a, b) = self.domain();
-        Ok(if u >= a && u <= b { u } else { self.knots.wrap(u) })
-    }
-
-    /// The point $C(u)$ for any finite `u`.
-    ///
-    /// # Errors
-    /// [`ErrorKind::NonFinite`] for NaN or infinite `u`.
-    pub fn eval(&self, u: T) -> Result<P> {
-        self.wrapped.eval(self.local(u)?)
-    }
-
-    /// $C(u), …, C^{(k)}(u)$ into `out` (`k = out.len() − 1`), for any finite `u`.
-    ///
-    /// # Errors
-    /// As [`BSpline::derivatives_into`].
-    pub fn derivatives_into(&self, u: T, out: &mut [P]) -> Result<()> {
-        self.wrapped.derivatives_into(self.local(u)?, out)
-    }
-
-    /// The derivatives $C^{(j)}(u)$ for `j = 0 … order`.
-    ///
-    /// # Errors
-    /// As [`BSpline::derivatives`].
-    pub fn derivatives(&self, u: T, order: usize) -> Result<Vec<P>> {
-        self.wrapped.derivatives(self.local(u)?, order)
-    }
-
-    /// The same spline as an open B-spline over one period before and one after this one:
-    /// domain $[t_0 - T, t_0 + 2T]$.
-    fn three_periods(&self) -> BSpline<T, P> {
-        let n = self.knots.num_basis();
-        let points = (0..3 * n + self.degree())
-            .map(|i| self.control_points()[i % n])
-            .collect();
-        BSpline::new_unchecked(self.knots.extended(1, 1), points)
-    }
-
-    /// Reads the periodic spline on `knots` off an open spline that equals it on
-    /// $[t_0 - T, t_0 + 2T]$ and whose knots there are those of `knots`.
-    fn from_three_periods(knots: PeriodicKnots<T>, open: &BSpline<T, P>) -> Self {
-        let (a, _) = knots.domain();
-        let first = open.knots().knots().partition_point(|&k| k < a);
-        let p = knots.degree();
-        let n = knots.num_basis();
-        let points = open.control_points()[first - p..first - p + n].to_vec();
-        Self::new(knots, points).expect("the points of a valid spline are finite")
-    }
-
-    /// Inserts the knot `u` (modulo the period) `times` times without changing the curve.
-    ///
-    /// # Errors
-    /// [`ErrorKind::NonFinite`]; [`ErrorKind::KnotMultiplicity`] above `p + 1`.
-    pub fn insert_knot(&self, u: T, times: usize) -> Result<Self> {
-        self.refine(&vec![u; times])
-    }
-
-    /// Inserts all of `new_knots` (any order, modulo the period): knot refinement on the
-    /// spline written over three periods, each knot inserted in all three.
-    ///
-    /// # Errors
-    /// As [`PeriodicBSpline::insert_knot`].
-    pub fn refine(&self, new_knots: &[T]) -> Result<Self> {
-        let target = self.knots.refined(new_knots)?;
-        if new_knots.is_empty() {
-            return Ok(self.clone());
+        if u >= a && u <= b {
+            return Ok(u);
         }
-        let t = self.period();
-        let mut all = Vec::with_capacity(3 * new_knots.len());
-        for &u in new_knots {
-            let w = self.knots.wrap(u);
-            all.extend([w - t, w, w + t]);
-        }
-        let refined = self.three_periods().refine(&all)?;
-        Ok(Self::from_three_periods(target, &refined))
+        let period = b - a;
+        let v = u - ((u - a) / period).floor() * period;
+        // Rounding can land a hair outside the period.
+        Ok(if v < a || v >= b { a } else { v })
     }
 
-    /// The clamped open curve that starts at `u` (modulo the period) and runs once around,
-    /// on $[u, u + T]$: the periodic spline split into an open one.
+    /// The point $C(u)$ for any finite `u` (reduced to the period).
     ///
     /// # Errors
     /// [`ErrorKind::NonFinite`].
-    pub fn to_open(&self, u: T) -> Result<BSpline<T, P>> {
-        let start = self.knots.wrap(self.local(u)?);
-        self.three_periods().restricted(start, start + self.period())
+    pub fn eval(&self, u: T) -> Result<P> {
+        self.wrapped.eval(self.reduce(u)?)
     }
 
-    /// The derivative of order `order`, a periodic spline of degree `p − order` (a knot
-    /// copy dropped where it is discontinuous, as for open splines).
+    /// $C(u), C'(u), …, C^{(k)}(u)$ for any finite `u`.
     ///
     /// # Errors
-    /// [`ErrorKind::OrderTooHigh`] above the degree; [`ErrorKind::TooFewPoints`] when the
-    /// derivative would have fewer knots per period than its degree needs.
-    pub fn derivative(&self, order: usize) -> Result<Self> {
-        let target = self.knots.derivative_knots(order)?;
-        let open = self.three_periods().derivative(order)?;
-        Ok(Self::from_three_periods(target, &open))
+    /// [`ErrorKind::NonFinite`]; [`ErrorKind::OrderTooHigh`] as [`BSpline::derivatives`].
+    pub fn derivatives(&self, u: T, order: usize) -> Result<Vec<P>> {
+        self.wrapped.derivatives(self.reduce(u)?, order)
     }
 
-    /// Raises the degree by `times` (every knot's multiplicity rises by `times`).
+    /// The wrapped container repeated over `periods` periods (`N·periods + p` control points
+    /// on $[a, a + \text{periods}\cdot T]$).
+    fn extended(&self, periods: usize) -> BSpline<T, P> {
+        let p = self.degree();
+        let knots = extend_knots(self.period_knots(), self.period(), p, periods);
+        let points = self.control_points();
+        let control = (0..self.count * periods + p)
+            .map(|i| points[i % self.count])
+            .collect();
+        BSpline::new_unchecked(KnotVector::new_unchecked(p, knots), control)
+    }
+}
+
+impl<T: Scalar, V: VectorSpace<T> + ControlPoint<T>> PeriodicBSpline<T, V> {
+    /// Inserts the knot `u` (any finite parameter, reduced to the period) `times` times:
+    /// the same curve with `N + times` control points, still periodic. Boehm's insertion on
+    /// two periods, at `u` and `u + T` (spline-geom's one refinement), read back on the
+    /// second one.
     ///
     /// # Errors
-    /// [`ErrorKind::DegreeTooHigh`] above [`spline_core::MAX_DEGREE`].
-    pub fn elevate_degree(&self, times: usize) -> Result<Self> {
+    /// [`ErrorKind::NonFinite`]; [`ErrorKind::KnotMultiplicity`] if the knot would occur
+    /// more than `p` times.
+    pub fn insert_knot(&self, u: T, times: usize) -> Result<Self> {
+        let u = self.reduce(u)?;
+        let p = self.degree();
+        let period = self.period();
+        let existing = self.period_knots().iter().filter(|&&k| k == u).count();
+        if existing + times > p {
+            return Err(Error::new(
+                ErrorKind::KnotMultiplicity,
+                format!(
+                    "inserting u = {} {times} times gives multiplicity {} > degree {p} (a periodic curve must stay continuous)",
+                    to_f64(u),
+                    existing + times
+                ),
+            ));
+        }
         if times == 0 {
             return Ok(self.clone());
         }
-        let q = spline_core::check_elevated_degree(self.degree(), times)?;
-        let knots: Vec<T> = self
-            .knots
-            .knots()
-            .iter()
-            .flat_map(|&k| std::iter::repeat_n(k, 1))
-            .collect();
-        let mut elevated_knots = Vec::with_capacity(knots.len() * (times + 1));
-        let breaks = breakpoints(&knots);
-        for (k, m) in breaks {
-            elevated_knots.extend(std::iter::repeat_n(k, m + times));
-        }
-        let target = PeriodicKnots::new(q, elevated_knots, self.period())?;
-        let open = self.three_periods().elevate_degree(times)?;
-        Ok(Self::from_three_periods(target, &open))
+        let two = self.extended(2);
+        let mut new_knots = vec![u; times];
+        new_knots.extend(std::iter::repeat_n(u + period, times));
+        let refined = two.refine(&new_knots)?;
+        let n = self.count + times;
+        let knots = refined.knots().knots()[p..p + n].to_vec();
+        // The second period: its coefficients are blossoms at knots inside [a, a + 2T),
+        // all of the new periodic sequence (the first period's left ones are not).
+        let control = refined.control_points()[n..2 * n].to_vec();
+        Self::new(p, knots, period, control)
     }
 
-    /// The same curve traversed backwards: $\tilde C(u) = C(a + b - u)$ on the same domain.
-    #[must_use]
-    pub fn reversed(&self) -> Self {
-        let open = self.wrapped.reversed();
-        Self::from_wrapped_exact(&open)
-    }
-
-    /// The same curve on a domain starting at `a` with period `period` (an affine change
-    /// of parameter).
+    /// The closed curve opened at `u` (reduced to the period): the clamped B-spline on
+    /// $[u, u + T]$ with the same points, $\tilde C(s) = C(s)$.
     ///
     /// # Errors
-    /// [`ErrorKind::EmptyDomain`] unless the period is positive; [`ErrorKind::NonFinite`].
-    pub fn reparametrized(&self, a: T, period: T) -> Result<Self> {
-        let open = self.wrapped.reparametrized(a, a + period)?;
-        PeriodicBSpline::from_wrapped(&open, spline_core::cast(1e-12))
+    /// [`ErrorKind::NonFinite`].
+    pub fn open_at(&self, u: T) -> Result<BSpline<T, V>> {
+        let u = self.reduce(u)?;
+        self.extended(2).restricted(u, u + self.period())
     }
 
-    /// The wrapped form of a curve known to be periodic (the result of an exact
-    /// operation on a wrapped form).
-    fn from_wrapped_exact(open: &BSpline<T, P>) -> Self {
-        Self::from_wrapped(open, spline_core::cast(1e-12))
-            .expect("operations on a wrapped form keep it periodic")
+    /// The derivative $C'$: a periodic B-spline of degree `p − 1` on the same knots.
+    ///
+    /// # Errors
+    /// [`ErrorKind::InvalidArgument`] for degree 0; [`ErrorKind::NonFinite`] when a
+    /// coefficient overflows.
+    pub fn derivative(&self) -> Result<Self> {
+        if self.degree() == 0 {
+            return Err(Error::new(
+                ErrorKind::InvalidArgument,
+                "the derivative of a periodic curve of degree 0 is not a periodic B-spline",
+            ));
+        }
+        let d = self.wrapped.derivative(1)?;
+        Ok(Self {
+            wrapped: d,
+            count: self.count,
+        })
     }
-}
 
-/// The distinct values of sorted knots with their multiplicities.
-fn breakpoints<T: Scalar>(knots: &[T]) -> Vec<(T, usize)> {
-    let mut out: Vec<(T, usize)> = Vec::new();
-    for &k in knots {
-        match out.last_mut() {
-            Some((last, m)) if *last == k => *m += 1,
-            _ => out.push((k, 1)),
+    /// The same closed curve traversed backwards: $\tilde C(u) = C(a + b - u)$.
+    #[must_use]
+    pub fn reversed(&self) -> Self {
+        Self {
+            wrapped: self.wrapped.reversed(),
+            count: self.count,
         }
     }
-    out
 }
 
-impl<T: Scalar, P: ControlPoint<T>> From<PeriodicBSpline<T, P>> for BSpline<T, P> {
-    fn from(curve: PeriodicBSpline<T, P>) -> Self {
-        curve.wrapped
+impl<T: Scalar, P: ControlPoint<T>> ParamCurve<T> for PeriodicBSpline<T, P> {
+    type Point = P;
+    type Coefficient = P;
+
+    fn domain(&self) -> (T, T) {
+        Self::domain(self)
+    }
+
+    fn eval(&self, u: T) -> Result<P> {
+        Self::eval(self, u)
+    }
+
+    fn derivatives_into(&self, u: T, out: &mut [P]) -> Result<()> {
+        self.wrapped.derivatives_into(self.reduce(u)?, out)
+    }
+
+    fn breaks(&self) -> Vec<T> {
+        self.wrapped.knots().domain_breaks()
+    }
+
+    fn bezier_pieces(&self) -> Vec<(T, T, Vec<P>)> {
+        ParamCurve::bezier_pieces(&self.wrapped)
+    }
+
+    fn project(coefficient: &P) -> P {
+        *coefficient
+    }
+
+    /// The control polygon, closed: $c_0, …, c_{N-1}, c_0$.
+    fn control_polygon(&self) -> Vec<P> {
+        let mut points = self.control_points().to_vec();
+        points.push(points[0]);
+        points
     }
 }
 
-/// The wrapped knot vector of a periodic spline space (re-exported for symmetry with
-/// [`BSpline::knots`]).
-#[must_use]
-pub fn wrapped_knots<T: Scalar>(knots: &PeriodicKnots<T>) -> KnotVector<T> {
-    knots.wrapped()
+/// Checks the degree and the counts of a periodic spline.
+fn check_periodic_shape(degree: usize, knots: usize, points: usize) -> Result<()> {
+    if degree > MAX_DEGREE {
+        return Err(Error::new(
+            ErrorKind::DegreeTooHigh,
+            format!("degree {degree} exceeds the maximum {MAX_DEGREE}"),
+        ));
+    }
+    if knots != points {
+        return Err(Error::invalid_length(
+            "knots of one period (one per control point)",
+            points,
+            knots,
+        ));
+    }
+    if points < degree + 1 {
+        return Err(Error::new(
+            ErrorKind::TooFewPoints,
+            format!(
+                "a periodic B-spline of degree {degree} needs at least {} control points, got {points}",
+                degree + 1
+            ),
+        ));
+    }
+    Ok(())
+}
+
+/// Multiplicities of the periodic sequence (the images of the first knot included).
+fn check_multiplicities<T: Scalar>(knots: &KnotVector<T>, degree: usize, n: usize) -> Result<()> {
+    let (a, b) = knots.domain();
+    for (u, m) in knots.breakpoints() {
+        if u >= a && u < b && m > degree {
+            return Err(Error::new(
+                ErrorKind::KnotMultiplicity,
+                format!(
+                    "knot {} has multiplicity {m} > degree {degree}: a periodic curve must be continuous ({n} knots per period)",
+                    to_f64(u)
+                ),
+            ));
+        }
+    }
+    Ok(())
+}
+
+/// The knots $t_{-p} … t_{N\cdot\text{periods}+p}$ of the periodic sequence.
+fn extend_knots<T: Scalar>(one: &[T], period: T, degree: usize, periods: usize) -> Vec<T> {
+    let n = one.len();
+    let total = n * periods + 2 * degree + 1;
+    // j = k − p, written as q·N + r with 0 ≤ r < N (q may be negative): shifted by `offset`
+    // periods to stay in unsigned arithmetic.
+    let offset = degree.div_ceil(n).max(1);
+    (0..total)
+        .map(|k| {
+            let j = k + n * offset - degree;
+            let (q, r) = (j / n, j % n);
+            one[r] + period * (from_count::<T>(q) - from_count::<T>(offset))
+        })
+        .collect()
 }

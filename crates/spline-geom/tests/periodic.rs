@@ -37,7 +37,7 @@ fn periodic(
 }
 
 fn dense(a: f64, b: f64, n: usize) -> Vec<f64> {
-    (0..=n).map(|i| a + (b - a) * i as f64 / n as f64).collect()
+    (0..=n).map(|i| if i == n { b } else { a + (b - a) * i as f64 / n as f64 }).collect()
 }
 
 #[test]
