@@ -1,6 +1,7 @@
 //! Interpolation of points by B-spline curves and functions (seed 004 §7).
 
 use crate::banded::{BandLu, Staircase};
+use crate::periodic::solve_periodic_collocation;
 
 // `check_degree` moved to `params` (no import cycle); the old path stays for its users.
 #[allow(unused_imports)]
@@ -570,42 +571,7 @@ pub fn interpolate_closed<T: Scalar, P: ControlPoint<T>>(
         .collect();
     let knots = KnotVector::new(p, knots_vec)?;
     let params = t[..count].to_vec();
-    // Rows: C(t_j) = Q_j; unknowns c_0 … c_{N−1}, control point i is c_{i mod N}. Unknown
-    // c is stored at column (c − p) mod N: the wrapped columns become a right border.
-    let shift = p % count;
-    let col_of = |raw: usize| (raw % count + count - shift) % count;
-    let border = p.min(count);
-    let first_border = count - border;
-    let width = p + 1;
-    let mut rows = Vec::with_capacity(count);
-    let (mut kl, mut ku) = (0usize, 0usize);
-    let mut span = p;
-    for (j, &u) in params.iter().enumerate() {
-        span = knots.span_in_domain_from(u, span);
-        let mut vals = vec![T::zero(); width];
-        knots.basis_values(span, u, &mut vals);
-        let f = span - p;
-        for (a, v) in vals.iter().enumerate() {
-            let c = col_of(f + a);
-            if *v != T::zero() && c < first_border {
-                kl = kl.max(j.saturating_sub(c));
-                ku = ku.max(c.saturating_sub(j));
-            }
-        }
-        rows.push((f, vals));
-    }
-    let mut lu = BandLu::zeros(count, kl, ku, border);
-    for (j, (f, vals)) in rows.iter().enumerate() {
-        for (a, &v) in vals.iter().enumerate() {
-            if v != T::zero() {
-                lu.add(j, col_of(f + a), v);
-            }
-        }
-    }
-    lu.factor()?;
-    let mut x = points.to_vec();
-    lu.solve(&mut x);
-    let control: Vec<P> = (0..count + p).map(|i| x[col_of(i)]).collect();
+    let control = solve_periodic_collocation(&knots, &params, points)?;
     let curve = BSpline::new(knots, control)?;
     CurveFit::new(curve, params, points)
 }

@@ -11,6 +11,9 @@
 //!   with rotation-minimising frames ([`sweep`]), Gordon surfaces through a curve network
 //!   ([`gordon`]); grid interpolation with boundary derivatives
 //!   ([`interpolate_surface_with_derivatives`]).
+//! - Periodic splines ([`spline_geom::PeriodicBSpline`]): interpolation with scipy's periodic
+//!   conditions ([`interpolate_periodic`]) and periodic least squares with an optional
+//!   smoothing term ([`least_squares_periodic`]).
 //! - Least squares ([`LeastSquares`], [`approximate`]) with weights, pinned ends, fixed
 //!   control-point coordinates (seed 000 §3.3), a smoothing term, normal equations or QR;
 //!   Bézier least squares ([`bezier_least_squares`], seed 003 TD3); surfaces from grids and
@@ -55,6 +58,7 @@ mod intersect;
 mod lsq;
 mod natural;
 mod params;
+mod periodic;
 mod project;
 mod report;
 mod scattered;
@@ -87,6 +91,7 @@ pub use natural::{natural_cubic, natural_spline};
 pub use params::{
     KnotChoice, Parametrization, nurbs_book_knots, parametrize, parametrize_closed, parametrize_in,
 };
+pub use periodic::{interpolate_periodic, least_squares_periodic};
 pub use project::{Projection, closest_point, project_ordered};
 pub use report::{CurveFit, Deviation, deviation};
 pub use scattered::{MAX_SCATTERED_SYSTEM, ScatteredFit, ScatteredOptions, fit_scattered};
