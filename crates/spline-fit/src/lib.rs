@@ -26,6 +26,13 @@
 //! - Intersections: curve–surface points, tangential ones flagged
 //!   ([`intersect_curve_surface`]), and surface–surface curves traced to a tolerance with
 //!   their parameters on both surfaces ([`intersect_surfaces`]).
+//! - Smoothing splines: the penalised spline with its weight chosen by generalised
+//!   cross-validation ([`smoothing_spline`], scipy's `make_smoothing_spline`), and the
+//!   spline that meets a residual target with knots placed automatically
+//!   ([`smoothing_to_residual`], FITPACK's `curfit`, scipy's `make_splrep`), for functions
+//!   and parametric curves ([`smoothing_curve`], [`smoothing_curve_to_residual`]).
+//! - Parameter correction ([`correct_parameters`], seed 003) and robust closest points
+//!   ([`closest_point`]).
 //! - Deviation reports ([`Deviation`]): maximum and RMS distance and which points.
 //!
 //! Every linear system is banded and solved in `O(n p²)` (collocation without pivoting,
@@ -64,6 +71,7 @@ mod report;
 mod scattered;
 mod skin;
 mod slab;
+mod smoothing;
 mod surface;
 mod surface_ends;
 mod surface_project;
@@ -96,6 +104,10 @@ pub use project::{Projection, closest_point, project_ordered};
 pub use report::{CurveFit, Deviation, deviation};
 pub use scattered::{MAX_SCATTERED_SYSTEM, ScatteredFit, ScatteredOptions, fit_scattered};
 pub use skin::{Gordon, Skinned, gordon, skin};
+pub use smoothing::{
+    MAX_RESIDUAL_ITERATIONS, ResidualFit, SmoothingFit, SmoothingParameter, smoothing_curve,
+    smoothing_curve_to_residual, smoothing_spline, smoothing_to_residual,
+};
 pub use surface::{
     SurfaceFit, approximate_surface_grid, approximate_surface_scattered, interpolate_surface,
     surface_grid_params,

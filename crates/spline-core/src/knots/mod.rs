@@ -265,6 +265,44 @@ impl<T: Scalar> KnotVector<T> {
         Self::new(degree, knots)
     }
 
+    /// The knots of not-a-knot interpolation at `x_0 ≤ … ≤ x_m` (de Boor XIII (12), the rule
+    /// of scipy's `make_interp_spline` and of FITPACK): clamped on $[x_0, x_m]$; for odd
+    /// degrees the interior knots are the abscissae without the first and last
+    /// $(p + 1)/2$; for even degrees the midpoints $(x_{j-1} + x_j)/2$ without the first
+    /// and last $p/2$. The interpolant then has `m + 1` control points.
+    ///
+    /// ```
+    /// let k = spline_core::KnotVector::not_a_knot(3, &[0.0, 1.0, 2.0, 3.0, 4.0, 5.0])?;
+    /// assert_eq!(k.knots(), &[0.0, 0.0, 0.0, 0.0, 2.0, 3.0, 5.0, 5.0, 5.0, 5.0]);
+    /// # Ok::<(), spline_core::Error>(())
+    /// ```
+    ///
+    /// # Errors
+    /// [`ErrorKind::TooFewPoints`] with `p` abscissae or fewer; the errors of
+    /// [`check_params`] and [`KnotVector::new`].
+    pub fn not_a_knot(degree: usize, x: &[T]) -> Result<Self> {
+        check_count(degree, x.len())?;
+        check_params(x)?;
+        let m = x.len();
+        let half: T = crate::cast(0.5);
+        let interior: Vec<T> = if degree % 2 == 1 {
+            let k2 = degree.div_ceil(2);
+            x[k2..m - k2].to_vec()
+        } else {
+            let k2 = degree / 2;
+            (1..m)
+                .map(|j| (x[j - 1] + x[j]) * half)
+                .skip(k2)
+                .take((m - 1).saturating_sub(2 * k2))
+                .collect()
+        };
+        let mut knots = Vec::with_capacity(m + degree + 1);
+        knots.extend(std::iter::repeat_n(x[0], degree + 1));
+        knots.extend(interior);
+        knots.extend(std::iter::repeat_n(x[m - 1], degree + 1));
+        Self::new(degree, knots)
+    }
+
     /// The degree `p`.
     #[inline]
     #[must_use]

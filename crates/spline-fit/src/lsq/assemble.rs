@@ -138,25 +138,10 @@ impl<T: Scalar, P: ControlPoint<T>> LeastSquares<'_, T, P> {
                 return Err(self.sw_error(i));
             }
         }
-        if self.smoothing > T::zero() && p >= 2 {
-            let rule = gauss_legendre::<T>(p - 1);
-            let k = knots.knots();
-            let mut table = [T::zero(); 3 * MAX_ORDER];
-            let half: T = cast(0.5);
-            for s in p..n {
-                let (a, b) = (k[s], k[s + 1]);
-                if !(a < b) {
-                    continue;
-                }
-                let (mid, rad) = ((a + b) * half, (b - a) * half);
-                for &(x, wq) in &rule {
-                    let u = mid + rad * x;
-                    knots.basis_derivatives(s, u, 2, &mut table[..3 * width]);
-                    let row = &table[2 * width..3 * width];
-                    let w = (self.smoothing * wq * rad).sqrt();
-                    add_constrained(&mut sink, s - p, row, w, P::origin());
-                }
-            }
+        if self.smoothing > T::zero() {
+            penalty_rows(knots, self.smoothing, |first, row, w| {
+                add_constrained(&mut sink, first, row, w, P::origin());
+            });
         }
         Ok((sink, column))
     }
@@ -188,6 +173,43 @@ impl<T: Scalar, P: ControlPoint<T>> LeastSquares<'_, T, P> {
             }
         }
         Error::new(ErrorKind::SchoenbergWhitney, message)
+    }
+}
+
+/// The rows of the smoothing term $\lambda \int \lVert C''(u) \rVert^2 du$ (none below degree
+/// 2): at the `p − 1` Gauss–Legendre nodes of every non-empty span (exact for the squared
+/// second derivative), `f(first, row, weight)` receives the second derivatives of the
+/// `p + 1` basis functions `first …` and the weight whose square is `λ` times the quadrature
+/// weight, so that the term is $\sum (\text{weight} \cdot \text{row} \cdot c)^2$.
+pub(crate) fn penalty_rows<T: Scalar>(
+    knots: &KnotVector<T>,
+    lambda: T,
+    mut f: impl FnMut(usize, &[T], T),
+) {
+    let p = knots.degree();
+    if p < 2 {
+        return;
+    }
+    let width = p + 1;
+    let rule = gauss_legendre::<T>(p - 1);
+    let k = knots.knots();
+    let mut table = [T::zero(); 3 * MAX_ORDER];
+    let half: T = cast(0.5);
+    for s in p..knots.num_basis() {
+        let (a, b) = (k[s], k[s + 1]);
+        if !(a < b) {
+            continue;
+        }
+        let (mid, rad) = ((a + b) * half, (b - a) * half);
+        for &(x, wq) in &rule {
+            let u = mid + rad * x;
+            knots.basis_derivatives(s, u, 2, &mut table[..3 * width]);
+            f(
+                s - p,
+                &table[2 * width..3 * width],
+                (lambda * wq * rad).sqrt(),
+            );
+        }
     }
 }
 

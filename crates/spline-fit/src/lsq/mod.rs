@@ -3,6 +3,7 @@
 mod assemble;
 mod normal;
 
+pub(crate) use assemble::penalty_rows;
 pub use normal::{GridLeastSquares, GridNormalEquations, NormalEquations};
 
 use crate::params::check_degree;

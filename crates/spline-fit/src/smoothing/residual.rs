@@ -1,0 +1,493 @@
+//! Smoothing to a residual target with knots placed automatically: FITPACK's `curfit`
+//! (Dierckx 1975, 1982; `fpcurf`), step for step as scipy's `make_splrep` and
+//! `make_splprep` replicate it, so that the same data and target give the same knots and
+//! the same spline.
+//!
+//! 1. Knots: from the least-squares polynomial, knots are added where the residuals of the
+//!    least-squares spline sum highest (at a data abscissa in the middle of the worst knot
+//!    interval), more at a time while the residual falls slowly, until the least-squares
+//!    residual is at most the target `s` (or the knots of interpolation are reached).
+//! 2. Smoothing: with these knots, the spline minimising the jumps of its `k`-th derivative
+//!    at the interior knots subject to $\sum_i (w_i \lVert y_i - s(x_i) \rVert)^2 = s$: the
+//!    least-squares problem with the jump rows weighted by `1/p`, `p` found by FITPACK's
+//!    rational interpolation (`fprati`) to a relative accuracy of `0.001`.
+
+use crate::banded::BandCholesky;
+use crate::interpolate::interpolate_with_knots;
+use crate::lsq::LeastSquares;
+use crate::params::{Parametrization, check_points, parametrize};
+use spline_core::{
+    ControlPoint, Error, ErrorKind, KnotVector, Result, Scalar, cast, check_params, from_count,
+    to_f64,
+};
+use spline_geom::BSpline;
+
+/// FITPACK's iteration limit for the smoothing factor `p` (`maxit` of `curfit`).
+pub const MAX_RESIDUAL_ITERATIONS: usize = 20;
+
+/// FITPACK's relative accuracy of the residual target (`tol` of `curfit`).
+const TOL: f64 = 0.001;
+
+/// A spline that meets a residual target ([`smoothing_to_residual`]).
+#[derive(Clone, Debug, PartialEq)]
+pub struct ResidualFit<T, P> {
+    /// The spline.
+    pub spline: BSpline<T, P>,
+    /// Its weighted residual $f_p = \sum_i (w_i \lVert y_i - s(x_i) \rVert)^2$.
+    pub residual: T,
+    /// FITPACK's smoothing factor `p` (the jump rows weighted by `1/p`), or `None` for the
+    /// least-squares spline (the target was met without smoothing, or `s = 0`).
+    pub smoothing: Option<T>,
+    /// Whether $|f_p - s| < 0.001 s$ was reached (or the least-squares spline met the
+    /// target). When `false` the spline is the last iterate, as FITPACK returns it with a
+    /// warning (`ier` = 2 or 3).
+    pub converged: bool,
+}
+
+/// The spline of degree `k` through or near $(x_i, y_i)$ whose weighted residual
+/// $\sum_i (w_i \lVert y_i - s(x_i) \rVert)^2$ is the target `s`, with knots placed
+/// automatically and the jumps of the `k`-th derivative at the knots as small as possible:
+/// FITPACK's `curfit`, as scipy's `make_splrep(x, y, w=w, k=k, s=s)` (weights multiply the
+/// residuals, as in `splrep`). `s = 0` gives the not-a-knot interpolating spline. Vector
+/// values `y` fit all coordinates at once (their squared residuals summed), as
+/// `make_splprep` does for curves ([`smoothing_curve_to_residual`]).
+///
+/// ```
+/// use spline_fit::smoothing_to_residual;
+/// let x: Vec<f64> = (0..50).map(|i| f64::from(i) / 49.0).collect();
+/// let y: Vec<f64> = x.iter().map(|t| (4.0 * t).sin() + 0.01 * (97.0 * t).sin()).collect();
+/// let fit = smoothing_to_residual(&x, &y, None, 3, 0.003)?;
+/// assert!(fit.converged && (fit.residual - 0.003).abs() < 0.003 * 1e-3);
+/// assert!(fit.spline.len() < 50);
+/// # Ok::<(), spline_core::Error>(())
+/// ```
+///
+/// # Errors
+/// [`ErrorKind::InvalidLength`] if `x`, `y` and the weights differ in length;
+/// [`ErrorKind::InvalidArgument`] unless `1 ≤ k ≤ 5` (FITPACK's degrees) and `s ≥ 0` is
+/// finite; [`ErrorKind::TooFewPoints`] with `k + 1` data or fewer;
+/// [`ErrorKind::UnsortedKnots`] if `x` decreases (for `s = 0`: unless it increases
+/// strictly); [`ErrorKind::NonFinite`]; [`ErrorKind::InvalidWeight`] for weights that are
+/// not positive and finite; [`ErrorKind::SchoenbergWhitney`] or
+/// [`ErrorKind::SingularSystem`] when a system cannot be solved.
+pub fn smoothing_to_residual<T: Scalar, P: ControlPoint<T>>(
+    x: &[T],
+    y: &[P],
+    weights: Option<&[T]>,
+    degree: usize,
+    s: T,
+) -> Result<ResidualFit<T, P>> {
+    let data = Data::new(x, y, weights, degree, s)?;
+    if s == T::zero() {
+        let knots = KnotVector::not_a_knot(degree, x)?;
+        let spline = interpolate_with_knots(&knots, x, y)?;
+        return Ok(ResidualFit {
+            spline,
+            residual: T::zero(),
+            smoothing: None,
+            converged: true,
+        });
+    }
+    let knots = data.generate_knots()?;
+    let (lsq, _, fp) = data.least_squares(&knots)?;
+    if knots.len() == 2 * (degree + 1) {
+        return Ok(ResidualFit {
+            spline: lsq,
+            residual: fp,
+            smoothing: None,
+            converged: true,
+        });
+    }
+    data.smooth(&knots, fp)
+}
+
+/// [`smoothing_to_residual`] of a parametric curve through `points`, as scipy's
+/// `make_splprep(points.T, w=w, k=k, s=s)`: the parameters are the chordal ones on
+/// `[0, 1]`. Returns the fit and the parameters.
+///
+/// # Errors
+/// As [`crate::parametrize`] and [`smoothing_to_residual`].
+pub fn smoothing_curve_to_residual<T: Scalar, P: ControlPoint<T>>(
+    points: &[P],
+    weights: Option<&[T]>,
+    degree: usize,
+    s: T,
+) -> Result<(ResidualFit<T, P>, Vec<T>)> {
+    let params = parametrize(points, &Parametrization::Chordal)?;
+    let fit = smoothing_to_residual(&params, points, weights, degree, s)?;
+    Ok((fit, params))
+}
+
+/// The validated data of a residual-target fit.
+struct Data<'a, T, P> {
+    x: &'a [T],
+    y: &'a [P],
+    weights: Option<&'a [T]>,
+    degree: usize,
+    s: T,
+}
+
+impl<'a, T: Scalar, P: ControlPoint<T>> Data<'a, T, P> {
+    fn new(x: &'a [T], y: &'a [P], weights: Option<&'a [T]>, degree: usize, s: T) -> Result<Self> {
+        if !(1..=5).contains(&degree) {
+            return Err(Error::new(
+                ErrorKind::InvalidArgument,
+                format!("smoothing to a residual target takes degrees 1 to 5, got {degree}"),
+            ));
+        }
+        if !(s >= T::zero() && s.is_finite()) {
+            return Err(Error::new(
+                ErrorKind::InvalidArgument,
+                format!(
+                    "the residual target s must be finite and non-negative, got {}",
+                    to_f64(s)
+                ),
+            ));
+        }
+        let m = x.len();
+        if y.len() != m {
+            return Err(Error::invalid_length("one value per abscissa", m, y.len()));
+        }
+        if m <= degree {
+            return Err(Error::new(
+                ErrorKind::TooFewPoints,
+                format!(
+                    "degree {degree} needs at least {} data, got {m}",
+                    degree + 1
+                ),
+            )
+            .with_counts(degree + 1, m));
+        }
+        check_points(y, degree + 1, "smoothing")?;
+        check_params(x)?;
+        if !(x[0] < x[m - 1]) {
+            return Err(Error::new(
+                ErrorKind::EmptyDomain,
+                "the abscissae must not all be equal",
+            ));
+        }
+        if let Some(w) = weights {
+            if w.len() != m {
+                return Err(Error::invalid_length("one weight per datum", m, w.len()));
+            }
+            if let Some(k) = w.iter().position(|&v| !(v > T::zero() && v.is_finite())) {
+                return Err(Error::new(
+                    ErrorKind::InvalidWeight,
+                    format!(
+                        "weight {k} is {}: weights must be positive and finite",
+                        to_f64(w[k])
+                    ),
+                )
+                .with_index(k));
+            }
+        }
+        Ok(Self {
+            x,
+            y,
+            weights,
+            degree,
+            s,
+        })
+    }
+
+    fn weight(&self, i: usize) -> T {
+        self.weights.map_or_else(T::one, |w| w[i])
+    }
+
+    /// The residuals $(w_i \lVert y_i - s(x_i) \rVert)^2$ of a spline and their sum.
+    fn residuals(&self, spline: &BSpline<T, P>) -> Result<(Vec<T>, T)> {
+        let values = spline.eval_many(self.x)?;
+        let mut fp = T::zero();
+        let residuals = values
+            .iter()
+            .zip(self.y)
+            .enumerate()
+            .map(|(i, (f, y))| {
+                let w = self.weight(i);
+                let r = (*f - *y).length_squared() * w * w;
+                fp += r;
+                r
+            })
+            .collect();
+        Ok((residuals, fp))
+    }
+
+    /// The weighted least-squares spline on `knots`, its residuals and their sum.
+    fn least_squares(&self, knots: &KnotVector<T>) -> Result<(BSpline<T, P>, Vec<T>, T)> {
+        let mut lsq = LeastSquares::new(self.y, self.x, knots.clone());
+        if let Some(w) = self.weights {
+            lsq = lsq.weights(w);
+        }
+        let spline = BSpline::new(knots.clone(), lsq.control_points()?)?;
+        let (residuals, fp) = self.residuals(&spline)?;
+        Ok((spline, residuals, fp))
+    }
+
+    /// The knots of FITPACK's first stage (scipy's `_generate_knots_impl`, not periodic).
+    fn generate_knots(&self) -> Result<KnotVector<T>> {
+        let k = self.degree;
+        let m = self.x.len();
+        let acc = self.s * cast::<T>(TOL);
+        let nest = (m + k + 1).max(2 * k + 3);
+        let nmin = 2 * (k + 1);
+        let nmax = m + k + 1;
+        let (xb, xe) = (self.x[0], self.x[m - 1]);
+        let mut t = KnotVector::clamped(k, xb, xe, &[])?;
+        let mut fp = T::zero();
+        let mut nplus = 1usize;
+        for _ in 0..m {
+            let fpold = fp;
+            let (_, mut residuals, new_fp) = self.least_squares(&t)?;
+            fp = new_fp;
+            let fpms = fp - self.s;
+            if fpms.abs() < acc || fpms < T::zero() {
+                return Ok(t);
+            }
+            if t.len() == nmin {
+                nplus = 1;
+            } else {
+                let delta = fpold - fp;
+                let npl1 = if delta > acc {
+                    // Python's int(): truncation, bounded before the cast.
+                    let ratio = (from_count::<T>(nplus) * fpms / delta).floor();
+                    let cap = from_count::<T>(2 * nplus);
+                    if ratio >= cap {
+                        2 * nplus
+                    } else {
+                        to_count(ratio)
+                    }
+                } else {
+                    2 * nplus
+                };
+                nplus = (2 * nplus).min(npl1.max(nplus / 2).max(1));
+            }
+            for j in 0..nplus {
+                t = add_knot(self.x, &t, &residuals)?;
+                let n = t.len();
+                if n >= nmax {
+                    return KnotVector::not_a_knot(k, self.x);
+                }
+                if n >= nest {
+                    return Ok(t);
+                }
+                if j + 1 < nplus {
+                    residuals = self.least_squares(&t)?.1;
+                }
+            }
+        }
+        Ok(t)
+    }
+
+    /// FITPACK's second stage on `knots` (scipy's `F` and `root_rati`); `fp_lsq` is the
+    /// residual of the least-squares spline on them.
+    fn smooth(&self, knots: &KnotVector<T>, fp_lsq: T) -> Result<ResidualFit<T, P>> {
+        let k = self.degree;
+        let s = self.s;
+        let acc = s * cast::<T>(TOL);
+        let mut lsq = LeastSquares::new(self.y, self.x, knots.clone());
+        if let Some(w) = self.weights {
+            lsq = lsq.weights(w);
+        }
+        let normal = lsq.normal_equations()?;
+        let nc = knots.num_basis();
+        // Initial p = nc / Σ R_ii, R the triangular factor of the weighted design matrix
+        // (the Cholesky factor of the Gram matrix, positive diagonal as FITPACK's).
+        let mut gram = BandCholesky::zeros(nc, k);
+        for i in 0..nc {
+            for j in i.saturating_sub(k)..=i {
+                gram.add_lower(i, j, normal.gram(i, j));
+            }
+        }
+        gram.factor(&|i| format!("coefficient {i}"))?;
+        let diagonal = (0..nc).fold(T::zero(), |acc, i| acc + gram.lower(i, i));
+        let p0 = from_count::<T>(nc) / diagonal;
+        let jumps = jump_rows(knots.knots(), k);
+        let solve = |p: T| -> Result<(BSpline<T, P>, T)> {
+            let mut matrix = BandCholesky::zeros(nc, k + 1);
+            for i in 0..nc {
+                for j in i.saturating_sub(k)..=i {
+                    matrix.add_lower(i, j, normal.gram(i, j));
+                }
+            }
+            let scale = T::one() / (p * p);
+            for (first, row) in &jumps {
+                matrix.add_outer(*first, row, scale);
+            }
+            matrix.factor(&|i| format!("coefficient {i} of the smoothing spline"))?;
+            let mut c = normal.rhs().to_vec();
+            matrix.solve(&mut c);
+            let spline = BSpline::new(knots.clone(), c)?;
+            let (_, fp) = self.residuals(&spline)?;
+            Ok((spline, fp - s))
+        };
+        let polynomial = KnotVector::clamped(k, knots.domain().0, knots.domain().1, &[])?;
+        let fp0 = self.least_squares(&polynomial)?.2 - s;
+        let fpinf = fp_lsq - s;
+        // scipy's root_rati: (p1, f1) = (0, fp0), (p3, f3) = (∞, fpinf); p3 = None is ∞.
+        let (con1, con9, con4): (T, T, T) = (cast(0.1), cast(0.9), cast(0.04));
+        let (mut p1, mut f1) = (T::zero(), fp0);
+        let (mut p3, mut f3): (Option<T>, T) = (None, fpinf);
+        let (mut ich1, mut ich3) = (false, false);
+        let mut p = p0;
+        let mut last = None;
+        let mut converged = false;
+        for _ in 0..MAX_RESIDUAL_ITERATIONS {
+            let (spline, f2) = solve(p)?;
+            let p2 = p;
+            last = Some((spline, f2 + s, p2));
+            if f2.abs() < acc {
+                converged = true;
+                break;
+            }
+            if !ich3 {
+                if f2 - f3 <= acc {
+                    p3 = Some(p2);
+                    f3 = f2;
+                    p *= con4;
+                    if p <= p1 {
+                        p = p1 * con9 + p2 * con1;
+                    }
+                    continue;
+                }
+                if f2 < T::zero() {
+                    ich3 = true;
+                }
+            }
+            if !ich1 {
+                if f1 - f2 <= acc {
+                    p1 = p2;
+                    f1 = f2;
+                    p /= con4;
+                    if let Some(p3v) = p3 {
+                        if p <= p3v {
+                            p = p2 * con1 + p3v * con9;
+                        }
+                    }
+                    continue;
+                }
+                if f2 > T::zero() {
+                    ich1 = true;
+                }
+            }
+            if f1 <= f2 || f2 <= f3 {
+                break;
+            }
+            p = fprati(p1, f1, p2, f2, p3, f3);
+            if f2 < T::zero() {
+                p3 = Some(p2);
+                f3 = f2;
+            } else {
+                p1 = p2;
+                f1 = f2;
+            }
+        }
+        let (spline, residual, p) = last.expect("at least one iteration");
+        Ok(ResidualFit {
+            spline,
+            residual,
+            smoothing: Some(p),
+            converged,
+        })
+    }
+}
+
+/// A non-negative whole number held in a scalar, as a count.
+fn to_count<T: Scalar>(x: T) -> usize {
+    let v = to_f64(x);
+    if v <= 0.0 {
+        0
+    } else if v >= usize::MAX as f64 {
+        usize::MAX
+    } else {
+        // Exact: `v` is a whole number below usize::MAX.
+        #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]
+        let n = v as usize;
+        n
+    }
+}
+
+/// FITPACK's `fprati`: the zero of the rational function $r(p) = (u p + v)/(p + w)$ through
+/// three points (`p3 = None` for $p_3 = \infty$).
+fn fprati<T: Scalar>(p1: T, f1: T, p2: T, f2: T, p3: Option<T>, f3: T) -> T {
+    let h1 = f1 * (f2 - f3);
+    let h2 = f2 * (f3 - f1);
+    let h3 = f3 * (f1 - f2);
+    match p3 {
+        None => -(p2 * h1 + p1 * h2) / h3,
+        Some(p3) => -(p1 * p2 * h3 + p2 * p3 * h1 + p1 * p3 * h2) / (p1 * h1 + p2 * h2 + p3 * h3),
+    }
+}
+
+/// FITPACK's new knot (`fpknot`, as scipy's `_dierckx.fpknot`): the data are split into
+/// runs between consecutive knots (a datum on a knot shares its residual between the two
+/// runs); in the run with the largest residual sum among those with more than one interior
+/// step, the datum in the middle becomes a knot.
+fn add_knot<T: Scalar>(x: &[T], t: &KnotVector<T>, residuals: &[T]) -> Result<KnotVector<T>> {
+    let k = t.degree();
+    let knots = t.knots();
+    let nc = t.num_basis();
+    let mut interval = k + 1;
+    let mut ix = vec![0usize];
+    let mut parts = Vec::new();
+    let mut part = T::zero();
+    let half: T = cast(0.5);
+    for (i, (&xv, &r)) in x.iter().zip(residuals).enumerate() {
+        part += r;
+        if interval < nc && xv >= knots[interval] {
+            let carry = r * half;
+            part -= carry;
+            parts.push(part);
+            part = carry;
+            interval += 1;
+            ix.push(i);
+        }
+    }
+    ix.push(x.len() - 1);
+    parts.push(part);
+    let mut best: Option<(usize, T)> = None;
+    for (i, &f) in parts.iter().enumerate() {
+        if ix[i + 1] - ix[i] > 1 && best.is_none_or(|(_, b)| f > b) {
+            best = Some((i, f));
+        }
+    }
+    let Some((i, _)) = best else {
+        return Err(Error::new(
+            ErrorKind::NoConvergence,
+            "no knot interval holds enough data for another knot",
+        ));
+    };
+    let new = x[(ix[i] + ix[i + 1]).div_ceil(2)];
+    let at = knots.partition_point(|&v| v < new);
+    let mut all = Vec::with_capacity(knots.len() + 1);
+    all.extend_from_slice(&knots[..at]);
+    all.push(new);
+    all.extend_from_slice(&knots[at..]);
+    KnotVector::new(k, all)
+}
+
+/// The rows of FITPACK's discontinuity matrix (`fpdisc`, scipy's `disc`): for each interior
+/// knot $t_j$ the jumps of the `k`-th derivatives of the `k + 2` B-splines around it, up to
+/// FITPACK's normalisation $(\delta / \text{nrint})^k$ ($\delta$ the length of the domain,
+/// `nrint` its number of knot intervals). Row `(first, values)` acts on coefficients
+/// `first … first + k + 1`.
+fn jump_rows<T: Scalar>(t: &[T], k: usize) -> Vec<(usize, Vec<T>)> {
+    let n = t.len();
+    let delta = t[n - k - 1] - t[k];
+    let nrint = n - 2 * k - 1;
+    let factor = (delta / from_count::<T>(nrint)).powi(i32::try_from(k).unwrap_or(i32::MAX));
+    (0..nrint - 1)
+        .map(|jj| {
+            let j = jj + k + 1;
+            let row = (0..k + 2)
+                .map(|ii| {
+                    let i = jj + ii;
+                    let prod = (0..k + 2)
+                        .filter(|&s| i + s != j)
+                        .fold(T::one(), |acc, s| acc * (t[j] - t[i + s]));
+                    (t[i + k + 1] - t[i]) / prod * factor
+                })
+                .collect();
+            (jj, row)
+        })
+        .collect()
+}
