@@ -7,8 +7,9 @@
 //! - `bench airfoils [--jobs J]`: the whole UIUC database (fetched once from the
 //!   `aerosandbox` wheel into `target/airfoils/`) smoothed by the release tool, 20 control
 //!   points and one curvature maximum: the distribution of deviations and times.
-//! - `bench fit`, `bench eval`: criterion benchmarks of fitting and of curve evaluation against
-//!   scipy in the same run (a Python virtual environment with scipy is created under `target/`).
+//! - `bench fit`, `bench eval`, `bench smoothing`: criterion benchmarks of fitting, of curve
+//!   evaluation and of smoothing splines against scipy in the same run (a Python virtual
+//!   environment with scipy is created under `target/`).
 //! - `bench surfaces`: criterion benchmarks of closest points on surfaces against
 //!   truck-geometry and of scattered least squares against scipy, in the same run.
 //! - `fuzz [--cases N | --seconds S] [--seed S] [--target T] [--coverage]`: structured mutation
@@ -27,6 +28,7 @@ mod bench;
 mod bench_airfoils;
 mod bench_eval;
 mod bench_fit;
+mod bench_smoothing;
 mod bench_surfaces;
 mod campaign;
 mod demo;
@@ -111,6 +113,10 @@ const TASKS: &[(&str, &str)] = &[
         "closest points on surfaces vs truck-geometry, scattered least squares vs scipy",
     ),
     (
+        "bench smoothing",
+        "criterion benchmarks of smoothing splines at 10⁵ data, with scipy in the same run",
+    ),
+    (
         "bench airfoils [--jobs J]",
         "smooth the whole UIUC database (fetched once into target/airfoils/)",
     ),
@@ -162,8 +168,12 @@ fn main() -> ExitCode {
             Some("fit") => bench_fit::run(&root),
             Some("eval") => bench_eval::run(&root),
             Some("surfaces") => bench_surfaces::run(&root),
+            Some("smoothing") => bench_smoothing::run(&root),
             Some("airfoils") => bench_airfoils::run_bench(&root, &args[2..]),
-            _ => Err("usage: cargo xtask bench fit | eval | surfaces | airfoils [--jobs J]".into()),
+            _ => Err(
+                "usage: cargo xtask bench fit | eval | smoothing | surfaces | airfoils [--jobs J]"
+                    .into(),
+            ),
         },
         _ => Err(usage()),
     };
