@@ -32,6 +32,9 @@
 //!   [`zero_set`] and [`common_zeros`] of bivariate splines, [`parabolic_lines`],
 //!   [`umbilics`], [`ridges`] of functions, [`feature_overlays`] for pictures.
 //! - Roots: [`zeros`] and [`sign_change_params`] of any B-spline function.
+//! - Intersections of planar curves of any kind: [`intersect_curves`] and
+//!   [`self_intersections`] (subdivision of the Bézier pieces, Newton's method, tangential
+//!   intersections flagged).
 //!
 //! Everything is generic over [`spline_core::Scalar`], so the same code runs on dual numbers
 //! (the tests check every Jacobian and Hessian that way).
@@ -60,6 +63,7 @@
 //! None.
 
 mod bilinear;
+mod curve_intersection;
 mod curves;
 mod features;
 mod maps;
@@ -76,6 +80,10 @@ mod umbilics;
 mod zero_set;
 
 pub use bilinear::SparseBilinear;
+pub use curve_intersection::{
+    CurveIntersection, MAX_INTERSECTION_PAIRS, TANGENTIAL_SINE, intersect_curves,
+    self_intersections,
+};
 pub use curves::{Differentiated, Form, Invariant, PlanarInvariants};
 pub use features::{
     CurveFeatures, PlanarFeatures, RationalNumerators, curvature_extrema, inflections,
