@@ -170,7 +170,11 @@ pub fn least_squares_periodic<T: Scalar, P: ControlPoint<T>>(
     lambda: T,
 ) -> Result<PeriodicBSpline<T, P>> {
     if params.len() != points.len() {
-        return Err(Error::invalid_length("parameters", points.len(), params.len()));
+        return Err(Error::invalid_length(
+            "parameters",
+            points.len(),
+            params.len(),
+        ));
     }
     if let Some(w) = weights
         && w.len() != points.len()
@@ -187,7 +191,8 @@ pub fn least_squares_periodic<T: Scalar, P: ControlPoint<T>>(
     order.sort_by(|a, b| a.0.partial_cmp(&b.0).unwrap_or(std::cmp::Ordering::Equal));
     let sorted_params: Vec<T> = order.iter().map(|&(u, _)| u).collect();
     let sorted_points: Vec<P> = order.iter().map(|&(_, k)| points[k]).collect();
-    let sorted_weights: Option<Vec<T>> = weights.map(|w| order.iter().map(|&(_, k)| w[k]).collect());
+    let sorted_weights: Option<Vec<T>> =
+        weights.map(|w| order.iter().map(|&(_, k)| w[k]).collect());
     let wrapped = space.wrapped();
     let mut problem = LeastSquares::new(&sorted_points, &sorted_params, wrapped.knots().clone())
         .smoothing(lambda);
@@ -227,7 +232,11 @@ impl<T: Scalar> CyclicBand<T> {
         Self {
             n,
             p,
-            band: if small { Vec::new() } else { vec![T::zero(); n * (p + 1)] },
+            band: if small {
+                Vec::new()
+            } else {
+                vec![T::zero(); n * (p + 1)]
+            },
             dense: small.then(|| DMatrix::zeros(n, n)),
         }
     }
@@ -285,7 +294,9 @@ fn solve_cyclic<T: Scalar, P: ControlPoint<T>>(
         let chol = g.cholesky().ok_or_else(singular)?;
         let mut b = DMatrix::<T>::from_fn(r.len(), dim, |i, c| r[i].coord(c));
         chol.solve_mut(&mut b);
-        Ok((0..r.len()).map(|i| P::from_coords(|c| b[(i, c)])).collect())
+        Ok((0..r.len())
+            .map(|i| P::from_coords(|c| b[(i, c)]))
+            .collect())
     };
     if let Some(dense) = &gram.dense {
         return solve_dense(dense.clone(), rhs);

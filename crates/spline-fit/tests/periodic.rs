@@ -12,7 +12,10 @@ use spline_geom::PeriodicBSpline;
 use spline_testing::reference::f64s;
 
 fn cases() -> Vec<Value> {
-    let path = concat!(env!("CARGO_MANIFEST_DIR"), "/../../tests/data/periodic/interpolate_periodic.json");
+    let path = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../../tests/data/periodic/interpolate_periodic.json"
+    );
     let text = std::fs::read_to_string(path).expect("the periodic reference cases");
     let data: Value = serde_json::from_str(&text).unwrap();
     data["cases"].as_array().unwrap().clone()
@@ -35,7 +38,11 @@ fn interpolation_agrees_with_scipy() {
         if k == 1 {
             // scipy returns the ordinary linear interpolant for k = 1 (same values on the
             // period, linear extrapolation outside it): compare inside.
-            let y = if case["y"][0].is_array() { continue } else { f64s(&case["y"]) };
+            let y = if case["y"][0].is_array() {
+                continue;
+            } else {
+                f64s(&case["y"])
+            };
             let s = interpolate_periodic(&x, &y, 1).unwrap();
             let values = f64s(&expected["values"]);
             for (u, want) in at.iter().zip(&values) {
@@ -62,13 +69,19 @@ fn interpolation_agrees_with_scipy() {
             assert_eq!(c.len(), s.wrapped().len(), "{name}");
             for (got, want) in s.wrapped().control_points().iter().zip(c) {
                 for d in 0..2 {
-                    assert!(close(got[d], want[d].as_f64().unwrap(), 1e-9), "{name}: control");
+                    assert!(
+                        close(got[d], want[d].as_f64().unwrap(), 1e-9),
+                        "{name}: control"
+                    );
                 }
             }
             for (u, want) in at.iter().zip(expected["values"].as_array().unwrap()) {
                 let got = s.eval(*u).unwrap();
                 for d in 0..2 {
-                    assert!(close(got[d], want[d].as_f64().unwrap(), 1e-9), "{name}: at {u}");
+                    assert!(
+                        close(got[d], want[d].as_f64().unwrap(), 1e-9),
+                        "{name}: at {u}"
+                    );
                 }
             }
         } else {
@@ -121,7 +134,10 @@ fn space_and_data() -> impl Strategy<Value = (PeriodicBSpline<f64, Vector2<f64>>
             let control = coords.chunks(2).map(|c| Vector2::new(c[0], c[1])).collect();
             let space = PeriodicBSpline::new(p, knots, period, control).unwrap();
             // Parameters spread over two periods (reduced by the fit), three per span at least.
-            let mut params: Vec<f64> = unit.iter().map(|t| start - period + 2.0 * period * t).collect();
+            let mut params: Vec<f64> = unit
+                .iter()
+                .map(|t| start - period + 2.0 * period * t)
+                .collect();
             for w in space.period_knots().windows(2) {
                 for t in [0.25, 0.5, 0.75] {
                     params.push(w[0] + (w[1] - w[0]) * t);
@@ -225,7 +241,8 @@ fn bad_periodic_data_are_errors() {
     assert_eq!(e.kind(), ErrorKind::InvalidLength);
     let e = interpolate_periodic(&x[..4], &[0.0, 1.0, 0.5, 0.0], 3).unwrap_err();
     assert_eq!(e.kind(), ErrorKind::TooFewPoints);
-    let e = interpolate_periodic(&[0.0, 2.0, 1.0, 3.0, 4.0], &[0.0, 1.0, 0.5, 2.0, 0.0], 3).unwrap_err();
+    let e = interpolate_periodic(&[0.0, 2.0, 1.0, 3.0, 4.0], &[0.0, 1.0, 0.5, 2.0, 0.0], 3)
+        .unwrap_err();
     assert_eq!(e.kind(), ErrorKind::UnsortedKnots);
     let e = interpolate_periodic(&x, &[0.0, f64::NAN, 0.5, 2.0, 0.0], 3).unwrap_err();
     assert_eq!(e.kind(), ErrorKind::NonFinite);
@@ -237,6 +254,7 @@ fn bad_periodic_data_are_errors() {
     assert_eq!(e.kind(), ErrorKind::InvalidLength);
     let e = least_squares_periodic(&[1.0, 2.0], &[0.1, 0.2], &space, None, -1.0).unwrap_err();
     assert_eq!(e.kind(), ErrorKind::InvalidArgument);
-    let e = least_squares_periodic(&[1.0, 2.0], &[0.1, f64::INFINITY], &space, None, 0.0).unwrap_err();
+    let e =
+        least_squares_periodic(&[1.0, 2.0], &[0.1, f64::INFINITY], &space, None, 0.0).unwrap_err();
     assert_eq!(e.kind(), ErrorKind::NonFinite);
 }

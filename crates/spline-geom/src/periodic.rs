@@ -81,12 +81,14 @@ impl<T: Scalar, P: ControlPoint<T>> PeriodicBSpline<T, P> {
             ));
         }
         let extended = extend_knots(&knots, period, degree, 1);
+        drop(knots);
         let knot_vector = KnotVector::new(degree, extended)?;
         check_multiplicities(&knot_vector, degree, n)?;
         if let Some(i) = control_points.iter().position(|c| !c.all_finite()) {
             return Err(Error::non_finite(format_args!("control point {i}")).with_index(i));
         }
-        let wrapped: Vec<P> = (0..n + degree).map(|i| control_points[i % n]).collect();
+        let mut wrapped = control_points;
+        wrapped.extend_from_within(..degree);
         Ok(Self {
             wrapped: BSpline::new_unchecked(knot_vector, wrapped),
             count: n,

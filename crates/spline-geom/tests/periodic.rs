@@ -11,9 +11,7 @@ use spline_geom::{
 use spline_testing::strategies::{planar_curve, points};
 
 /// A periodic curve of degree `p` with `n` control points on random (sorted) knots.
-fn periodic(
-    max_p: usize,
-) -> impl Strategy<Value = PeriodicBSpline<f64, Vector2<f64>>> {
+fn periodic(max_p: usize) -> impl Strategy<Value = PeriodicBSpline<f64, Vector2<f64>>> {
     (1..=max_p, 0usize..6)
         .prop_flat_map(|(p, extra)| {
             let n = p + 1 + extra;
@@ -37,7 +35,15 @@ fn periodic(
 }
 
 fn dense(a: f64, b: f64, n: usize) -> Vec<f64> {
-    (0..=n).map(|i| if i == n { b } else { a + (b - a) * i as f64 / n as f64 }).collect()
+    (0..=n)
+        .map(|i| {
+            if i == n {
+                b
+            } else {
+                a + (b - a) * i as f64 / n as f64
+            }
+        })
+        .collect()
 }
 
 #[test]
@@ -52,7 +58,10 @@ fn uniform_cubic_at_knots_is_the_one_four_one_average() {
     for i in 0..7 {
         let expected = (c[i] + c[(i + 1) % 7] * 4.0 + c[(i + 2) % 7]) / 6.0;
         let got = curve.eval(i as f64).unwrap();
-        assert!((got - expected).norm() < 1e-14, "knot {i}: {got:?} vs {expected:?}");
+        assert!(
+            (got - expected).norm() < 1e-14,
+            "knot {i}: {got:?} vs {expected:?}"
+        );
     }
 }
 
@@ -194,7 +203,10 @@ fn arc_length_parameter_on_the_circle() {
     for s in [0.0, 0.1, 0.5, 1.0, 1.5, std::f64::consts::FRAC_PI_2] {
         let u = param_at_length(&quarter, s, 1e-13).unwrap();
         let q = quarter.eval(u).unwrap();
-        assert!((q - Vector2::new(s.cos(), s.sin())).norm() < 1e-12, "s = {s}");
+        assert!(
+            (q - Vector2::new(s.cos(), s.sin())).norm() < 1e-12,
+            "s = {s}"
+        );
     }
     let e = param_at_length(&quarter, 2.0, 1e-10).unwrap_err();
     assert_eq!(e.kind(), ErrorKind::OutOfDomain);
@@ -220,7 +232,11 @@ fn bad_periodic_input_is_an_error() {
     let open = BSpline::from_knots(
         1,
         vec![0.0, 0.0, 1.0, 2.0, 2.0],
-        vec![Vector2::new(0.0, 0.0), Vector2::new(1.0, 0.0), Vector2::new(0.0, 1.0)],
+        vec![
+            Vector2::new(0.0, 0.0),
+            Vector2::new(1.0, 0.0),
+            Vector2::new(0.0, 1.0),
+        ],
     )
     .unwrap();
     let e = PeriodicBSpline::from_wrapped(&open).unwrap_err();
@@ -229,12 +245,28 @@ fn bad_periodic_input_is_an_error() {
         2,
         vec![0.0, 1.0, 2.0],
         3.0,
-        vec![Vector2::new(1.0, 0.0), Vector2::new(0.0, 1.0), Vector2::new(-1.0, 0.0)],
+        vec![
+            Vector2::new(1.0, 0.0),
+            Vector2::new(0.0, 1.0),
+            Vector2::new(-1.0, 0.0),
+        ],
     )
     .unwrap();
-    assert_eq!(curve.eval(f64::INFINITY).unwrap_err().kind(), ErrorKind::NonFinite);
-    assert_eq!(curve.insert_knot(1.0, 2).unwrap_err().kind(), ErrorKind::KnotMultiplicity);
-    assert_eq!(tessellate(&curve, -1.0).unwrap_err().kind(), ErrorKind::InvalidTolerance);
+    assert_eq!(
+        curve.eval(f64::INFINITY).unwrap_err().kind(),
+        ErrorKind::NonFinite
+    );
+    assert_eq!(
+        curve.insert_knot(1.0, 2).unwrap_err().kind(),
+        ErrorKind::KnotMultiplicity
+    );
+    assert_eq!(
+        tessellate(&curve, -1.0).unwrap_err().kind(),
+        ErrorKind::InvalidTolerance
+    );
     let far = open.map_control_points(|q| q + Vector2::new(5.0, 0.0));
-    assert_eq!(open.join(&far, 1e-9).unwrap_err().kind(), ErrorKind::ToleranceExceeded);
+    assert_eq!(
+        open.join(&far, 1e-9).unwrap_err().kind(),
+        ErrorKind::ToleranceExceeded
+    );
 }
