@@ -2,12 +2,11 @@
 //! pieces, adaptive tessellation by chord tolerance, the parameter at a given arc length;
 //! and joining B-spline curves.
 
+use crate::arclength::adaptive_length;
 use crate::bezier::Bezier;
 use crate::bspline::BSpline;
-use crate::param::{ParamCurve, check_in_domain};
-use spline_core::{
-    ControlPoint, Error, ErrorKind, KnotVector, Result, Scalar, cast, lerp, to_f64,
-};
+use crate::param::ParamCurve;
+use spline_core::{ControlPoint, Error, ErrorKind, KnotVector, Result, Scalar, cast, lerp, to_f64};
 
 /// The most segments [`tessellate`] returns.
 pub const MAX_TESSELLATION_SEGMENTS: usize = 1 << 22;
@@ -87,13 +86,18 @@ impl<P> BoundingBox<P> {
 /// assert_eq!((b.min, b.max), (Vector2::new(0.0, 0.0), Vector2::new(2.0, 2.0)));
 /// # Ok::<(), spline_core::Error>(())
 /// ```
+///
+/// # Panics
+/// Never: every curve container has at least one control point.
 pub fn hull_box<T: Scalar, C: ParamCurve<T> + ?Sized>(curve: &C) -> BoundingBox<C::Point> {
-    BoundingBox::of_points(curve.control_polygon())
-        .expect("a curve has at least one control point")
+    BoundingBox::of_points(curve.control_polygon()).expect("a curve has at least one control point")
 }
 
 /// The box of the Bézier pieces' control points: inside [`hull_box`], still containing the
 /// curve (it is the box of the refined control polygon).
+///
+/// # Panics
+/// Never: every curve container has at least one piece.
 pub fn pieces_box<T: Scalar, C: ParamCurve<T> + ?Sized>(curve: &C) -> BoundingBox<C::Point> {
     BoundingBox::of_points(
         curve
@@ -161,10 +165,15 @@ pub fn tessellate<T: Scalar, C: ParamCurve<T> + ?Sized>(curve: &C, tolerance: T)
 }
 
 /// Whether every projected control point is within `tolerance` of the chord.
-fn flat<T: Scalar, C: ParamCurve<T> + ?Sized>(coefficients: &[C::Coefficient], tolerance: T) -> bool {
+fn flat<T: Scalar, C: ParamCurve<T> + ?Sized>(
+    coefficients: &[C::Coefficient],
+    tolerance: T,
+) -> bool {
     let points: Vec<C::Point> = coefficients.iter().map(C::project).collect();
     let (a, b) = (points[0], points[points.len() - 1]);
-    points.iter().all(|q| distance_to_segment(q, &a, &b) <= tolerance)
+    points
+        .iter()
+        .all(|q| distance_to_segment(q, &a, &b) <= tolerance)
 }
 
 /// The distance from `q` to the segment `[a, b]`.
@@ -180,8 +189,7 @@ pub(crate) fn distance_to_segment<T: Scalar, P: ControlPoint<T>>(q: &P, a: &P, b
 }
 
 /// The parameter `u` at which the arc length from the start of the domain is `length`, to
-/// the absolute accuracy `accuracy` in length: Newton's method on
-/// $s(u) = \int_a^u \lVert C' \rVert$ safeguarded by bisection.
+/// the absolute accuracy `accuracy` in length ([`ArcLengthTable::param_at`]).
 ///
 /// ```
 /// use nalgebra::Vector2;
@@ -195,56 +203,199 @@ pub(crate) fn distance_to_segment<T: Scalar, P: ControlPoint<T>>(q: &P, a: &P, b
 /// ```
 ///
 /// # Errors
-/// [`ErrorKind::OutOfDomain`] unless `0 ≤ length ≤` the curve's length;
-/// [`ErrorKind::InvalidTolerance`] unless the accuracy is positive; the errors of
-/// [`ParamCurve::arc_length_between`].
+/// As [`ArcLengthTable::new`] and [`ArcLengthTable::param_at`].
 pub fn param_at_length<T: Scalar, C: ParamCurve<T> + ?Sized>(
     curve: &C,
     length: T,
     accuracy: T,
 ) -> Result<T> {
-    if !(accuracy > T::zero() && accuracy.is_finite()) {
-        return Err(Error::invalid_tolerance(
-            "accuracy",
-            "positive and finite",
-            to_f64(accuracy),
-        ));
-    }
-    let (a, b) = curve.domain();
-    let quadrature = accuracy * cast(0.01);
-    let total = curve.arc_length_between(a, b, quadrature)?;
-    if !(length >= T::zero() && length <= total) {
-        return Err(Error::out_of_domain(to_f64(length), (0.0, to_f64(total)))
-            .context("arc length"));
-    }
-    let (mut lo, mut hi) = (a, b);
-    let mut u = a + (b - a) * (length / total);
-    for _ in 0..200 {
-        check_in_domain((a, b), u)?;
-        let f = curve.arc_length_between(a, u, quadrature)? - length;
-        if f.abs() <= accuracy {
-            return Ok(u);
+    ArcLengthTable::new(curve, accuracy)?.param_at(length)
+}
+
+/// The arc length $s(u) = \int_a^u \lVert C' \rVert$ of a curve at its breaks, for fast
+/// inversion: [`ArcLengthTable::param_at`] finds the piece by bisection of the table, then
+/// solves $s(u) = s$ inside it by Newton's method safeguarded by bisection (the speed is
+/// smooth inside a piece).
+pub struct ArcLengthTable<'a, T, C: ?Sized> {
+    curve: &'a C,
+    breaks: Vec<T>,
+    cumulative: Vec<T>,
+    accuracy: T,
+}
+
+impl<'a, T: Scalar, C: ParamCurve<T> + ?Sized> ArcLengthTable<'a, T, C> {
+    /// The table of `curve` for lengths to the absolute `accuracy`.
+    ///
+    /// # Errors
+    /// [`ErrorKind::InvalidTolerance`] unless the accuracy is positive and finite; the errors
+    /// of [`ParamCurve::arc_length_between`].
+    pub fn new(curve: &'a C, accuracy: T) -> Result<Self> {
+        if !(accuracy > T::zero() && accuracy.is_finite()) {
+            return Err(Error::invalid_tolerance(
+                "accuracy",
+                "positive and finite",
+                to_f64(accuracy),
+            ));
         }
-        if f > T::zero() {
-            hi = u;
-        } else {
-            lo = u;
+        let breaks = curve.breaks();
+        let pieces = spline_core::from_count::<T>(breaks.len().max(2) - 1);
+        let quadrature = accuracy * cast(0.1) / pieces;
+        let mut cumulative = Vec::with_capacity(breaks.len());
+        cumulative.push(T::zero());
+        for w in breaks.windows(2) {
+            let last = cumulative[cumulative.len() - 1];
+            cumulative.push(last + curve.arc_length_between(w[0], w[1], quadrature)?);
         }
-        let speed = curve.speed(u)?;
-        let newton = u - f / speed;
-        u = if speed > T::zero() && newton > lo && newton < hi {
-            newton
+        Ok(Self {
+            curve,
+            breaks,
+            cumulative,
+            accuracy,
+        })
+    }
+
+    /// The length of the whole curve.
+    #[must_use]
+    pub fn total(&self) -> T {
+        self.cumulative[self.cumulative.len() - 1]
+    }
+
+    /// The arc lengths at the breaks of the curve (the first is 0).
+    #[must_use]
+    pub fn at_breaks(&self) -> &[T] {
+        &self.cumulative
+    }
+
+    /// The parameters at the non-decreasing arc lengths `lengths`: each one solved from the
+    /// previous one inside the same piece (short integrals), far cheaper than
+    /// [`Self::param_at`] for many values.
+    ///
+    /// # Errors
+    /// As [`Self::param_at`]; [`ErrorKind::UnsortedKnots`] for decreasing lengths.
+    pub fn params_at(&self, lengths: &[T]) -> Result<Vec<T>> {
+        let mut out = Vec::with_capacity(lengths.len());
+        // (piece, length, parameter) of the previous solution.
+        // (piece, asked length, measured length, parameter) of the previous solution.
+        let mut previous: Option<(usize, T, T, T)> = None;
+        for (j, &s) in lengths.iter().enumerate() {
+            let s = self.clamp_length(s)?;
+            let k = self.piece_of(s);
+            let (s0, u0) = match previous {
+                Some((_, asked, _, _)) if s < asked => {
+                    return Err(Error::new(
+                        ErrorKind::UnsortedKnots,
+                        format!("arc lengths must not decrease (entry {j})"),
+                    ));
+                }
+                Some((pk, _, measured, pu)) if pk == k && s >= measured => (measured, pu),
+                _ => (self.cumulative[k], self.breaks[k]),
+            };
+            let (u, measured) = self.solve_in_piece(k, s0, u0, s)?;
+            previous = Some((k, s, measured, u));
+            out.push(u);
+        }
+        Ok(out)
+    }
+
+    /// The length itself, or the end it is within the accuracy of.
+    fn clamp_length(&self, s: T) -> Result<T> {
+        let total = self.total();
+        // Lengths within the accuracy of an end are that end (two quadratures of the same
+        // length differ by rounding).
+        let s = if s > total && s <= total + self.accuracy {
+            total
+        } else if s < T::zero() && s >= -self.accuracy {
+            T::zero()
         } else {
-            (lo + hi) * cast(0.5)
+            s
         };
-        if !(hi > lo) || (hi - lo) <= (b - a) * cast(4.0 * f64::EPSILON) {
-            return Ok(u);
+        if s >= T::zero() && s <= total {
+            Ok(s)
+        } else {
+            Err(Error::out_of_domain(to_f64(s), (0.0, to_f64(total))).context("arc length"))
         }
     }
-    Err(Error::new(
-        ErrorKind::NoConvergence,
-        format!("no parameter found at arc length {}", to_f64(length)),
-    ))
+
+    /// The piece `k` with `cumulative[k] ≤ s ≤ cumulative[k + 1]`.
+    fn piece_of(&self, s: T) -> usize {
+        self.cumulative
+            .partition_point(|&c| c <= s)
+            .clamp(1, self.breaks.len() - 1)
+            - 1
+    }
+
+    /// $\int_x^y \lVert C' \rVert$ for `x ≤ y` inside one piece (no break between them).
+    fn length_inside(&self, x: T, y: T) -> Result<T> {
+        adaptive_length(&[x, y], self.accuracy * cast(0.1), |u| {
+            let mut d = [C::Point::origin(); 2];
+            self.curve
+                .derivatives_into(u, &mut d)
+                .map_or(T::zero(), |()| d[1].length())
+        })
+    }
+
+    /// Solves $s(u) = s$ in piece `k` from a known point $(u_0, s_0)$ of it (`s ≥ s_0`):
+    /// Newton's method safeguarded by bisection, every length measured from $u_0$ (one
+    /// integral each, no accumulation). Returns `u` and its measured length.
+    fn solve_in_piece(&self, k: usize, s0: T, u0: T, s: T) -> Result<(T, T)> {
+        let (mut lo, mut hi) = (u0, self.breaks[k + 1]);
+        let s1 = self.cumulative[k + 1];
+        if !(s1 > s0) || s <= s0 {
+            return Ok((u0, s0));
+        }
+        // The first guess: one Newton step from u0 (close when u0 is the previous solution).
+        let speed0 = self.curve.speed(u0)?;
+        let step = (s - s0) / speed0;
+        let mut u = if speed0 > T::zero() && u0 + step < hi {
+            u0 + step
+        } else {
+            lo + (hi - lo) * ((s - s0) / (s1 - s0)).min(T::one())
+        };
+        let mut best = (u0, s0);
+        for _ in 0..200 {
+            let su = s0 + self.length_inside(u0, u)?;
+            let f = su - s;
+            if f.abs() < (best.1 - s).abs() {
+                best = (u, su);
+            }
+            if f.abs() <= self.accuracy {
+                return Ok((u, su));
+            }
+            if f > T::zero() {
+                hi = u;
+            } else {
+                lo = u;
+            }
+            let speed = self.curve.speed(u)?;
+            let newton = u - f / speed;
+            u = if speed > T::zero() && newton > lo && newton < hi {
+                newton
+            } else {
+                (lo + hi) * cast(0.5)
+            };
+            if !(hi > lo) || (hi - lo) <= hi.abs().max(lo.abs()) * cast(4.0 * f64::EPSILON) {
+                // The bracket is at the resolution of the parameter: the best there is.
+                return Ok(best);
+            }
+        }
+        Err(Error::new(
+            ErrorKind::NoConvergence,
+            format!("no parameter found at arc length {}", to_f64(s)),
+        ))
+    }
+
+    /// The parameter at arc length `s` from the start, to the table's accuracy.
+    ///
+    /// # Errors
+    /// [`ErrorKind::OutOfDomain`] unless `0 ≤ s ≤` [`Self::total`] (to the accuracy);
+    /// [`ErrorKind::NoConvergence`] if the inversion fails.
+    pub fn param_at(&self, s: T) -> Result<T> {
+        let s = self.clamp_length(s)?;
+        let k = self.piece_of(s);
+        Ok(self
+            .solve_in_piece(k, self.cumulative[k], self.breaks[k], s)?
+            .0)
+    }
 }
 
 impl<T: Scalar, P: ControlPoint<T>> BSpline<T, P> {

@@ -61,6 +61,10 @@ pub use construct::{
     Axis, CircleConstruction, ConicKind, Frame, MAX_ARC_PIECES, MovingFrame, compatible_curves,
     compatible_surfaces, rotation_minimizing_frames,
 };
+pub use curve_tools::{
+    ArcLengthTable, BoundingBox, MAX_TESSELLATION_SEGMENTS, hull_box, param_at_length, pieces_box,
+    tessellate,
+};
 pub use homogeneous::Homogeneous;
 pub use mesh::{MAX_MESH_SEGMENTS, MeshView, SvgOverlay, TriangleMesh};
 pub use nurbs::{
@@ -68,9 +72,8 @@ pub use nurbs::{
     Rational,
 };
 pub use operations::{Operation, Outcome, StructuralCurve, StructuralSurface};
-pub use curve_tools::{BoundingBox, MAX_TESSELLATION_SEGMENTS, hull_box, param_at_length, pieces_box, tessellate};
-pub use periodic::PeriodicBSpline;
 pub use param::{ParamCurve, ParamSurface, PlanarCurve, SpatialSurface};
+pub use periodic::PeriodicBSpline;
 pub use planar::wedge;
 pub use spline_core::{ControlPoint, Error, ErrorKind, KnotVector, Result, Scalar};
 pub use structural::DEFAULT_REMOVAL_TOLERANCE;
