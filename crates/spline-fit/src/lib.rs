@@ -11,6 +11,9 @@
 //!   with rotation-minimising frames ([`sweep`]), Gordon surfaces through a curve network
 //!   ([`gordon`]); grid interpolation with boundary derivatives
 //!   ([`interpolate_surface_with_derivatives`]).
+//! - Approximation of any map within a tolerance by adaptive knot refinement
+//!   ([`AdaptiveApproximation`]) and reparametrisation by arc length
+//!   ([`reparametrize_by_arc_length`]).
 //! - Periodic splines ([`spline_geom::PeriodicBSpline`]): interpolation with scipy's periodic
 //!   conditions ([`interpolate_periodic`]) and periodic least squares with an optional
 //!   smoothing term ([`least_squares_periodic`]).
@@ -55,6 +58,8 @@
 //! # Feature flags
 //! None.
 
+mod adaptive;
+mod arclength;
 mod banded;
 mod bezier;
 mod correction;
@@ -77,6 +82,8 @@ mod surface_ends;
 mod surface_project;
 mod sweep;
 
+pub use adaptive::{AdaptiveApproximation, AdaptiveFit, MAX_ADAPTIVE_PIECES};
+pub use arclength::reparametrize_by_arc_length;
 pub use bezier::{BezierFit, bezier_interpolate, bezier_least_squares};
 pub use correction::{
     CorrectionOptions, CorrectionReport, MAX_CORRECTION_ITERATIONS, correct_parameters,
