@@ -85,7 +85,7 @@ fn crossings<A: PlanarCurve<f64>, B: PlanarCurve<f64>>(
     va: &[f64],
     same: bool,
 ) -> Vec<(f64, f64)> {
-    let (pa, pb) = (a.eval_many(&ua).unwrap(), b.eval_many(&va).unwrap());
+    let (pa, pb) = (a.eval_many(ua).unwrap(), b.eval_many(va).unwrap());
     let mut out: Vec<(f64, f64)> = Vec::new();
     for i in 0..ua.len() - 1 {
         let (p0, p1) = (pa[i], pa[i + 1]);
