@@ -35,6 +35,8 @@
 //! - Intersections of planar curves of any kind: [`intersect_curves`] and
 //!   [`self_intersections`] (subdivision of the Bézier pieces, Newton's method, tangential
 //!   intersections flagged).
+//! - Offsets: [`offset_cusps`], where the curvature times the distance is one (zeros of
+//!   $d^2 h_4^2 - h_1^3$).
 //!
 //! Everything is generic over [`spline_core::Scalar`], so the same code runs on dual numbers
 //! (the tests check every Jacobian and Hessian that way).
@@ -68,6 +70,7 @@ mod curves;
 mod features;
 mod maps;
 mod numerator;
+mod offset;
 mod product;
 mod ridges;
 mod roots;
@@ -91,6 +94,7 @@ pub use features::{
 };
 pub use maps::SplineMap;
 pub use nalgebra_sparse::CsrMatrix;
+pub use offset::{OffsetCusp, offset_cusps};
 pub use product::{
     ProductJacobians, ProductMap, Square, bernstein_product, common_space, difference, dot_product,
     linear_combination, product, product_knots, product_with_jacobians, scale, square, sum,

@@ -13,7 +13,9 @@
 //!   ([`interpolate_surface_with_derivatives`]).
 //! - Approximation of any map within a tolerance by adaptive knot refinement
 //!   ([`AdaptiveApproximation`]) and reparametrisation by arc length
-//!   ([`reparametrize_by_arc_length`]).
+//!   ([`reparametrize_by_arc_length`]); offsets of planar curves within a tolerance
+//!   ([`offset_curve`], with the cusps from `spline_algebra::offset_cusps` as corners);
+//!   degree reduction within a tolerance ([`reduce_degree`]).
 //! - Periodic splines ([`spline_geom::PeriodicBSpline`]): interpolation with scipy's periodic
 //!   conditions ([`interpolate_periodic`]) and periodic least squares with an optional
 //!   smoothing term ([`least_squares_periodic`]).
@@ -69,9 +71,11 @@ mod interpolate;
 mod intersect;
 mod lsq;
 mod natural;
+mod offset;
 mod params;
 mod periodic;
 mod project;
+mod reduce;
 mod report;
 mod scattered;
 mod skin;
@@ -103,11 +107,13 @@ pub use lsq::{
     GridLeastSquares, GridNormalEquations, LeastSquares, LsqMethod, NormalEquations, approximate,
 };
 pub use natural::{natural_cubic, natural_spline};
+pub use offset::{offset_curve, offset_point};
 pub use params::{
     KnotChoice, Parametrization, nurbs_book_knots, parametrize, parametrize_closed, parametrize_in,
 };
 pub use periodic::{interpolate_periodic, least_squares_periodic};
 pub use project::{Projection, closest_point, project_ordered};
+pub use reduce::reduce_degree;
 pub use report::{CurveFit, Deviation, deviation};
 pub use scattered::{MAX_SCATTERED_SYSTEM, ScatteredFit, ScatteredOptions, fit_scattered};
 pub use skin::{Gordon, Skinned, gordon, skin};
