@@ -10,6 +10,7 @@
 #![allow(rustdoc::broken_intra_doc_links)]
 
 mod algebra;
+mod curves;
 mod eval;
 mod fitting;
 mod io;
@@ -78,13 +79,21 @@ enum Command {
     Mesh(mesh::MeshArgs),
     /// Closest points on a curve or a surface: [{"u"[, "v"], "point", "distance"}].
     Closest(surfaces::ClosestArgs),
-    /// Intersections: curve–surface points, surface–surface curves.
+    /// Intersections: curve–curve (one curve: self-intersections), curve–surface, surface–surface.
     Intersect(surfaces::IntersectArgs),
     /// Least-squares surface through scattered points or a mesh, with parameter correction.
     ApproximateSurface(surfaces::ApproximateSurfaceArgs),
     /// Parabolic lines (K = 0) and umbilics of a surface (ridges of a function s(u, v)),
     /// as polylines in (u, v) and in space.
     SurfaceFeatures(surface_features::SurfaceFeaturesArgs),
+    /// The offset of a planar curve within a tolerance, with its cusps.
+    Offset(curves::OffsetArgs),
+    /// Arc length: the length, parameters at lengths, or the curve by arc length.
+    Arclength(curves::ArclengthArgs),
+    /// Lower the degree of a curve within a tolerance.
+    Reduce(curves::ReduceArgs),
+    /// Smoothing spline of data: lambda given or by GCV (scipy), or a residual target (FITPACK).
+    Smoothing(curves::SmoothingArgs),
 }
 
 fn run(command: Command) -> spline_core::Result<()> {
@@ -113,6 +122,10 @@ fn run(command: Command) -> spline_core::Result<()> {
         Command::Intersect(args) => surfaces::intersect(&args),
         Command::ApproximateSurface(args) => surfaces::approximate_surface(&args),
         Command::SurfaceFeatures(args) => surface_features::surface_features(&args),
+        Command::Offset(args) => curves::offset(&args),
+        Command::Arclength(args) => curves::arclength(&args),
+        Command::Reduce(args) => curves::reduce(&args),
+        Command::Smoothing(args) => curves::smoothing(&args),
     }
 }
 

@@ -42,13 +42,15 @@ pub struct CurvatureArgs {
 }
 
 /// A planar curve of either kind.
-enum Planar {
+pub enum Planar {
+    /// A B-spline curve.
     Polynomial(BSpline<f64, Vector2<f64>>),
+    /// A NURBS curve.
     Rational(NurbsCurve<f64, 2>),
 }
 
 /// Reads a planar curve; `what` says what needs it, for messages.
-fn read_planar(path: &str, what: &str) -> Result<Planar> {
+pub fn read_planar(path: &str, what: &str) -> Result<Planar> {
     planar_of(read_object(path)?, path, what)
 }
 

@@ -99,7 +99,8 @@ pub struct IntersectArgs {
     /// The second object (curve or surface); curves alone ask for self-intersections.
     b: Option<String>,
     /// Surface–surface: how far the traced polylines may stray from the true curves
-    /// (default 1e-4 of the objects' size).
+    /// (default 1e-4 of the objects' size); curve–curve: the distance under which the
+    /// curves touch (default 1e-9).
     #[arg(long)]
     tolerance: Option<f64>,
 }
@@ -137,10 +138,8 @@ fn spatial_surface(object: &Object, path: &str) -> Result<Option<Spatial>> {
 pub fn intersect(args: &IntersectArgs) -> Result<()> {
     let a = read_object(&args.a)?;
     let Some(path_b) = &args.b else {
-        return Err(Error::new(
-            ErrorKind::Unsupported,
-            "self-intersections of curves are not in this build",
-        ));
+        // One curve: its self-intersections.
+        return crate::curves::intersect_curve_files(&args.a, None, args.tolerance);
     };
     let b = read_object(path_b)?;
     if let Some(t) = args.tolerance {
@@ -163,10 +162,7 @@ pub fn intersect(args: &IntersectArgs) -> Result<()> {
         (Some(s), None) => curve_surface(&b, path_b, &s, &tolerances)?,
         (None, Some(s)) => curve_surface(&a, &args.a, &s, &tolerances)?,
         (None, None) => {
-            return Err(Error::new(
-                ErrorKind::Unsupported,
-                "curve–curve intersection is not in this build",
-            ));
+            return crate::curves::intersect_curve_files(&args.a, Some(path_b), args.tolerance);
         }
     };
     io::print_json(&out)

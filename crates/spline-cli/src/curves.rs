@@ -1,0 +1,272 @@
+//! The curve subcommands of the second wave: curve–curve `intersect` (two curves, or one
+//! with itself; reached through the surfaces module's `intersect`), `offset`, `arclength`, `reduce` and `smoothing` (scipy's `make_smoothing_spline` and
+//! FITPACK's residual target).
+
+use crate::io::{Pt, pad, parse_arg, print_json};
+use crate::objects::{Sized, read_curve};
+use crate::plot::{Planar, read_planar};
+use clap::Args;
+use nalgebra::Vector2;
+use serde_json::{Value, json};
+use spline_algebra::{CurveIntersection, intersect_curves, offset_cusps, self_intersections};
+use spline_core::{Error, ErrorKind, Result};
+use spline_fit::{
+    SmoothingParameter, offset_curve, reduce_degree, reparametrize_by_arc_length, smoothing_spline,
+    smoothing_to_residual,
+};
+use spline_geom::{ArcLengthTable, BSpline, PlanarCurve};
+
+#[derive(Args)]
+pub struct OffsetArgs {
+    /// A planar B-spline curve (JSON), or - for standard input.
+    curve: String,
+    /// Signed distance: positive to the left of the direction of travel.
+    #[arg(long, allow_hyphen_values = true)]
+    distance: f64,
+    /// Largest distance between the result and the exact offset.
+    #[arg(long, default_value_t = 1e-6)]
+    tolerance: f64,
+    /// Degree of the result.
+    #[arg(long, default_value_t = 3)]
+    degree: usize,
+}
+
+#[derive(Args)]
+pub struct ArclengthArgs {
+    /// A curve (JSON; B-spline or NURBS, any dimension), or - for standard input.
+    curve: String,
+    /// Arc lengths (JSON array) at which to give the parameters.
+    #[arg(long)]
+    at_length: Option<String>,
+    /// Give the curve parametrised by arc length instead (within --tolerance).
+    #[arg(long)]
+    reparametrize: bool,
+    /// Accuracy of lengths, or the tolerance of the reparametrised curve.
+    #[arg(long, default_value_t = 1e-9)]
+    tolerance: f64,
+}
+
+#[derive(Args)]
+pub struct ReduceArgs {
+    /// A curve (JSON; B-spline or NURBS, any dimension), or - for standard input.
+    curve: String,
+    /// How much to lower the degree.
+    #[arg(long, default_value_t = 1)]
+    times: usize,
+    /// Largest distance between the result and the curve.
+    #[arg(long)]
+    tolerance: f64,
+    /// Add knots where the curve's own knots do not reach the tolerance.
+    #[arg(long)]
+    refine: bool,
+}
+
+#[derive(Args)]
+pub struct SmoothingArgs {
+    /// Abscissae (JSON array, increasing).
+    #[arg(long)]
+    x: String,
+    /// Values (JSON array of numbers, or of points).
+    #[arg(long)]
+    y: String,
+    /// Weights of the data (JSON array, positive).
+    #[arg(long)]
+    weights: Option<String>,
+    /// A given weight of the roughness penalty.
+    #[arg(long, group = "how")]
+    lambda: Option<f64>,
+    /// Choose λ by generalised cross-validation (scipy's make_smoothing_spline).
+    #[arg(long, group = "how")]
+    gcv: bool,
+    /// FITPACK's residual target s (splrep): knots placed automatically.
+    #[arg(long, group = "how")]
+    residual: Option<f64>,
+    /// Degree for --residual (1 to 5).
+    #[arg(long, default_value_t = 3)]
+    degree: usize,
+}
+
+fn hits_json(hits: &[CurveIntersection<f64>]) -> Value {
+    Value::Array(
+        hits.iter()
+            .map(|h| {
+                json!({"u": h.u, "v": h.v, "point": [h.point.x, h.point.y],
+                       "tangential": h.tangential, "gap": h.gap})
+            })
+            .collect(),
+    )
+}
+
+fn pair<A: PlanarCurve<f64>>(a: &A, b: &Planar, tol: f64) -> Result<Vec<CurveIntersection<f64>>> {
+    match b {
+        Planar::Polynomial(b) => intersect_curves(a, b, tol),
+        Planar::Rational(b) => intersect_curves(a, b, tol),
+    }
+}
+
+/// Curve–curve intersections for `spline intersect A [B]` (the command lives with the
+/// surface intersections, which dispatch here when neither object is a surface): all
+/// intersections of two planar curves, or the self-intersections of one, at the contact
+/// tolerance `tolerance` (default [`CURVE_CONTACT_TOLERANCE`]).
+pub fn intersect_curve_files(a: &str, b: Option<&str>, tolerance: Option<f64>) -> Result<()> {
+    let tolerance = tolerance.unwrap_or(CURVE_CONTACT_TOLERANCE);
+    let first = read_planar(a, "intersect")?;
+    let hits = match b {
+        Some(path) => {
+            let second = read_planar(path, "intersect")?;
+            match &first {
+                Planar::Polynomial(x) => pair(x, &second, tolerance)?,
+                Planar::Rational(x) => pair(x, &second, tolerance)?,
+            }
+        }
+        None => match &first {
+            Planar::Polynomial(x) => self_intersections(x, tolerance)?,
+            Planar::Rational(x) => self_intersections(x, tolerance)?,
+        },
+    };
+    print_json(&hits_json(&hits))
+}
+
+/// The distance under which two curves touch, unless `--tolerance` says otherwise.
+pub const CURVE_CONTACT_TOLERANCE: f64 = 1e-9;
+
+fn padded(p: &Vector2<f64>) -> Pt {
+    Pt::from_fn(|i, _| if i < 2 { p[i] } else { 0.0 })
+}
+
+/// `spline offset CURVE --distance D`.
+pub fn offset(args: &OffsetArgs) -> Result<()> {
+    let Planar::Polynomial(curve) = read_planar(&args.curve, "offset")? else {
+        return Err(Error::new(
+            ErrorKind::InvalidArgument,
+            format!("{}: offset needs a B-spline curve (no weights)", args.curve),
+        ));
+    };
+    let (a, b) = curve.domain();
+    let cusps = offset_cusps(&curve, args.distance, 1e-12 * (b - a))?;
+    let at: Vec<f64> = cusps
+        .iter()
+        .filter(|c| c.sign_change)
+        .map(|c| c.u)
+        .collect();
+    let fit = offset_curve(&curve, args.distance, args.degree, args.tolerance, &at)?;
+    let record = Sized {
+        value: fit.curve.map_control_points(padded),
+        dim: 2,
+    }
+    .json()?;
+    print_json(&json!({
+        "curve": record,
+        "cusps": cusps.iter().map(|c| c.u).collect::<Vec<_>>(),
+        "cusp_points": cusps.iter().map(|c| [c.point.x, c.point.y]).collect::<Vec<_>>(),
+        "max_error": fit.max_error,
+    }))
+}
+
+/// `spline arclength CURVE`.
+pub fn arclength(args: &ArclengthArgs) -> Result<()> {
+    let any = read_curve(&args.curve)?;
+    let curve = &any.curve.value;
+    if args.reparametrize {
+        let fit = reparametrize_by_arc_length(curve, 3, args.tolerance)?;
+        let record = any.curve.with(fit.curve).json()?;
+        return print_json(&json!({"curve": record, "max_error": fit.max_error}));
+    }
+    let table = ArcLengthTable::new(curve, args.tolerance)?;
+    let params = match &args.at_length {
+        None => Vec::new(),
+        Some(text) => {
+            let lengths: Vec<f64> = parse_arg("--at-length", text)?;
+            lengths
+                .iter()
+                .map(|&s| table.param_at(s))
+                .collect::<Result<Vec<f64>>>()?
+        }
+    };
+    print_json(&json!({"length": table.total(), "params": params}))
+}
+
+/// `spline reduce CURVE --tolerance T`.
+pub fn reduce(args: &ReduceArgs) -> Result<()> {
+    let any = read_curve(&args.curve)?;
+    let p = any.curve.value.degree();
+    if args.times == 0 || args.times >= p {
+        return Err(Error::new(
+            ErrorKind::InvalidArgument,
+            format!(
+                "--times {}: a degree-{p} curve can be lowered by 1 to {}",
+                args.times,
+                p.saturating_sub(1)
+            ),
+        ));
+    }
+    let fit = reduce_degree(
+        &any.curve.value,
+        p - args.times,
+        args.tolerance,
+        args.refine,
+    )?;
+    let record = any.curve.with(fit.curve).json()?;
+    print_json(&json!({"curve": record, "max_error": fit.max_error}))
+}
+
+/// `spline smoothing --x JSON --y JSON (--lambda L | --gcv | --residual S)`.
+pub fn smoothing(args: &SmoothingArgs) -> Result<()> {
+    let x: Vec<f64> = parse_arg("--x", &args.x)?;
+    let rows: Vec<Vec<f64>> = match parse_arg::<Value>("--y", &args.y)? {
+        Value::Array(items) if items.iter().all(Value::is_number) => {
+            parse_arg::<Vec<f64>>("--y", &args.y)?
+                .into_iter()
+                .map(|v| vec![v])
+                .collect()
+        }
+        _ => parse_arg("--y", &args.y)?,
+    };
+    let dim = rows.first().map_or(1, Vec::len);
+    if let Some(k) = rows.iter().position(|r| r.len() != dim) {
+        return Err(Error::new(
+            ErrorKind::DimensionMismatch,
+            format!(
+                "--y: value {k} has {} coordinates, value 0 has {dim}",
+                rows[k].len()
+            ),
+        ));
+    }
+    let y = rows.iter().map(|r| pad(r)).collect::<Result<Vec<Pt>>>()?;
+    let weights: Option<Vec<f64>> = args
+        .weights
+        .as_deref()
+        .map(|t| parse_arg("--weights", t))
+        .transpose()?;
+    let record = |spline: BSpline<f64, Pt>| Sized { value: spline, dim }.json();
+    if let Some(s) = args.residual {
+        let fit = smoothing_to_residual(&x, &y, weights.as_deref(), args.degree, s)?;
+        let mut out = json!({
+            "curve": record(fit.spline)?,
+            "residual": fit.residual,
+            "converged": fit.converged,
+        });
+        if let Some(p) = fit.smoothing {
+            out["smoothing"] = json!(p);
+        }
+        return print_json(&out);
+    }
+    let parameter = match (args.lambda, args.gcv) {
+        (Some(l), _) => SmoothingParameter::Lambda(l),
+        (None, true) => SmoothingParameter::Gcv,
+        (None, false) => {
+            return Err(Error::new(
+                ErrorKind::InvalidArgument,
+                "give --lambda L, --gcv or --residual S",
+            ));
+        }
+    };
+    let fit = smoothing_spline(&x, &y, weights.as_deref(), parameter)?;
+    print_json(&json!({
+        "curve": record(fit.spline)?,
+        "lambda": fit.lambda,
+        "gcv": fit.gcv,
+        "trace": fit.trace,
+        "residual": fit.residual,
+    }))
+}

@@ -1,0 +1,204 @@
+//! The curve tools through the binary: `intersect`, `offset`, `arclength`, `reduce` and
+//! `smoothing`, against closed forms and scipy's reference data, and clean errors.
+
+mod common;
+
+use common::{spline, temp_file};
+use serde_json::{Value, json};
+
+fn file(v: &Value) -> String {
+    temp_file("curve.json", &v.to_string())
+}
+
+/// (u, u²) on [−1, 1].
+fn parabola() -> String {
+    file(
+        &json!({"degree": 2, "knots": [-1, -1, -1, 1, 1, 1], "control_points": [[-1, 1], [0, -1], [1, 1]]}),
+    )
+}
+
+fn num(v: &Value) -> f64 {
+    v.as_f64().unwrap_or_else(|| panic!("not a number: {v}"))
+}
+
+#[test]
+fn intersect_two_curves_and_one_with_itself() {
+    // y = u² against y = 1/2: u = ±1/√2.
+    let line =
+        file(&json!({"degree": 1, "knots": [0, 0, 1, 1], "control_points": [[-2, 0.5], [2, 0.5]]}));
+    let hits = spline(&["intersect", &parabola(), &line]).json();
+    let hits = hits.as_array().unwrap();
+    assert_eq!(hits.len(), 2, "{hits:?}");
+    for (h, x) in hits.iter().zip([-0.5f64.sqrt(), 0.5f64.sqrt()]) {
+        assert!(
+            (num(&h["point"][0]) - x).abs() < 1e-14 && (num(&h["point"][1]) - 0.5).abs() < 1e-14,
+            "{h}"
+        );
+        assert_eq!(h["tangential"], json!(false));
+    }
+    // The tangent y = 0 touches at the vertex.
+    let tangent =
+        file(&json!({"degree": 1, "knots": [0, 0, 1, 1], "control_points": [[-2, 0], [2, 0]]}));
+    let hits = spline(&["intersect", &parabola(), &tangent]).json();
+    assert_eq!(hits.as_array().unwrap().len(), 1);
+    assert_eq!(hits[0]["tangential"], json!(true));
+    // A cubic loop crosses itself once.
+    let looped = file(
+        &json!({"degree": 3, "knots": [0, 0, 0, 0, 1, 1, 1, 1], "control_points": [[0, 0], [2, 2], [-1, 2], [1, 0]]}),
+    );
+    let hits = spline(&["intersect", &looped]).json();
+    assert_eq!(hits.as_array().unwrap().len(), 1);
+    assert!(num(&hits[0]["u"]) < num(&hits[0]["v"]));
+    // Errors.
+    spline(&["intersect", &parabola(), &line, "--tolerance", "0"]).assert_clean_error();
+}
+
+#[test]
+fn offset_of_the_parabola_with_its_cusps() {
+    let x = ((2f64.powf(2.0 / 3.0) - 1.0) / 4.0).sqrt();
+    let out = spline(&[
+        "offset",
+        &parabola(),
+        "--distance",
+        "1",
+        "--tolerance",
+        "1e-7",
+    ])
+    .json();
+    let cusps: Vec<f64> = out["cusps"].as_array().unwrap().iter().map(num).collect();
+    assert_eq!(cusps.len(), 2);
+    assert!(
+        (cusps[0] + x).abs() < 1e-12 && (cusps[1] - x).abs() < 1e-12,
+        "{cusps:?}"
+    );
+    // The offset curve against the closed form, through `spline eval`.
+    let curve = file(&out["curve"]);
+    let us: Vec<f64> = (0..=200).map(|i| -1.0 + f64::from(i) / 100.0).collect();
+    let values = spline(&["eval", &curve, "--at", &json!(us).to_string()]).json();
+    for (k, &u) in us.iter().enumerate() {
+        let s = (1.0 + 4.0 * u * u).sqrt();
+        let exact = [u - 2.0 * u / s, u * u + 1.0 / s];
+        let got = &values[k][0];
+        let e = ((num(&got[0]) - exact[0]).powi(2) + (num(&got[1]) - exact[1]).powi(2)).sqrt();
+        assert!(e <= 1e-7, "u = {u}: {e:e}");
+    }
+    spline(&[
+        "offset",
+        &parabola(),
+        "--distance",
+        "1",
+        "--tolerance",
+        "-1",
+    ])
+    .assert_clean_error();
+    let nurbs = file(
+        &json!({"degree": 2, "knots": [0, 0, 0, 1, 1, 1], "control_points": [[1, 0], [1, 1], [0, 1]], "weights": [1, std::f64::consts::FRAC_1_SQRT_2, 1]}),
+    );
+    spline(&["offset", &nurbs, "--distance", "0.1"]).assert_clean_error();
+}
+
+#[test]
+fn arclength_of_a_segment_and_a_quarter_circle() {
+    let segment =
+        file(&json!({"degree": 1, "knots": [0, 0, 1, 1], "control_points": [[0, 0], [3, 4]]}));
+    let out = spline(&["arclength", &segment, "--at-length", "[0, 2.5, 5]"]).json();
+    assert!((num(&out["length"]) - 5.0).abs() < 1e-12);
+    let params: Vec<f64> = out["params"].as_array().unwrap().iter().map(num).collect();
+    assert!(
+        params[0].abs() < 1e-9 && (params[1] - 0.5).abs() < 1e-9 && (params[2] - 1.0).abs() < 1e-9,
+        "{params:?}"
+    );
+    let quarter = file(
+        &json!({"degree": 2, "knots": [0, 0, 0, 1, 1, 1], "control_points": [[1, 0], [1, 1], [0, 1]], "weights": [1, std::f64::consts::FRAC_1_SQRT_2, 1]}),
+    );
+    let out = spline(&["arclength", &quarter]).json();
+    assert!((num(&out["length"]) - std::f64::consts::FRAC_PI_2).abs() < 1e-9);
+    let out = spline(&[
+        "arclength",
+        &quarter,
+        "--reparametrize",
+        "--tolerance",
+        "1e-7",
+    ])
+    .json();
+    let curve = file(&out["curve"]);
+    let values = spline(&["eval", &curve, "--at", "[0.5, 1.0]"]).json();
+    for (k, s) in [0.5f64, 1.0].iter().enumerate() {
+        let p = &values[k][0];
+        assert!(
+            (num(&p[0]) - s.cos()).abs() < 1e-7 && (num(&p[1]) - s.sin()).abs() < 1e-7,
+            "{p}"
+        );
+    }
+    spline(&["arclength", &segment, "--at-length", "[6]"]).assert_clean_error();
+    spline(&["arclength", &segment, "--tolerance", "0"]).assert_clean_error();
+}
+
+#[test]
+fn reduce_exactly_or_say_how_close_it_gets() {
+    // The parabola elevated to a cubic comes back exactly.
+    let cubic = file(
+        &json!({"degree": 3, "knots": [0, 0, 0, 0, 1, 1, 1, 1], "control_points": [[0, 0], [0.3333333333333333, 0.6666666666666666], [0.6666666666666666, 0.6666666666666666], [1, 0]]}),
+    );
+    let out = spline(&["reduce", &cubic, "--tolerance", "1e-12"]).json();
+    assert_eq!(out["curve"]["degree"], json!(2));
+    assert!(num(&out["max_error"]) < 1e-12);
+    let s = file(
+        &json!({"degree": 3, "knots": [0, 0, 0, 0, 1, 1, 1, 1], "control_points": [[0, 0], [1, 1], [2, -1], [3, 0]]}),
+    );
+    let message = spline(&["reduce", &s, "--tolerance", "1e-6"]).assert_clean_error();
+    assert!(message.contains("best deviation"), "{message}");
+    let out = spline(&["reduce", &s, "--tolerance", "1e-6", "--refine"]).json();
+    assert!(num(&out["max_error"]) <= 1e-6);
+    spline(&["reduce", &s, "--tolerance", "1e-6", "--times", "3"]).assert_clean_error();
+}
+
+#[test]
+fn smoothing_agrees_with_scipy() {
+    let path = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../spline-fit/tests/data/smoothing/gcv.json"
+    );
+    let data: Value = serde_json::from_str(&std::fs::read_to_string(path).unwrap()).unwrap();
+    for case in data["cases"].as_array().unwrap().iter().take(6) {
+        let (x, y, w) = (
+            case["x"].to_string(),
+            case["y"].to_string(),
+            case["weights"].to_string(),
+        );
+        let mut args = vec!["smoothing", "--x", &x, "--y", &y, "--gcv"];
+        if !case["weights"].is_null() {
+            args.extend(["--weights", &w]);
+        }
+        let out = spline(&args).json();
+        let lambda = num(&case["lambda"]);
+        assert!(
+            (num(&out["lambda"]) - lambda).abs() <= 1e-8 * lambda.max(1.0),
+            "{} vs {lambda}",
+            out["lambda"]
+        );
+        let ours: Vec<f64> = out["curve"]["control_points"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|p| num(&p[0]))
+            .collect();
+        let theirs: Vec<f64> = case["spline"]["coefficients"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(num)
+            .collect();
+        assert_eq!(ours.len(), theirs.len());
+        for (a, b) in ours.iter().zip(&theirs) {
+            assert!((a - b).abs() <= 1e-6 * (1.0 + b.abs()), "{a} vs {b}");
+        }
+    }
+    let x = "[0, 1, 2, 3, 4, 5, 6, 7]";
+    let y = "[0, 0.8, 0.9, 0.1, -0.7, -1.0, -0.3, 0.6]";
+    let out = spline(&["smoothing", "--x", x, "--y", y, "--residual", "0.05"]).json();
+    assert!((num(&out["residual"]) - 0.05).abs() < 0.05 * 1e-3 || out["converged"] == json!(false));
+    spline(&["smoothing", "--x", x, "--y", y]).assert_clean_error();
+    spline(&["smoothing", "--x", x, "--y", y, "--gcv", "--lambda", "1"]).assert_clean_error();
+    spline(&["smoothing", "--x", "[0, 1]", "--y", "[0, 1, 2]", "--gcv"]).assert_clean_error();
+}
