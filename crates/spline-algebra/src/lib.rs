@@ -35,6 +35,7 @@
 //! - Intersections of planar curves of any kind: [`intersect_curves`] and
 //!   [`self_intersections`] (subdivision of the Bézier pieces, Newton's method, tangential
 //!   intersections flagged).
+//! - Bounds: [`tight_box`], the exact extremes of every coordinate of a curve.
 //! - Offsets: [`offset_cusps`], where the curvature times the distance is one (zeros of
 //!   $d^2 h_4^2 - h_1^3$).
 //!
@@ -65,6 +66,7 @@
 //! None.
 
 mod bilinear;
+mod bounds;
 mod curve_intersection;
 mod curves;
 mod features;
@@ -83,6 +85,7 @@ mod umbilics;
 mod zero_set;
 
 pub use bilinear::SparseBilinear;
+pub use bounds::tight_box;
 pub use curve_intersection::{
     CurveIntersection, MAX_INTERSECTION_PAIRS, TANGENTIAL_SINE, intersect_curves,
     self_intersections,
