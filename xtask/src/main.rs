@@ -33,6 +33,7 @@ mod bench_surfaces;
 mod campaign;
 mod demo;
 mod docs_constructions;
+mod docs_curve_tools;
 mod docs_curves;
 mod docs_shape_functions;
 mod docs_surface_features;
@@ -76,6 +77,7 @@ fn run_docs(root: &Path) -> Result<(), String> {
     let out = root.join("docs");
     std::fs::create_dir_all(&out).map_err(|e| e.to_string())?;
     docs_curves::render(&out)?;
+    docs_curve_tools::render(&out)?;
     docs_surfaces::render(&out)?;
     docs_constructions::render(root, &out)?;
     docs_surface_features::render(&out)?;
