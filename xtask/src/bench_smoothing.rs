@@ -35,7 +35,8 @@ pub(crate) fn run(repo_root: &Path) -> Result<(), String> {
         let id = format!("{id}/{N}");
         rust.insert(
             id.clone(),
-            bench::criterion_median(&target, &format!("smoothing/{id}"))?,
+            // criterion writes the function id `lambda/N` as `lambda_N`.
+            bench::criterion_median(&target, &format!("smoothing/{}", id.replace('/', "_")))?,
         );
     }
     print_table(&scipy, &rust, &checks)
