@@ -2,7 +2,8 @@
 //! with itself; reached through the surfaces module's `intersect`), `offset`, `arclength`, `reduce` and `smoothing` (scipy's `make_smoothing_spline` and
 //! FITPACK's residual target).
 
-use crate::io::{Pt, pad, parse_arg, print_json};
+use crate::fitting::read_values;
+use crate::io::{Pt, parse_arg, print_json};
 use crate::objects::{Sized, read_curve};
 use crate::plot::{Planar, read_planar};
 use clap::Args;
@@ -213,26 +214,7 @@ pub fn reduce(args: &ReduceArgs) -> Result<()> {
 /// `spline smoothing --x JSON --y JSON (--lambda L | --gcv | --residual S)`.
 pub fn smoothing(args: &SmoothingArgs) -> Result<()> {
     let x: Vec<f64> = parse_arg("--x", &args.x)?;
-    let rows: Vec<Vec<f64>> = match parse_arg::<Value>("--y", &args.y)? {
-        Value::Array(items) if items.iter().all(Value::is_number) => {
-            parse_arg::<Vec<f64>>("--y", &args.y)?
-                .into_iter()
-                .map(|v| vec![v])
-                .collect()
-        }
-        _ => parse_arg("--y", &args.y)?,
-    };
-    let dim = rows.first().map_or(1, Vec::len);
-    if let Some(k) = rows.iter().position(|r| r.len() != dim) {
-        return Err(Error::new(
-            ErrorKind::DimensionMismatch,
-            format!(
-                "--y: value {k} has {} coordinates, value 0 has {dim}",
-                rows[k].len()
-            ),
-        ));
-    }
-    let y = rows.iter().map(|r| pad(r)).collect::<Result<Vec<Pt>>>()?;
+    let (y, dim) = read_values(&args.y)?;
     let weights: Option<Vec<f64>> = args
         .weights
         .as_deref()

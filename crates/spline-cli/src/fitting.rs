@@ -234,17 +234,21 @@ pub fn interpolate(args: &InterpolateArgs) -> Result<()> {
     output(&fit, dim, scale, args.report, None)
 }
 
-pub fn natural(args: &NaturalArgs) -> Result<()> {
-    let x: Vec<f64> = parse_arg("--x", &args.x)?;
-    let y: Value = parse_arg("--y", &args.y)?;
-    let rows: Vec<Vec<f64>> = match &y {
+/// The values of `--y`: a JSON array of numbers (1-D) or of points of one dimension, padded,
+/// with their dimension.
+///
+/// # Errors
+/// [`ErrorKind::Parse`] for bad JSON; [`ErrorKind::DimensionMismatch`] for points of
+/// different dimensions; the errors of [`pad`].
+pub fn read_values(text: &str) -> Result<(Vec<Pt>, usize)> {
+    let rows: Vec<Vec<f64>> = match parse_arg::<Value>("--y", text)? {
         Value::Array(items) if items.iter().all(Value::is_number) => {
-            parse_arg::<Vec<f64>>("--y", &args.y)?
+            parse_arg::<Vec<f64>>("--y", text)?
                 .into_iter()
                 .map(|v| vec![v])
                 .collect()
         }
-        _ => parse_arg("--y", &args.y)?,
+        _ => parse_arg("--y", text)?,
     };
     let dim = rows.first().map_or(1, Vec::len);
     if let Some(k) = rows.iter().position(|r| r.len() != dim) {
@@ -256,7 +260,15 @@ pub fn natural(args: &NaturalArgs) -> Result<()> {
             ),
         ));
     }
-    let values = rows.iter().map(|r| pad(r)).collect::<Result<Vec<Pt>>>()?;
+    Ok((
+        rows.iter().map(|r| pad(r)).collect::<Result<Vec<Pt>>>()?,
+        dim,
+    ))
+}
+
+pub fn natural(args: &NaturalArgs) -> Result<()> {
+    let x: Vec<f64> = parse_arg("--x", &args.x)?;
+    let (values, dim) = read_values(&args.y)?;
     let curve = natural_spline(&x, &values, args.order)?;
     write_stdout(Sized { value: curve, dim }.json()?.get().as_bytes())
 }

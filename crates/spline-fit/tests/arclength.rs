@@ -6,19 +6,8 @@ use proptest::prelude::*;
 use spline_core::ErrorKind;
 use spline_fit::{AdaptiveApproximation, reparametrize_by_arc_length};
 use spline_geom::{BSpline, NurbsCurve, ParamCurve};
+use spline_testing::strategies::linspace;
 use spline_testing::strategies::planar_curve;
-
-fn dense(a: f64, b: f64, n: usize) -> Vec<f64> {
-    (0..=n)
-        .map(|i| {
-            if i == n {
-                b
-            } else {
-                a + (b - a) * i as f64 / n as f64
-            }
-        })
-        .collect()
-}
 
 /// The test's own arc length: 5-point Gauss–Legendre on a fine grid inside every piece
 /// (error far below 1e-12 for these curves), inverted by Newton's method on one grid cell.
@@ -89,7 +78,7 @@ fn functions_within_the_tolerance() {
         let fit = AdaptiveApproximation::new(3, tol)
             .fit((0.0, 5.0), f)
             .unwrap();
-        let worst = dense(0.0, 5.0, 20_000)
+        let worst = linspace(0.0, 5.0, 20_000)
             .into_iter()
             .map(|t| (fit.curve.eval(t).unwrap() - f(t).unwrap()).norm())
             .fold(0.0, f64::max);
@@ -178,7 +167,7 @@ fn the_circle_by_arc_length() {
         let (a, b) = fit.curve.domain();
         assert_eq!(a, 0.0);
         assert!((b - std::f64::consts::TAU).abs() < 1e-10, "length {b}");
-        for s in dense(0.0, b, 5000) {
+        for s in linspace(0.0, b, 5000) {
             let e = (fit.curve.eval(s).unwrap() - Vector2::new(s.cos(), s.sin())).norm();
             assert!(e <= tol, "s = {s}: {e:e}");
         }
@@ -202,19 +191,19 @@ proptest! {
         // Curves with (nearly) stationary points have no arc-length parametrisation of
         // bounded speed variation; keep regular ones.
         let (a, b) = curve.domain();
-        let min_speed = dense(a, b, 400).into_iter().map(|u| curve.speed(u).unwrap()).fold(f64::INFINITY, f64::min);
+        let min_speed = linspace(a, b, 400).into_iter().map(|u| curve.speed(u).unwrap()).fold(f64::INFINITY, f64::min);
         prop_assume!(length > 1e-3 && min_speed > 1e-2 * length);
         let fit = reparametrize_by_arc_length(&curve, 3, tol).unwrap();
         let (s0, s1) = fit.curve.domain();
         // The table's lengths are accurate to a thousandth of the tolerance.
         prop_assert!(s0 == 0.0 && (s1 - length).abs() < 1e-3 * tol + 1e-12, "{} vs {}", s1, length);
-        for s in dense(0.0, s1, 300) {
+        for s in linspace(0.0, s1, 300) {
             let u = reference.param_at(s.min(length));
             let e = (fit.curve.eval(s).unwrap() - curve.eval(u).unwrap()).norm();
             prop_assert!(e <= tol, "s = {}: {:e}", s, e);
         }
         // Unit speed, to the accuracy of the positions (a derivative of an approximation).
-        let speeds: Vec<f64> = dense(0.0, s1, 300).into_iter().map(|s| fit.curve.speed(s).unwrap()).collect();
+        let speeds: Vec<f64> = linspace(0.0, s1, 300).into_iter().map(|s| fit.curve.speed(s).unwrap()).collect();
         let worst = speeds.iter().map(|v| (v - 1.0).abs()).fold(0.0, f64::max);
         prop_assert!(worst < 100.0 * tol.sqrt(), "speed off by {}", worst);
     }

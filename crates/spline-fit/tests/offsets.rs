@@ -6,19 +6,8 @@ use proptest::prelude::*;
 use spline_core::ErrorKind;
 use spline_fit::{offset_curve, reduce_degree};
 use spline_geom::{BSpline, ParamCurve};
+use spline_testing::strategies::linspace;
 use spline_testing::strategies::planar_curve;
-
-fn dense(a: f64, b: f64, n: usize) -> Vec<f64> {
-    (0..=n)
-        .map(|i| {
-            if i == n {
-                b
-            } else {
-                a + (b - a) * i as f64 / n as f64
-            }
-        })
-        .collect()
-}
 
 /// (u, u²) on [−1, 1].
 fn parabola() -> BSpline<f64, Vector2<f64>> {
@@ -48,7 +37,7 @@ fn parabola_offsets_with_and_without_cusps() {
     for (d, cusps) in [(-0.3, vec![]), (0.3, vec![]), (1.0, vec![-x, x])] {
         for tol in [1e-3, 1e-7] {
             let fit = offset_curve(&c, d, 3, tol, &cusps).unwrap();
-            let worst = dense(-1.0, 1.0, 20_000)
+            let worst = linspace(-1.0, 1.0, 20_000)
                 .into_iter()
                 .map(|u| (fit.curve.eval(u).unwrap() - parabola_offset(u, d)).norm())
                 .fold(0.0, f64::max);
@@ -127,7 +116,7 @@ fn reduction_of_elevated_curves_is_exact_and_bad_input_is_an_error() {
     let cubic = c.elevate_degree(1).unwrap();
     let fit = reduce_degree(&cubic, 2, 1e-12, false).unwrap();
     assert_eq!(fit.curve.degree(), 2);
-    for u in dense(-1.0, 1.0, 1000) {
+    for u in linspace(-1.0, 1.0, 1000) {
         assert!((fit.curve.eval(u).unwrap() - c.eval(u).unwrap()).norm() < 1e-12);
     }
     assert_eq!(
@@ -147,7 +136,7 @@ proptest! {
     fn random_offsets_within_the_tolerance(c in planar_curve(2, 4, true), side in prop::bool::ANY) {
         // A distance below the smallest radius of curvature (no cusps), away from stops.
         let (a, b) = c.domain();
-        let us = dense(a, b, 2000);
+        let us = linspace(a, b, 2000);
         let speeds: Vec<f64> = us.iter().map(|&u| c.speed(u).unwrap()).collect();
         let mean = speeds.iter().sum::<f64>() / speeds.len() as f64;
         prop_assume!(speeds.iter().all(|&s| s > 1e-2 * mean));
@@ -167,7 +156,7 @@ proptest! {
             return Ok(());
         }
         let fit = fit.unwrap();
-        for u in dense(a, b, 5000) {
+        for u in linspace(a, b, 5000) {
             // The offset from the test's own formula: C + d (−y', x') / |C'|.
             let dd = c.derivatives(u, 1).unwrap();
             let exact = dd[0] + Vector2::new(-dd[1].y, dd[1].x) * (d / dd[1].norm());
@@ -183,7 +172,7 @@ proptest! {
         let fit = reduce_degree(&c, q, tol, true).unwrap();
         prop_assert_eq!(fit.curve.degree(), q);
         let (a, b) = c.domain();
-        for u in dense(a, b, 5000) {
+        for u in linspace(a, b, 5000) {
             let e = (fit.curve.eval(u).unwrap() - c.eval(u).unwrap()).norm();
             prop_assert!(e <= tol, "u = {}: {:e}", u, e);
         }

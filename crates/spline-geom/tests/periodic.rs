@@ -8,6 +8,7 @@ use spline_geom::{
     BSpline, NurbsCurve, ParamCurve, PeriodicBSpline, hull_box, param_at_length, pieces_box,
     tessellate,
 };
+use spline_testing::strategies::linspace;
 use spline_testing::strategies::{planar_curve, points};
 
 /// A periodic curve of degree `p` with `n` control points on random (sorted) knots.
@@ -32,18 +33,6 @@ fn periodic(max_p: usize) -> impl Strategy<Value = PeriodicBSpline<f64, Vector2<
             let period = u - start;
             PeriodicBSpline::new(p, knots, period, control).expect("valid by construction")
         })
-}
-
-fn dense(a: f64, b: f64, n: usize) -> Vec<f64> {
-    (0..=n)
-        .map(|i| {
-            if i == n {
-                b
-            } else {
-                a + (b - a) * i as f64 / n as f64
-            }
-        })
-        .collect()
 }
 
 #[test]
@@ -95,7 +84,7 @@ proptest! {
             Ok(refined) => {
                 prop_assert_eq!(refined.len(), curve.len() + times);
                 prop_assert_eq!(refined.domain(), curve.domain());
-                for v in dense(a - 0.3, b + 0.3, 97) {
+                for v in linspace(a - 0.3, b + 0.3, 97) {
                     let d = (refined.eval(v).unwrap() - curve.eval(v).unwrap()).norm();
                     prop_assert!(d < 1e-12, "v = {}: {:e}", v, d);
                 }
@@ -115,7 +104,7 @@ proptest! {
         prop_assert!(open.knots().is_clamped());
         let (c, d) = open.domain();
         prop_assert!((c - u).abs() < 1e-15 && (d - (u + curve.period())).abs() < 1e-12);
-        for v in dense(c, d, 61) {
+        for v in linspace(c, d, 61) {
             let e = (open.eval(v).unwrap() - curve.eval(v).unwrap()).norm();
             prop_assert!(e < 1e-12, "v = {}: {:e}", v, e);
         }
@@ -141,7 +130,7 @@ proptest! {
         prop_assert!(params.windows(2).all(|w| w[0] < w[1]));
         for w in params.windows(2) {
             let (pa, pb) = (curve.eval(w[0]).unwrap(), curve.eval(w[1]).unwrap());
-            for v in dense(w[0], w[1], 16) {
+            for v in linspace(w[0], w[1], 16) {
                 let q = curve.eval(v).unwrap();
                 let d = pb - pa;
                 let s = if d.norm_squared() > 0.0 { ((q - pa).dot(&d) / d.norm_squared()).clamp(0.0, 1.0) } else { 0.0 };
@@ -161,7 +150,7 @@ proptest! {
             prop_assert!(hull.min[c] <= tight.min[c] && tight.max[c] <= hull.max[c]);
         }
         let (a, b) = curve.domain();
-        for u in dense(a, b, 200) {
+        for u in linspace(a, b, 200) {
             let q = curve.eval(u).unwrap();
             for c in 0..2 {
                 prop_assert!(tight.min[c] <= q[c] + 1e-15 && q[c] <= tight.max[c] + 1e-15);
@@ -176,10 +165,10 @@ proptest! {
         let joined = first.join(&moved.clamped(), 1e-12).unwrap();
         let (a, b) = first.domain();
         let (c, d) = moved.domain();
-        for u in dense(a, b, 40) {
+        for u in linspace(a, b, 40) {
             prop_assert!((joined.eval(u).unwrap() - first.eval(u).unwrap()).norm() < 1e-11);
         }
-        for v in dense(c, d, 40) {
+        for v in linspace(c, d, 40) {
             let e = (joined.eval(b + (v - c)).unwrap() - moved.eval(v).unwrap()).norm();
             prop_assert!(e < 1e-11, "{:e}", e);
         }

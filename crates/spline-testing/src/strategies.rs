@@ -190,3 +190,17 @@ pub fn spatial_curve(
             .prop_map(move |c| BSpline::new(knots.clone(), c).expect("as many points as functions"))
     })
 }
+
+/// `n + 1` equally spaced parameters from `a` to `b`, both ends exact (dense sampling).
+#[must_use]
+pub fn linspace(a: f64, b: f64, n: usize) -> Vec<f64> {
+    (0..=n)
+        .map(|i| {
+            if i == n {
+                b
+            } else {
+                a + (b - a) * i as f64 / n as f64
+            }
+        })
+        .collect()
+}
