@@ -9,8 +9,10 @@ use spline_testing::strategies::planar_curve;
 proptest! {
     #![proptest_config(ProptestConfig::with_cases(64))]
 
+    // Knots on the grid of eighths: no piece so short and fast that a dip of its coordinate
+    // falls between samples (the box would be right and the sampling wrong).
     #[test]
-    fn the_tight_box_is_the_sampled_box(c in planar_curve(1, 5, false)) {
+    fn the_tight_box_is_the_sampled_box(c in planar_curve(1, 5, true)) {
         let b = tight_box(&c, 1e-13).unwrap();
         let hull = hull_box(&c);
         let params = c.sample_params(4000usize.div_ceil(c.breaks().len() - 1).max(50));
