@@ -40,7 +40,7 @@ fn uniform_cubic_at_knots_is_the_one_four_one_average() {
     // Closed form: a uniform periodic cubic at knot t_i is (c_i + 4 c_{i+1} + c_{i+2})/6
     // with this indexing (basis i supported on [t_{i−p}, t_{i+1}], as scipy's).
     let c: Vec<Vector2<f64>> = (0..7)
-        .map(|i| Vector2::new((i as f64).cos() * 2.0, (i as f64 * 1.7).sin()))
+        .map(|i| Vector2::new(f64::from(i).cos() * 2.0, (f64::from(i) * 1.7).sin()))
         .collect();
     let knots: Vec<f64> = (0..7).map(f64::from).collect();
     let curve = PeriodicBSpline::new(3, knots, 7.0, c.clone()).unwrap();
