@@ -16,7 +16,7 @@ use spline_geom::{BSpline, BoundingBox, ParamCurve};
 /// use nalgebra::Vector2;
 /// use spline_geom::{BSpline, hull_box};
 /// // (u, u²) on [−1, 1]: the box is [−1, 1] × [0, 1]; the control points reach y = −1.
-/// let c = BSpline::from_knots(2, vec![-1.0, -1.0, -1.0, 1.0, 1.0, 1.0], vec![
+/// let c = BSpline::from_knots(2, vec![-1.0f64, -1.0, -1.0, 1.0, 1.0, 1.0], vec![
 ///     Vector2::new(-1.0, 1.0), Vector2::new(0.0, -1.0), Vector2::new(1.0, 1.0)])?;
 /// let b = spline_algebra::tight_box(&c, 1e-12)?;
 /// assert!(b.min.y.abs() < 1e-15 && b.max.y == 1.0 && b.min.x == -1.0);
