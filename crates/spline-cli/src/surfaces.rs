@@ -131,7 +131,8 @@ fn spatial_surface(object: &Object, path: &str) -> Result<Option<Spatial>> {
 }
 
 /// Dispatches on the kinds of the objects: curve–surface (either order) and
-/// surface–surface here; curve–curve and self-intersections belong to the curve module.
+/// surface–surface here; curve–curve and self-intersections (no surface) go to
+/// [`crate::curves::intersect_curve_files`].
 ///
 /// # Errors
 /// Unreadable objects, objects not in space, bad tolerances.
