@@ -241,9 +241,26 @@ pub fn rational_planar_numerators<T: Scalar>(
 pub fn rational_planar_hessians(
     curve: &NurbsCurve<f64, 2>,
 ) -> Result<[crate::SparseBilinear<f64>; 2]> {
+    numerator_hessians(curve, |dual| {
+        let n = rational_planar_numerators(dual)?;
+        Ok([n.inflection, n.curvature_extremum])
+    })
+}
+
+/// The Hessians of two numerators with respect to the weighted control points of `curve`
+/// (`D + 1` variables a point: `w P` then `w`): `numerators` — a function computing the
+/// numerators with their exact Jacobians — runs on dual numbers seeded on one variable at a
+/// time, and the dual parts of its Jacobians are the Hessians' columns.
+pub(crate) fn numerator_hessians<const D: usize>(
+    curve: &NurbsCurve<f64, D>,
+    numerators: impl Fn(
+        &NurbsCurve<num_dual::Dual64, D>,
+    ) -> Result<[Differentiated<num_dual::Dual64>; 2]>,
+) -> Result<[crate::SparseBilinear<f64>; 2]> {
     use num_dual::Dual64;
     let h = curve.homogeneous();
-    let nx = 3 * h.control_points().len();
+    let stride = D + 1;
+    let nx = stride * h.control_points().len();
     let knots: Vec<Dual64> = h.knots().knots().iter().map(|&k| Dual64::from(k)).collect();
     let mut rows: [Vec<Vec<(usize, usize, f64)>>; 2] = [Vec::new(), Vec::new()];
     for j in 0..nx {
@@ -252,17 +269,14 @@ pub fn rational_planar_hessians(
             .iter()
             .enumerate()
             .map(|(i, q)| {
-                let d = |k: usize, v: f64| Dual64::new(v, if 3 * i + k == j { 1.0 } else { 0.0 });
-                Homogeneous::new(
-                    Vector2::new(d(0, q.point.x), d(1, q.point.y)),
-                    d(2, q.weight),
-                )
+                let d =
+                    |k: usize, v: f64| Dual64::new(v, if stride * i + k == j { 1.0 } else { 0.0 });
+                Homogeneous::new(SVector::from_fn(|k, _| d(k, q.point[k])), d(D, q.weight))
             })
             .collect();
         let dual =
             NurbsCurve::from_homogeneous(BSpline::from_knots(h.degree(), knots.clone(), seeded)?)?;
-        let n = rational_planar_numerators(&dual)?;
-        for (target, numerator) in rows.iter_mut().zip([n.inflection, n.curvature_extremum]) {
+        for (target, numerator) in rows.iter_mut().zip(numerators(&dual)?) {
             target.resize_with(numerator.jacobian.nrows(), Vec::new);
             for (r, c, v) in numerator.jacobian.triplet_iter() {
                 if v.eps != 0.0 {
@@ -271,10 +285,10 @@ pub fn rational_planar_hessians(
             }
         }
     }
-    let [d, g] = rows;
+    let [first, second] = rows;
     Ok([
-        crate::SparseBilinear::from_rows(nx, nx, d)?,
-        crate::SparseBilinear::from_rows(nx, nx, g)?,
+        crate::SparseBilinear::from_rows(nx, nx, first)?,
+        crate::SparseBilinear::from_rows(nx, nx, second)?,
     ])
 }
 

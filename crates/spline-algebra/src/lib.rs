@@ -27,7 +27,7 @@
 //! - Curves of every kind: [`CurveFeatures`] (planar: inflections, curvature extrema,
 //!   constant curvature), [`SpaceCurveFeatures`] (curvature extrema, torsion zeros),
 //!   [`rational_planar_numerators`] / [`space_numerators`] with Jacobians w.r.t. the weighted
-//!   control points, [`rational_planar_hessians`].
+//!   control points, [`rational_planar_hessians`] / [`space_numerator_hessians`].
 //! - Surfaces: [`curvature_numerators`] (`K`, `H`, umbilic conditions as bivariate splines),
 //!   [`zero_set`] and [`common_zeros`] of bivariate splines, [`parabolic_lines`],
 //!   [`umbilics`], [`ridges`] of functions, [`feature_overlays`] for pictures.
@@ -106,7 +106,10 @@ pub use product::{
 pub use ridges::{Ridges, ridges};
 pub use roots::{Zero, sign_change_params, zeros};
 pub use segment_curvature::{SegmentCurvature, SegmentWorkspace};
-pub use space::{SpaceCurveFeatures, SpaceFeatures, SpaceNumerators, space_numerators, torsion};
+pub use space::{
+    SpaceCurveFeatures, SpaceFeatures, SpaceNumerators, space_numerator_hessians, space_numerators,
+    torsion,
+};
 pub use sparse::kron;
 pub use surface_numerators::{
     CurvatureNumerators, curvature_numerators, feature_overlays, parabolic_lines,

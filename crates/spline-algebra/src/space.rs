@@ -112,6 +112,34 @@ pub fn space_numerators<T: Scalar>(curve: &NurbsCurve<T, 3>) -> Result<SpaceNume
     })
 }
 
+/// The Hessians of the numerators of [`space_numerators`] with respect to the weighted
+/// control points `x = (w x, w y, w z, w)` of each point: `[curvature_extremum, torsion]`,
+/// row `k` of each the symmetric matrix $\partial^2 c_k / \partial x \partial x$ (the exact
+/// Jacobians run on dual numbers, one variable seeded at a time: `4n` runs).
+///
+/// ```
+/// use nalgebra::Vector3;
+/// use spline_geom::NurbsCurve;
+/// let curve = NurbsCurve::from_knots(3, vec![0.0, 0.0, 0.0, 0.0, 1.0, 1.0, 1.0, 1.0],
+///     vec![Vector3::new(0.0, 0.0, 0.0), Vector3::new(1.0, 0.0, 0.5),
+///          Vector3::new(1.0, 1.0, 0.0), Vector3::new(0.0, 1.0, 1.0)],
+///     vec![1.0, 0.8, 1.2, 1.0])?;
+/// let [g, t] = spline_algebra::space_numerator_hessians(&curve)?;
+/// assert_eq!((g.left_dim(), t.left_dim()), (16, 16));
+/// # Ok::<(), spline_core::Error>(())
+/// ```
+///
+/// # Errors
+/// As [`space_numerators`].
+pub fn space_numerator_hessians(
+    curve: &NurbsCurve<f64, 3>,
+) -> Result<[crate::SparseBilinear<f64>; 2]> {
+    crate::features::numerator_hessians(curve, |dual| {
+        let n = space_numerators(dual)?;
+        Ok([n.curvature_extremum, n.torsion])
+    })
+}
+
 /// The feature numerators of a space curve ([`space_numerators`]).
 #[derive(Clone, Debug)]
 pub struct SpaceNumerators<T> {

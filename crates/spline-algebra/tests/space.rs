@@ -247,3 +247,87 @@ fn space_numerator_jacobians_agree_with_dual_numbers() {
         }
     }
 }
+
+/// The Hessians of the space numerators against hyper-dual numbers (second derivatives of
+/// the values, independent of the Jacobian code) on every pair of variables of the two
+/// middle control points, and symmetric.
+#[test]
+fn space_numerator_hessians_agree_with_hyper_dual_numbers() {
+    use num_dual::HyperDual64;
+    use spline_algebra::space_numerator_hessians;
+    let knots = vec![0.0, 0.0, 0.0, 0.0, 0.5, 1.0, 1.0, 1.0, 1.0];
+    let hom: Vec<[f64; 4]> = vec![
+        [0.0, 0.0, 0.0, 1.0],
+        [1.0, 2.0, -0.5, 1.5],
+        [2.0, -1.0, 1.0, 0.7],
+        [3.0, 1.0, 2.0, 1.2],
+        [4.0, 0.0, 0.5, 1.0],
+    ];
+    let curve = NurbsCurve::from_homogeneous(
+        BSpline::from_knots(
+            3,
+            knots.clone(),
+            hom.iter()
+                .map(|q| Homogeneous::new(Vector3::new(q[0], q[1], q[2]), q[3]))
+                .collect(),
+        )
+        .unwrap(),
+    )
+    .unwrap();
+    let [hg, ht] = space_numerator_hessians(&curve).unwrap();
+    assert_eq!((hg.left_dim(), ht.left_dim()), (20, 20));
+    let mut checked = 0;
+    let mut largest = 0.0f64;
+    for a in 4..12 {
+        for b in a..12 {
+            let hyper = NurbsCurve::from_homogeneous(
+                BSpline::from_knots(
+                    3,
+                    knots.iter().map(|&k| HyperDual64::from(k)).collect(),
+                    hom.iter()
+                        .enumerate()
+                        .map(|(i, q)| {
+                            let d = |k: usize| {
+                                let j = 4 * i + k;
+                                HyperDual64::new(
+                                    q[k],
+                                    if j == a { 1.0 } else { 0.0 },
+                                    if j == b { 1.0 } else { 0.0 },
+                                    0.0,
+                                )
+                            };
+                            Homogeneous::new(Vector3::new(d(0), d(1), d(2)), d(3))
+                        })
+                        .collect(),
+                )
+                .unwrap(),
+            )
+            .unwrap();
+            let n = space_numerators(&hyper).unwrap();
+            for (which, h, values) in [
+                ("G", &hg, n.curvature_extremum.value.control_points()),
+                ("T", &ht, n.torsion.value.control_points()),
+            ] {
+                assert_eq!(h.nrows(), values.len());
+                let scale = values.iter().fold(1.0f64, |m, v| m.max(v.eps1eps2.abs()));
+                for (k, v) in values.iter().enumerate() {
+                    let m = common::dense(&h.matrix(k));
+                    assert!(
+                        (m[a][b] - v.eps1eps2).abs() < 1e-10 * scale,
+                        "{which} row {k} ({a}, {b}): {} vs {}",
+                        m[a][b],
+                        v.eps1eps2
+                    );
+                    assert!((m[a][b] - m[b][a]).abs() < 1e-10 * scale);
+                    checked += 1;
+                    largest = largest.max(v.eps1eps2.abs());
+                }
+            }
+        }
+    }
+    assert!(checked > 100);
+    assert!(
+        largest > 1e-3,
+        "the second derivatives checked are all zero"
+    );
+}
