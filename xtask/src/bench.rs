@@ -107,6 +107,48 @@ pub(crate) fn criterion_median(target: &Path, id: &str) -> Result<f64, String> {
         .ok_or_else(|| format!("{}: no median.point_estimate", path.display()))
 }
 
+/// Runs `cargo bench -p spline-fit --bench BENCH`, echoing its output, and returns the
+/// numbers of the lines `TAG KEY VALUE` it printed for the given tags, keyed `"TAG KEY"`
+/// (the benchmarks print such lines to report the residuals and checks of what they timed).
+///
+/// # Errors
+/// A message when cargo cannot run, the benchmark fails, or a tagged line's value is not a
+/// number.
+pub(crate) fn run_criterion(
+    repo_root: &Path,
+    bench: &str,
+    tags: &[&str],
+) -> Result<std::collections::BTreeMap<String, f64>, String> {
+    let cargo = std::env::var_os("CARGO").unwrap_or_else(|| "cargo".into());
+    let out = Command::new(cargo)
+        .args(["bench", "-p", "spline-fit", "--bench", bench])
+        .current_dir(repo_root)
+        .stderr(Stdio::inherit())
+        .output()
+        .map_err(|e| format!("cannot run cargo bench: {e}"))?;
+    let text = String::from_utf8_lossy(&out.stdout);
+    print!("{text}");
+    if !out.status.success() {
+        return Err(format!(
+            "cargo bench -p spline-fit --bench {bench} failed ({})",
+            out.status
+        ));
+    }
+    let mut found = std::collections::BTreeMap::new();
+    for line in text.lines() {
+        let words: Vec<&str> = line.split_whitespace().collect();
+        if let [tag, key, value] = words[..]
+            && tags.contains(&tag)
+        {
+            let v: f64 = value
+                .parse()
+                .map_err(|e| format!("bad line {line:?}: {e}"))?;
+            found.insert(format!("{tag} {key}"), v);
+        }
+    }
+    Ok(found)
+}
+
 /// A duration for tables.
 pub(crate) fn seconds(s: f64) -> String {
     if s >= 1.0 {

@@ -20,7 +20,6 @@ use crate::bench::{self, seconds};
 use serde_json::Value;
 use std::collections::BTreeMap;
 use std::path::Path;
-use std::process::{Command, Stdio};
 
 /// Runs the comparison and prints the table.
 ///
@@ -33,7 +32,7 @@ pub(crate) fn run(repo_root: &Path) -> Result<(), String> {
     eprintln!("bench fit: timing scipy (a minute or two)…");
     let scipy = bench::run_python_json(&python, &repo_root.join("xtask/bench/fit_scipy.py"))?;
     eprintln!("bench fit: running cargo bench -p spline-fit --bench fit…");
-    let residuals = run_criterion(repo_root)?;
+    let residuals = bench::run_criterion(repo_root, "fit", &["fit-residual"])?;
     let mut rust = BTreeMap::new();
     for id in RUST_IDS {
         rust.insert(
@@ -51,35 +50,6 @@ const RUST_IDS: [&str; 5] = [
     "lsq_normal/100000",
     "lsq_qr/100000",
 ];
-
-/// Runs criterion; returns the residuals it printed.
-fn run_criterion(repo_root: &Path) -> Result<BTreeMap<String, f64>, String> {
-    let cargo = std::env::var_os("CARGO").unwrap_or_else(|| "cargo".into());
-    let out = Command::new(cargo)
-        .args(["bench", "-p", "spline-fit", "--bench", "fit"])
-        .current_dir(repo_root)
-        .stderr(Stdio::inherit())
-        .output()
-        .map_err(|e| format!("cannot run cargo bench: {e}"))?;
-    let text = String::from_utf8_lossy(&out.stdout);
-    print!("{text}");
-    if !out.status.success() {
-        return Err(format!("cargo bench -p spline-fit failed ({})", out.status));
-    }
-    let mut residuals = BTreeMap::new();
-    for line in text.lines() {
-        let mut words = line.split_whitespace();
-        if let (Some("fit-residual"), Some(id), Some(value)) =
-            (words.next(), words.next(), words.next())
-        {
-            let v: f64 = value
-                .parse()
-                .map_err(|e| format!("bad residual line {line:?}: {e}"))?;
-            residuals.insert(id.to_string(), v);
-        }
-    }
-    Ok(residuals)
-}
 
 fn print_table(
     scipy: &Value,
@@ -135,7 +105,10 @@ fn print_table(
             .get(rid)
             .ok_or_else(|| format!("no criterion median for {rid}"))?;
         let sres = field(sid, "residual")?;
-        let rres = residuals.get(rid).copied().unwrap_or(f64::NAN);
+        let rres = residuals
+            .get(&format!("fit-residual {rid}"))
+            .copied()
+            .unwrap_or(f64::NAN);
         let ratio = s / r;
         // "As small": within a relative 1e-9 (least squares) or 1e-9 absolute (interpolation).
         let small = rres <= sres * (1.0 + 1e-9) + 1e-9;

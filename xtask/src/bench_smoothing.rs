@@ -14,7 +14,6 @@ use crate::bench::{self, seconds};
 use serde_json::Value;
 use std::collections::BTreeMap;
 use std::path::Path;
-use std::process::{Command, Stdio};
 
 const N: usize = 100_000;
 
@@ -29,7 +28,7 @@ pub(crate) fn run(repo_root: &Path) -> Result<(), String> {
     eprintln!("bench smoothing: timing scipy (GCV in scipy takes a minute or two)…");
     let scipy = bench::run_python_json(&python, &repo_root.join("xtask/bench/smoothing_scipy.py"))?;
     eprintln!("bench smoothing: running cargo bench -p spline-fit --bench smoothing…");
-    let checks = run_criterion(repo_root)?;
+    let checks = bench::run_criterion(repo_root, "smoothing", &["smoothing-check"])?;
     let mut rust = BTreeMap::new();
     for id in ["lambda", "gcv", "residual"] {
         let id = format!("{id}/{N}");
@@ -40,35 +39,6 @@ pub(crate) fn run(repo_root: &Path) -> Result<(), String> {
         );
     }
     print_table(&scipy, &rust, &checks)
-}
-
-/// Runs criterion; returns the checks it printed.
-fn run_criterion(repo_root: &Path) -> Result<BTreeMap<String, f64>, String> {
-    let cargo = std::env::var_os("CARGO").unwrap_or_else(|| "cargo".into());
-    let out = Command::new(cargo)
-        .args(["bench", "-p", "spline-fit", "--bench", "smoothing"])
-        .current_dir(repo_root)
-        .stderr(Stdio::inherit())
-        .output()
-        .map_err(|e| format!("cannot run cargo bench: {e}"))?;
-    let text = String::from_utf8_lossy(&out.stdout);
-    print!("{text}");
-    if !out.status.success() {
-        return Err(format!("cargo bench -p spline-fit failed ({})", out.status));
-    }
-    let mut checks = BTreeMap::new();
-    for line in text.lines() {
-        let mut words = line.split_whitespace();
-        if let (Some("smoothing-check"), Some(id), Some(value)) =
-            (words.next(), words.next(), words.next())
-        {
-            let v: f64 = value
-                .parse()
-                .map_err(|e| format!("bad check line {line:?}: {e}"))?;
-            checks.insert(id.to_string(), v);
-        }
-    }
-    Ok(checks)
 }
 
 fn print_table(
@@ -130,7 +100,10 @@ fn print_table(
             .get(&rid)
             .ok_or_else(|| format!("no criterion median for {rid}"))?;
         let sc = field(&sid, "check")?;
-        let rc = checks.get(&rid).copied().unwrap_or(f64::NAN);
+        let rc = checks
+            .get(&format!("smoothing-check {rid}"))
+            .copied()
+            .unwrap_or(f64::NAN);
         let agree = (rc - sc).abs() <= tol * sc.abs();
         let ratio = s / r;
         let met = ratio >= 1.0 && agree;

@@ -16,9 +16,7 @@
 
 use crate::bench::{self, seconds};
 use serde_json::Value;
-use std::collections::BTreeMap;
 use std::path::Path;
-use std::process::{Command, Stdio};
 
 /// Queries per closest-point benchmark iteration (`crates/spline-fit/benches/surfaces.rs`).
 const QUERIES: f64 = 1000.0;
@@ -34,7 +32,7 @@ pub(crate) fn run(repo_root: &Path) -> Result<(), String> {
     eprintln!("bench surfaces: timing scipy…");
     let scipy = bench::run_python_json(&python, &repo_root.join("xtask/bench/surfaces_scipy.py"))?;
     eprintln!("bench surfaces: running cargo bench -p spline-fit --bench surfaces…");
-    let lines = run_criterion(repo_root)?;
+    let lines = bench::run_criterion(repo_root, "surfaces", &["closest-check", "fit-residual"])?;
     let median = |id: &str| bench::criterion_median(&target, id);
     let scipy_field = |id: &str, key: &str| -> Result<f64, String> {
         scipy
@@ -143,35 +141,4 @@ pub(crate) fn run(repo_root: &Path) -> Result<(), String> {
         }
     );
     Ok(())
-}
-
-/// Runs criterion; returns the numbers of the `closest-check <key> <n>` and
-/// `fit-residual <id> <x>` lines it printed (keys `"closest-check key"`, `"fit-residual id"`).
-fn run_criterion(repo_root: &Path) -> Result<BTreeMap<String, f64>, String> {
-    let cargo = std::env::var_os("CARGO").unwrap_or_else(|| "cargo".into());
-    let out = Command::new(cargo)
-        .args(["bench", "-p", "spline-fit", "--bench", "surfaces"])
-        .current_dir(repo_root)
-        .stderr(Stdio::inherit())
-        .output()
-        .map_err(|e| format!("cannot run cargo bench: {e}"))?;
-    let text = String::from_utf8_lossy(&out.stdout);
-    print!("{text}");
-    if !out.status.success() {
-        return Err(format!(
-            "cargo bench -p spline-fit --bench surfaces failed ({})",
-            out.status
-        ));
-    }
-    let mut found = BTreeMap::new();
-    for line in text.lines() {
-        let words: Vec<&str> = line.split_whitespace().collect();
-        if let [kind @ ("closest-check" | "fit-residual"), key, value] = words[..] {
-            let v: f64 = value
-                .parse()
-                .map_err(|e| format!("bad line {line:?}: {e}"))?;
-            found.insert(format!("{kind} {key}"), v);
-        }
-    }
-    Ok(found)
 }
