@@ -2,6 +2,7 @@
 //!
 //! - `ci`: exactly what CI runs (`.ci/run`): format check, clippy with warnings denied,
 //!   documentation with warnings denied, tests.
+//! - `test`: the whole test suite (the README's test command; see `test_all`).
 //! - `help` (`--help`, `-h`): the list of tasks.
 //! - `docs`: regenerate the SVG pictures in `docs/`.
 //! - `bench airfoils [--jobs J]`: the whole UIUC database (fetched once from the
@@ -43,6 +44,7 @@ mod fuzz_coverage;
 mod fuzz_oracles;
 mod mutate;
 mod reproduce;
+mod test_all;
 
 use std::path::{Path, PathBuf};
 use std::process::{Command, ExitCode};
@@ -92,6 +94,10 @@ const TASKS: &[(&str, &str)] = &[
     (
         "ci",
         "exactly what CI runs (.ci/run): format check, clippy -D warnings, docs, tests",
+    ),
+    (
+        "test",
+        "the whole test suite: cargo test --workspace and the suites that need more than Rust",
     ),
     ("docs", "redraw the SVG pictures in docs/"),
     (
@@ -161,6 +167,7 @@ fn main() -> ExitCode {
             Ok(())
         }
         Some("ci") => run_ci(&root),
+        Some("test") => test_all::run(&root),
         Some("docs") => run_docs(&root),
         Some("demo") => demo::run(&root),
         Some("reproduce") => reproduce::run(&root),
@@ -197,6 +204,7 @@ mod tests {
         let (help, usage) = (help(), usage());
         for task in [
             "ci",
+            "test",
             "docs",
             "demo",
             "reproduce",

@@ -1,0 +1,34 @@
+//! `cargo xtask test`: the whole test suite, the README's test command and the last step of
+//! `.ci/run`.
+//!
+//! Every suite runs in turn and the first failure stops the run with its name:
+//! 1. `cargo test --workspace`: unit, integration, property and doc tests of every crate.
+//!
+//! Suites that need more than the Rust toolchain (a Python virtual environment, a browser)
+//! install what they need under `target/` or through the system's package manager first, so
+//! that the command works on a fresh machine.
+
+use std::path::Path;
+use std::process::Command;
+
+/// Runs `cargo ARGS` in the repository and fails with the suite's name if it fails.
+fn cargo(root: &Path, suite: &str, args: &[&str]) -> Result<(), String> {
+    let cargo = std::env::var("CARGO").unwrap_or_else(|_| "cargo".into());
+    let status = Command::new(cargo)
+        .args(args)
+        .current_dir(root)
+        .status()
+        .map_err(|e| format!("{suite}: cannot run cargo: {e}"))?;
+    if status.success() {
+        Ok(())
+    } else {
+        Err(format!("{suite} failed ({status})"))
+    }
+}
+
+/// Runs every suite; see the module documentation.
+pub(crate) fn run(root: &Path) -> Result<(), String> {
+    cargo(root, "cargo test --workspace", &["test", "--workspace"])?;
+    println!("xtask test: every suite passed");
+    Ok(())
+}
