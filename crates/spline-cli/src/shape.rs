@@ -49,6 +49,12 @@ pub struct SmoothArgs {
     /// Try every knot density and keep the closest curve (slower).
     #[arg(long)]
     thorough: bool,
+    /// The data are a closed contour: the result is a closed (periodic) curve, written as
+    /// an unclamped curve whose last p control points repeat the first p (as `interpolate
+    /// --closed`); the extrema alternate round it, as many maxima as minima (--curvature-extrema
+    /// K with K even).
+    #[arg(long)]
+    closed: bool,
     /// Exponents β of the knot density |C′| (κ L + c)^β tried in turn, as JSON (default
     /// [0.3, 0.5, 0.7]; 0 gives knots uniform in arc length).
     #[arg(long, value_name = "JSON")]
@@ -76,6 +82,7 @@ fn options(args: &SmoothArgs) -> Result<SmoothingOptions> {
     let mut options = SmoothingOptions::new(control);
     options.degree = args.degree;
     options.thorough = args.thorough;
+    options.closed = args.closed;
     if let Some(text) = &args.knot_exponents {
         options.knot_exponents = io::parse_arg("--knot-exponents", text)?;
     }
@@ -169,8 +176,15 @@ fn run_one(
 }
 
 fn report(result: &SmoothedCurve) -> Value {
+    // A closed curve is written as its wrapped container (the same points on [0, 1]).
+    let curve = result
+        .periodic
+        .as_ref()
+        .map_or(&result.curve, |periodic| periodic.wrapped());
     json!({
-        "curve": CurveRecord::from_bspline(&result.curve),
+        "curve": CurveRecord::from_bspline(curve),
+        "closed": result.periodic.is_some(),
+        "first_point": result.first_point,
         "max_deviation": result.deviation.to_curve.max,
         "max_deviation_index": result.deviation.to_curve.max_index,
         "max_deviation_to_data": result.deviation.to_data,
@@ -182,7 +196,10 @@ fn report(result: &SmoothedCurve) -> Value {
             "kind": e.kind.to_string(),
         })).collect::<Vec<_>>(),
         "inflections": result.inflections,
-        "control_points": result.curve.control_points().len(),
+        "control_points": result
+            .periodic
+            .as_ref()
+            .map_or(result.curve.control_points().len(), spline_geom::PeriodicBSpline::len),
         "degree": result.curve.degree(),
         "refinements": result.refinements,
         "conditions": result.conditions,

@@ -208,3 +208,66 @@ fn optimising_perimeter_squared_over_area() {
     let message = spline(&["optimize", "--iterations", "0"]).assert_clean_error();
     assert!(message.contains("--iterations"), "{message}");
 }
+
+/// Points of a noisy ellipse, closed by a repeated first point, as JSON.
+fn closed_ellipse() -> String {
+    let points: Vec<[f64; 2]> = (0..=60)
+        .map(|k| {
+            let k = k % 60;
+            let t = 0.3 + std::f64::consts::TAU * f64::from(k) / 60.0;
+            let noise = 1e-3 * f64::from((k * 37) % 7) / 7.0;
+            [2.0 * t.cos() + noise, t.sin()]
+        })
+        .collect();
+    temp_file("ellipse.json", &serde_json::to_string(&points).unwrap())
+}
+
+#[test]
+fn smoothing_a_closed_contour() {
+    let input = closed_ellipse();
+    let out = spline(&[
+        "smooth",
+        &input,
+        "--closed",
+        "--control-points",
+        "14",
+        "--curvature-extrema",
+        "4",
+    ])
+    .json();
+    assert_eq!(out["closed"], true);
+    assert_eq!(out["control_points"], 14);
+    let extrema = out["extrema"].as_array().unwrap();
+    assert_eq!(extrema.len(), 4, "{extrema:?}");
+    let kinds: Vec<&str> = extrema
+        .iter()
+        .map(|e| e["kind"].as_str().unwrap())
+        .collect();
+    assert!(kinds.windows(2).all(|w| w[0] != w[1]), "{kinds:?}");
+    assert!(out["max_deviation"].as_f64().unwrap() < 3e-3);
+    // The wrapped container: 14 + 3 control points, the last three repeating the first.
+    let control = out["curve"]["control_points"].as_array().unwrap();
+    assert_eq!(control.len(), 17);
+    for i in 0..3 {
+        assert_eq!(control[i], control[14 + i]);
+    }
+    // The curve closes: the same point at both ends of its domain, through the tool.
+    let curve = temp_file("closed.json", &out["curve"].to_string());
+    let ends = spline(&["eval", &curve, "--at", "[0, 1]"]).json();
+    for c in 0..2 {
+        let gap = ends[0][0][c].as_f64().unwrap() - ends[1][0][c].as_f64().unwrap();
+        assert!(gap.abs() < 1e-12, "{ends}");
+    }
+    // An odd number of extrema cannot alternate round a closed curve.
+    let odd = spline(&[
+        "smooth",
+        &input,
+        "--closed",
+        "--control-points",
+        "14",
+        "--curvature-extrema",
+        "3",
+    ]);
+    let message = odd.assert_clean_error();
+    assert!(message.contains("as many maxima as minima"), "{message}");
+}

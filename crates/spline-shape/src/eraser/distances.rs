@@ -30,6 +30,9 @@ pub(super) struct Distances {
     /// Whether foot points follow the curve (variable projection) or stay at the anchors
     /// (the fixed parameters of classic least squares).
     pub(super) project: bool,
+    /// A closed curve of period 1 on `[0, 1]`: no foot point is pinned and foot points cross
+    /// the closing point.
+    pub(super) closed: bool,
 }
 
 impl Distances {
@@ -40,15 +43,13 @@ impl Distances {
         let width = p + 1;
         let q = self.points[j];
         let last = self.points.len() - 1;
-        let fixed = j == 0 || j == last || !self.project;
-        let mut u = if j == 0 {
-            0.0
-        } else if j == last {
-            1.0
+        let pinned = !self.closed && (j == 0 || j == last);
+        let fixed = pinned || !self.project;
+        let mut u = if pinned {
+            if j == 0 { 0.0 } else { 1.0 }
         } else {
             self.params.borrow()[j]
         };
-        let fixed = fixed || j == 0 || j == last;
         let mut basis = [0.0; 3 * spline_core::MAX_ORDER];
         let eval = |u: f64, basis: &mut [f64]| -> (usize, [Vector2<f64>; 3]) {
             let span = self.knots.span_in_domain(u);
@@ -76,7 +77,11 @@ impl Distances {
                 };
                 let mut moved = false;
                 for _ in 0..30 {
-                    let candidate = (u + step).clamp(0.0, 1.0);
+                    let candidate = if self.closed {
+                        (u + step).rem_euclid(1.0)
+                    } else {
+                        (u + step).clamp(0.0, 1.0)
+                    };
                     if candidate == u {
                         break;
                     }
@@ -120,7 +125,7 @@ impl Distances {
                     hessian[(2 * a + 1) * n + 2 * b + 1] = v;
                 }
             }
-            let interior = !fixed && u > 0.0 && u < 1.0;
+            let interior = !fixed && (self.closed || (u > 0.0 && u < 1.0));
             let phi_uu = 2.0 * (d[1].norm_squared() + r.dot(&d[2]));
             if interior && phi_uu > 0.0 {
                 // φ_xu = 2 (N′ r + N c′) per local variable.

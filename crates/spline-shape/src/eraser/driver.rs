@@ -25,9 +25,9 @@ pub(crate) struct Attempt {
 }
 
 /// The interior-point machinery of the eraser, with its step counts.
-struct Solver<'a> {
-    options: &'a SmoothingOptions,
-    newton_steps: usize,
+pub(super) struct Solver<'a> {
+    pub(super) options: &'a SmoothingOptions,
+    pub(super) newton_steps: usize,
 }
 
 impl Solver<'_> {
@@ -69,7 +69,7 @@ impl Solver<'_> {
     /// driven to feasibility), each condition shifted by its own violation. `None` if
     /// no strictly feasible curve is found, or `τ` creeps towards zero from above (a
     /// degenerate configuration, `g ≡ 0` on a piece, not a way to feasibility).
-    fn phase_one(
+    pub(super) fn phase_one(
         &mut self,
         problem: &mut EraserProblem,
         control: &[Vector2<f64>],
@@ -122,7 +122,7 @@ impl Solver<'_> {
     /// Phase II from a strictly feasible `x`: path following until the gap bound `m/t` is
     /// below `gap`, refining active conditions after each centring step (at most
     /// `max_refinements` passes). Returns the number of passes that split something.
-    fn phase_two(
+    pub(super) fn phase_two(
         &mut self,
         problem: &mut EraserProblem,
         x: &mut DVector<f64>,

@@ -24,6 +24,7 @@
 //!    the pieces whose conditions are active (subdivision keeps the curve feasible and makes
 //!    the sufficient conditions closer to `g ≥ 0` itself). The best curve is kept.
 
+mod closed;
 mod distances;
 mod driver;
 mod pieces;
@@ -46,7 +47,7 @@ use spline_fit::{
     Parametrization, TwoSidedDeviation, curvature_knots_with, nurbs_book_knots, parametrize,
     two_sided_deviation,
 };
-use spline_geom::Curve2;
+use spline_geom::{Curve2, PeriodicBSpline};
 use std::fmt;
 use std::str::FromStr;
 
@@ -182,6 +183,10 @@ pub struct SmoothingOptions {
     pub max_refinements: usize,
     /// Settings of the interior-point solver.
     pub barrier: BarrierOptions,
+    /// The data are a closed contour (the last point joins the first; a repeated first point
+    /// at the end counts once): the result is a periodic curve, the allowed extrema alternate
+    /// around it and are as many maxima as minima.
+    pub closed: bool,
 }
 
 impl SmoothingOptions {
@@ -204,6 +209,7 @@ impl SmoothingOptions {
                 max_newton_iterations: 60,
                 ..BarrierOptions::default()
             },
+            closed: false,
         }
     }
 }
@@ -222,8 +228,16 @@ pub struct CurvatureExtremum {
 /// The result of [`smooth`].
 #[derive(Clone, Debug)]
 pub struct SmoothedCurve {
-    /// The smoothed curve, on `[0, 1]`.
+    /// The smoothed curve, on `[0, 1]` (a closed one opened at its closing point: the same
+    /// points, clamped at both ends).
     pub curve: Curve2<f64>,
+    /// For closed data ([`SmoothingOptions::closed`]), the smoothed curve as a periodic
+    /// B-spline of period 1 (`curve` is it opened at `0`).
+    pub periodic: Option<PeriodicBSpline<f64, Vector2<f64>>>,
+    /// The data point (after consecutive repetitions are dropped) where the curve starts: `0`,
+    /// unless the closing point of a closed contour moved into a monotone stretch of the
+    /// curvature.
+    pub first_point: usize,
     /// The deviation from the data both ways: data → curve by closest points and curve →
     /// data polyline.
     pub deviation: TwoSidedDeviation<f64>,
@@ -294,7 +308,10 @@ pub fn smooth(points: &[Vector2<f64>], options: &SmoothingOptions) -> Result<Smo
     let p = options.degree;
     let n = options.control_points;
     check_options(options)?;
-    let data = distinct(points)?;
+    let mut data = distinct(points)?;
+    if options.closed && data.len() > 2 && data.last() == data.first() {
+        data.pop();
+    }
     if data.len() < n + 1 {
         return Err(Error::new(
             ErrorKind::TooFewPoints,
@@ -312,40 +329,80 @@ pub fn smooth(points: &[Vector2<f64>], options: &SmoothingOptions) -> Result<Smo
             "the data points all coincide",
         ));
     }
-    let unit: Vec<Vector2<f64>> = data.iter().map(|q| (q - middle) / size).collect();
+    let mut unit: Vec<Vector2<f64>> = data.iter().map(|q| (q - middle) / size).collect();
     let orientation = if polygon_area(&unit) >= 0.0 {
         1.0
     } else {
         -1.0
     };
 
-    // 1. The shape: centripetal parameters, least squares, parameter correction.
-    let params = parametrize(&unit, &Parametrization::Centripetal)?;
-    let base = nurbs_book_knots(p, n, &params)?;
-    let (preliminary, params) = fit_with_correction(&unit, &params, &base, 8)?;
-    let start_extrema = planar_features(&preliminary, 1e-10)
-        .map(|f| f.curvature_extrema.len())
-        .unwrap_or(0);
-
-    // 2. The allowed extrema on the shape; the first piece rises towards a maximum.
-    let placed = place_extrema(&preliminary, &options.extrema, orientation)?;
-    let fixed: Vec<(f64, usize)> = placed.iter().map(|&u| (u, p - 2)).collect();
-    let first_sign = match options.extrema[0].kind {
+    // 1. The shape: centripetal parameters, least squares, parameter correction (a closed
+    // contour's periodic fit is opened at its closing point); 2. the allowed extrema on the
+    // shape. The first piece rises towards a maximum.
+    let kind_sign = |kind: ExtremumKind| match kind {
         ExtremumKind::Maximum => orientation,
         ExtremumKind::Minimum => -orientation,
     };
+    let mut rotation = 0;
+    let (preliminary, params, placed, first_sign) = if options.closed {
+        let automatic = options
+            .extrema
+            .iter()
+            .all(|e| e.at.is_none())
+            .then_some(options.extrema.len());
+        let start = closed::closed_start(&unit, p, n, automatic, orientation)?;
+        // The closing point moves to a data point inside a monotone stretch.
+        rotation = start.rotation;
+        data.rotate_left(rotation);
+        unit.rotate_left(rotation);
+        let (placed, first_sign) = match start.placed {
+            Some((placed, rising)) => (placed, if rising { orientation } else { -orientation }),
+            None => (
+                place_extrema(&start.shape, &options.extrema, orientation)?,
+                kind_sign(options.extrema[0].kind),
+            ),
+        };
+        (start.shape, start.params, placed, first_sign)
+    } else {
+        let params = parametrize(&unit, &Parametrization::Centripetal)?;
+        let base = nurbs_book_knots(p, n, &params)?;
+        let (fit, params) = fit_with_correction(&unit, &params, &base, 8)?;
+        let placed = place_extrema(&fit, &options.extrema, orientation)?;
+        (fit, params, placed, kind_sign(options.extrema[0].kind))
+    };
+    // The data the deviations are measured against: a closed contour's polyline closes.
+    let mut polyline = data.clone();
+    if options.closed {
+        polyline.push(data[0]);
+    }
+    let start_extrema = planar_features(&preliminary, 1e-10)
+        .map(|f| f.curvature_extrema.len())
+        .unwrap_or(0);
+    let fixed: Vec<(f64, usize)> = placed.iter().map(|&u| (u, p - 2)).collect();
 
-    // 3. Attempts with knots that follow the shape, densities in turn.
+    // 3. Attempts with knots that follow the shape, densities in turn (a closed curve's `N`
+    // periodic knots are the clamped vector's `0` and its interior knots).
+    let basis_count = if options.closed { n + p } else { n };
     let mut best: Option<SmoothedCurve> = None;
     let mut newton_steps = 0;
     let mut left_the_data = false;
     for &exponent in &options.knot_exponents {
-        let Ok(knots) =
-            curvature_knots_with(&preliminary, p, n, exponent, options.knot_floor, &fixed)
-        else {
+        let Ok(knots) = curvature_knots_with(
+            &preliminary,
+            p,
+            basis_count,
+            exponent,
+            options.knot_floor,
+            &fixed,
+        ) else {
             continue;
         };
-        let found = match driver::attempt(&unit, &params, &knots, &placed, first_sign, options) {
+        let found = if options.closed {
+            closed::attempt_closed(&unit, &params, &knots, &placed, first_sign, options)
+        } else {
+            driver::attempt(&unit, &params, &knots, &placed, first_sign, options)
+        };
+        let found = match found {
             Ok(found) => found,
             Err(e)
                 if matches!(
@@ -362,8 +419,17 @@ pub fn smooth(points: &[Vector2<f64>], options: &SmoothingOptions) -> Result<Smo
         };
         let Some(found) = found else { continue };
         newton_steps += found.newton_steps;
-        let curve = found.curve.map_control_points(|c| c * size + middle);
-        let deviation = two_sided_deviation(&curve, &data)?;
+        let world = found.curve.map_control_points(|c| c * size + middle);
+        let (curve, periodic) = if options.closed {
+            let periodic = PeriodicBSpline::from_wrapped(&world)?;
+            (periodic.open_at(0.0)?, Some(periodic))
+        } else {
+            (world, None)
+        };
+        let mut deviation = two_sided_deviation(&curve, &polyline)?;
+        if options.closed {
+            in_data_order(&mut deviation, rotation, data.len());
+        }
         // A curve that strays from the data between data points is no answer: the curve →
         // data distance may exceed the data → curve one only by the sagitta of the data's
         // own chords.
@@ -380,18 +446,31 @@ pub fn smooth(points: &[Vector2<f64>], options: &SmoothingOptions) -> Result<Smo
                 continue;
             };
             // Extrema strictly inside the domain (the ends are not extrema of a curve that
-            // stops there).
-            let extrema = features
+            // stops there); a closed curve's closing point is one if the curvature turns
+            // there.
+            let mut extrema = features
                 .curvature_extrema
                 .iter()
                 .filter(|&&u| u > 1e-9 && u < 1.0 - 1e-9)
                 .map(|&u| classify(&curve, u, orientation))
                 .collect::<Result<Vec<_>>>()?;
+            let mut inflections = features.inflections;
+            if let Some(closed_curve) = &periodic {
+                let (turns, crosses) = closing_point_features(closed_curve)?;
+                if turns {
+                    extrema.insert(0, classify(&curve, 0.0, orientation)?);
+                }
+                if crosses {
+                    inflections.insert(0, 0.0);
+                }
+            }
             best = Some(SmoothedCurve {
                 curve,
+                periodic,
+                first_point: rotation,
                 deviation,
                 extrema,
-                inflections: features.inflections,
+                inflections,
                 start_extrema,
                 orientation,
                 knot_exponent: exponent,
@@ -423,6 +502,32 @@ pub fn smooth(points: &[Vector2<f64>], options: &SmoothingOptions) -> Result<Smo
             ),
         )),
     }
+}
+
+/// The deviations of closed data measured on the data rotated by `rotation` and closed by a
+/// repeated first point, put back in the order of the `count` data points.
+fn in_data_order(deviation: &mut TwoSidedDeviation<f64>, rotation: usize, count: usize) {
+    let to_curve = &mut deviation.to_curve;
+    to_curve.distances.truncate(count);
+    to_curve.distances.rotate_right(rotation);
+    deviation.params.truncate(count);
+    deviation.params.rotate_right(rotation);
+    to_curve.max_index = (to_curve.max_index % count + rotation) % count;
+}
+
+/// Whether the curvature of a closed curve has an extremum at its closing point (its
+/// derivative changes sign across it) and whether the curve has an inflection there.
+fn closing_point_features(curve: &PeriodicBSpline<f64, Vector2<f64>>) -> Result<(bool, bool)> {
+    let h = 1e-6;
+    let kappa = |u: f64| -> Result<f64> {
+        let d = curve.derivatives(u, 2)?;
+        let speed = d[1].norm();
+        Ok((d[1].x * d[2].y - d[1].y * d[2].x) / (speed * speed * speed))
+    };
+    let (before, at, after) = (kappa(-h)?, kappa(0.0)?, kappa(h)?);
+    let turns = (at - before) * (after - at) < 0.0;
+    let crosses = before * after < 0.0;
+    Ok((turns, crosses))
 }
 
 /// [`smooth`] with the fewest control points that bring every data point within
@@ -555,6 +660,15 @@ fn check_options(options: &SmoothingOptions) -> Result<()> {
                 ),
             ));
         }
+    }
+    if options.closed && options.extrema.len() % 2 != 0 {
+        return Err(Error::new(
+            ErrorKind::InvalidArgument,
+            format!(
+                "the curvature of a closed curve has as many maxima as minima: allow an even number of extrema, got {}",
+                options.extrema.len()
+            ),
+        ));
     }
     let mut last = 0.0;
     for e in &options.extrema {

@@ -26,7 +26,7 @@ fn curvature_samples(curve: &Curve2<f64>, orientation: f64) -> Result<Vec<(f64, 
 /// The weighted least-squares cost of making `values` monotone (pool adjacent violators),
 /// for every prefix: entry `k` is the cost of `values[..=k]`. The pool is online, so all
 /// prefixes cost one pass.
-fn isotonic_prefix_costs(values: &[(f64, f64, f64)], increasing: bool) -> Vec<f64> {
+pub(super) fn isotonic_prefix_costs(values: &[(f64, f64, f64)], increasing: bool) -> Vec<f64> {
     // Blocks of (Σ w v, Σ w, Σ w v²) and the running cost Σ over blocks of (Σwv² − (Σwv)²/Σw).
     let mut blocks: Vec<(f64, f64, f64)> = Vec::with_capacity(values.len());
     let mut cost = 0.0;

@@ -40,8 +40,11 @@ pub(crate) struct EraserProblem {
     pieces: Vec<Piece>,
     distances: Distances,
     objective: Objective,
-    /// Number of control points.
+    /// Number of free control points (the variables): all of them for an open curve; for a
+    /// closed one, the first `N` of the wrapped container, whose last `p` repeat them.
     n: usize,
+    /// Whether the curve is closed (periodic; the knots are the wrapped container's).
+    closed: bool,
     /// Squared distances are divided by this (the largest at the start).
     unit: f64,
     /// Weight of the mean squared distance added to `z` in the minimax objective.
@@ -104,9 +107,11 @@ impl EraserProblem {
                 points: points.to_vec(),
                 params: RefCell::new(params.to_vec()),
                 project: true,
+                closed: false,
             },
             objective,
             n: knots.num_basis(),
+            closed: false,
             unit: 1.0,
             mean_weight: 1e-2,
             tau: 0.0,
@@ -122,6 +127,32 @@ impl EraserProblem {
             .map(|s| problem.piece(s, 0.0, 1.0))
             .collect();
         Ok(problem)
+    }
+
+    /// The same problem for a closed curve: `knots` are those of the wrapped container of a
+    /// periodic B-spline of period 1 on `[0, 1]` (`N + p` control points, the last `p`
+    /// repeating the first), the variables its `N` free control points, and every foot point
+    /// free to cross the closing point.
+    pub(crate) fn new_closed(
+        knots: &KnotVector<f64>,
+        points: &[Vector2<f64>],
+        params: &[f64],
+        objective: Objective,
+        extrema: Vec<f64>,
+        first_sign: f64,
+    ) -> Result<Self> {
+        let mut problem = Self::new(knots, points, params, objective, extrema, first_sign)?;
+        problem.n = knots.num_basis() - knots.degree();
+        problem.closed = true;
+        problem.distances.closed = true;
+        Ok(problem)
+    }
+
+    /// The variable of local coordinate `k = 2·i + c` (coordinate `c` of control point `i` of
+    /// the container): itself for an open curve; a wrapped control point's is that of the
+    /// control point it repeats.
+    pub(super) fn column(&self, k: usize) -> usize {
+        2 * ((k / 2) % self.n) + k % 2
     }
 
     fn piece(&self, segment: usize, lo: f64, hi: f64) -> Piece {
@@ -189,7 +220,7 @@ impl EraserProblem {
     /// squares).
     pub(crate) fn variables(&self, control: &[Vector2<f64>], z: f64) -> DVector<f64> {
         let mut x = DVector::zeros(self.dimension());
-        for (i, c) in control.iter().enumerate() {
+        for (i, c) in control.iter().take(self.n).enumerate() {
             x[2 * i] = c.x;
             x[2 * i + 1] = c.y;
         }
@@ -202,10 +233,13 @@ impl EraserProblem {
         x
     }
 
-    /// The control points of `x`.
+    /// The control points of `x` (of the wrapped container for a closed curve).
     pub(crate) fn control_points(&self, x: &DVector<f64>) -> Vec<Vector2<f64>> {
-        (0..self.n)
-            .map(|i| Vector2::new(x[2 * i], x[2 * i + 1]))
+        (0..self.distances.knots.num_basis())
+            .map(|i| {
+                let k = i % self.n;
+                Vector2::new(x[2 * k], x[2 * k + 1])
+            })
             .collect()
     }
 
@@ -220,18 +254,28 @@ impl EraserProblem {
         let knots = &self.distances.knots;
         let p = knots.degree();
         let mut basis = [0.0; spline_core::MAX_ORDER];
-        self.excursions = (0..points.len() - 1)
+        // A closed curve also joins the last data point to the first, across the closing point.
+        let pairs = if self.closed {
+            points.len()
+        } else {
+            points.len() - 1
+        };
+        self.excursions = (0..pairs)
             .filter_map(|j| {
-                let (a, b) = (params[j], params[j + 1]);
+                let next = (j + 1) % points.len();
+                let (a, mut b) = (params[j], params[next]);
+                if next == 0 {
+                    b += 1.0;
+                }
                 if !(b > a) {
                     return None;
                 }
-                let u = 0.5 * (a + b);
+                let u = (0.5 * (a + b)).rem_euclid(1.0);
                 let span = knots.span_in_domain(u);
                 knots.basis_values(span, u, &mut basis[..=p]);
                 let c: Vector2<f64> = (0..=p).map(|k| control[span - p + k] * basis[k]).sum();
-                let centre = (points[j] + points[j + 1]) * 0.5;
-                let half = 0.5 * (points[j + 1] - points[j]).norm();
+                let centre = (points[j] + points[next]) * 0.5;
+                let half = 0.5 * (points[next] - points[j]).norm();
                 let radius = (half + allowance).max(1.1 * (c - centre).norm());
                 Some(Excursion {
                     param: u,
@@ -443,7 +487,8 @@ impl EraserProblem {
             let base = 2 * foot.first;
             for a in 0..nl {
                 for b in 0..nl {
-                    out[(base + a, base + b)] += w * foot.hessian[a * nl + b];
+                    out[(self.column(base + a), self.column(base + b))] +=
+                        w * foot.hessian[a * nl + b];
                 }
             }
         }

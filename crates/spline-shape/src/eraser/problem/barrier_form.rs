@@ -43,7 +43,7 @@ impl BarrierProblem for EraserProblem {
         let mut g = DVector::zeros(self.dimension());
         for foot in &feet.feet {
             for (a, v) in foot.gradient.iter().enumerate() {
-                g[2 * foot.first + a] += weight * v;
+                g[self.column(2 * foot.first + a)] += weight * v;
             }
         }
         if self.minimax() {
@@ -112,7 +112,7 @@ impl BarrierProblem for EraserProblem {
             let feet = self.feet(x, true);
             for foot in &feet.feet {
                 for (a, v) in foot.gradient.iter().enumerate() {
-                    cols.push(2 * foot.first + a);
+                    cols.push(self.column(2 * foot.first + a));
                     vals.push(v / self.unit);
                 }
                 cols.push(2 * self.n);
@@ -130,9 +130,9 @@ impl BarrierProblem for EraserProblem {
             let c: Vector2<f64> = (0..=p).map(|k| control[span - p + k] * basis[k]).sum();
             let r = (c - e.centre) * (2.0 / e.radius2);
             for (k, b) in basis[..=p].iter().enumerate() {
-                cols.push(2 * (span - p + k));
+                cols.push(self.column(2 * (span - p + k)));
                 vals.push(b * r.x);
-                cols.push(2 * (span - p + k) + 1);
+                cols.push(self.column(2 * (span - p + k) + 1));
                 vals.push(b * r.y);
             }
             offsets.push(cols.len());
@@ -160,7 +160,7 @@ impl BarrierProblem for EraserProblem {
                     for (k, &s) in sub.iter().enumerate() {
                         acc += s * jac[k * nl + c];
                     }
-                    cols.push(first + c);
+                    cols.push(self.column(first + c));
                     vals.push(factor * acc);
                 }
                 if self.relaxed {
@@ -174,6 +174,10 @@ impl BarrierProblem for EraserProblem {
             cols.push(self.tau_index());
             vals.push(-1.0);
             offsets.push(cols.len());
+        }
+        if self.closed {
+            // Wrapped control points fold onto the first ones: restore the column order.
+            sort_rows(&offsets, &mut cols, &mut vals);
         }
         CsrMatrix::try_from_csr_data(rows, self.dimension(), offsets, cols, vals)
             .expect("rows of increasing columns")
@@ -220,8 +224,8 @@ impl BarrierProblem for EraserProblem {
                 for b in 0..=p {
                     let v = w * basis[a] * basis[b];
                     let (i, j) = (2 * (span - p + a), 2 * (span - p + b));
-                    out[(i, j)] += v;
-                    out[(i + 1, j + 1)] += v;
+                    out[(self.column(i), self.column(j))] += v;
+                    out[(self.column(i + 1), self.column(j + 1))] += v;
                 }
             }
         }
@@ -253,10 +257,30 @@ impl BarrierProblem for EraserProblem {
             let first = 2 * self.kernel.first_point(s);
             for a in 0..nl {
                 for b in 0..nl {
-                    out[(first + a, first + b)] += block[a * nl + b];
+                    out[(self.column(first + a), self.column(first + b))] += block[a * nl + b];
                 }
             }
         }
         true
+    }
+}
+
+/// Sorts the entries of every CSR row by column (the rows of a closed curve's conditions
+/// wrap around the control polygon).
+fn sort_rows(offsets: &[usize], cols: &mut [usize], vals: &mut [f64]) {
+    let mut row: Vec<(usize, f64)> = Vec::new();
+    for w in offsets.windows(2) {
+        row.clear();
+        row.extend(
+            cols[w[0]..w[1]]
+                .iter()
+                .copied()
+                .zip(vals[w[0]..w[1]].iter().copied()),
+        );
+        row.sort_by_key(|&(c, _)| c);
+        for (k, (c, v)) in row.iter().enumerate() {
+            cols[w[0] + k] = *c;
+            vals[w[0] + k] = *v;
+        }
     }
 }
