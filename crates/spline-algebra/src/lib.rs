@@ -74,6 +74,7 @@ mod maps;
 mod numerator;
 mod offset;
 mod product;
+mod revolution;
 mod ridges;
 mod roots;
 mod segment_curvature;
@@ -102,6 +103,10 @@ pub use product::{
     ProductJacobians, ProductMap, Square, bernstein_product, common_space, difference, dot_product,
     linear_combination, product, product_knots, product_with_jacobians, scale, square, sum,
     wedge_product,
+};
+pub use revolution::{
+    RevolutionFeatures, RevolutionNumerators, RidgeCircle, revolution_features,
+    revolution_numerators,
 };
 pub use ridges::{Ridges, ridges};
 pub use roots::{Zero, sign_change_params, zeros};
