@@ -80,7 +80,11 @@ fn sampled_crossings(g: impl Fn(f64) -> f64, a: f64, b: f64, m: usize) -> Vec<f6
 }
 
 fn assert_close(found: &[f64], expected: &[f64], tol: f64, what: &str) {
-    assert_eq!(found.len(), expected.len(), "{what}: {found:?} vs {expected:?}");
+    assert_eq!(
+        found.len(),
+        expected.len(),
+        "{what}: {found:?} vs {expected:?}"
+    );
     for (f, e) in found.iter().zip(expected) {
         assert!((f - e).abs() < tol, "{what}: {found:?} vs {expected:?}");
     }
@@ -134,8 +138,8 @@ fn a_cylinder_and_a_cone_have_no_feature_circles() {
 
 #[test]
 fn bad_meridians_are_refused() {
-    let quadratic = BSpline::from_knots(2, vec![0.0, 0.0, 0.0, 1.0, 1.0, 1.0], vec![1.0, 2.0, 1.0])
-        .unwrap();
+    let quadratic =
+        BSpline::from_knots(2, vec![0.0, 0.0, 0.0, 1.0, 1.0, 1.0], vec![1.0, 2.0, 1.0]).unwrap();
     let error = revolution_features(&quadratic, 1e-12).unwrap_err();
     assert_eq!(error.kind(), ErrorKind::InvalidArgument);
     // z − 0.5 on [0, 1] crosses the axis.

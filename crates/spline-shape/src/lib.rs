@@ -58,5 +58,7 @@ pub use eraser::{
 };
 pub use problem::{ApproximationProblem, Sign};
 pub use revolution::{
-    MeridianControl, ParabolicCircles, control_parabolic_circles, revolution_surface,
+    MeridianControl, ParabolicCircles, RidgeControl, TranslationControl, control_parabolic_circles,
+    control_ridge_circles, control_translation_parabolic_lines, revolution_surface,
+    translation_surface,
 };

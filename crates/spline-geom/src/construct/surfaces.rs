@@ -93,6 +93,48 @@ impl<T: Scalar, P: ControlPoint<T>> Surface<T, P> {
         ))
     }
 
+    /// The translation surface of two curves (thesis ch. 7):
+    /// $S(u, v) = A(u) + B(v) - B(v_0)$, the curve `A` moved along `B` without turning
+    /// ($S(u, v_0) = A(u)$; if the curves meet at $A(u_0) = B(v_0)$, both are on the
+    /// surface). Exact: control points $P_{ij} = A_i + B_j - B(v_0)$, since each basis sums to
+    /// one. $S_{uv} = 0$, so the second fundamental form has no mixed term and the parabolic
+    /// lines are where $\det(A'', A', B')$ or $\det(B'', A', B')$ vanish: for curves in
+    /// perpendicular planes, the parameter lines through the inflections of either curve.
+    ///
+    /// ```
+    /// use nalgebra::Vector3;
+    /// use spline_geom::{BSpline, Surface};
+    /// let a = BSpline::from_knots(2, vec![0.0, 0.0, 0.0, 1.0, 1.0, 1.0],
+    ///     vec![Vector3::new(0.0, 0.0, 0.0), Vector3::new(1.0, 0.0, 1.0), Vector3::new(2.0, 0.0, 0.0)])?;
+    /// let b = BSpline::from_knots(1, vec![0.0, 0.0, 1.0, 1.0],
+    ///     vec![Vector3::new(0.0, 0.0, 0.0), Vector3::new(0.0, 3.0, 0.5)])?;
+    /// let s = Surface::translation(&a, &b)?;
+    /// let expected = a.eval(0.3)? + b.eval(0.6)?;
+    /// assert!((s.eval(0.3, 0.6)? - expected).norm() < 1e-14);
+    /// # Ok::<(), spline_core::Error>(())
+    /// ```
+    ///
+    /// # Errors
+    /// [`ErrorKind::InvalidLength`] if the grid of control points would exceed the
+    /// container's limits; the errors of [`Surface::new`].
+    pub fn translation(first: &BSpline<T, P>, second: &BSpline<T, P>) -> Result<Self> {
+        let (na, nb) = (first.control_points().len(), second.control_points().len());
+        let count = na.checked_mul(nb).ok_or_else(|| {
+            Error::new(
+                ErrorKind::InvalidLength,
+                format!("{na} × {nb} control points are too many"),
+            )
+        })?;
+        let start = second.eval(second.domain().0)?;
+        let mut points = Vec::with_capacity(count);
+        for a in first.control_points() {
+            for b in second.control_points() {
+                points.push(*a + (*b - start));
+            }
+        }
+        Surface::new(first.knots().clone(), second.knots().clone(), points)
+    }
+
     /// The conical surface (5.17) joining `curve` (at `v = 0`) to the apex `Q` (at `v = 1`):
     /// $P_{i0} = P_i$, $P_{i1} = Q$.
     ///
