@@ -5,8 +5,9 @@ use nalgebra::Vector2;
 use spline_core::KnotVector;
 use std::cell::RefCell;
 
-/// One data point's squared distance at the current curve.
-#[derive(Clone, Debug)]
+/// One data point's squared distance at the current curve (buffers reused from one
+/// evaluation to the next).
+#[derive(Clone, Debug, Default)]
 pub(super) struct Foot {
     /// `d² = ‖C(u) − Q‖²`.
     pub(super) squared: f64,
@@ -37,8 +38,15 @@ pub(super) struct Distances {
 
 impl Distances {
     /// The foot point of data point `j` near its cached parameter, with the derivatives of
-    /// its squared distance when `derivatives`.
-    pub(super) fn foot(&self, control: &[Vector2<f64>], j: usize, derivatives: bool) -> Foot {
+    /// its squared distance when `derivatives`, written into `out` (its buffers reused: no
+    /// allocation once they have their size).
+    pub(super) fn foot_into(
+        &self,
+        control: &[Vector2<f64>],
+        j: usize,
+        derivatives: bool,
+        out: &mut Foot,
+    ) {
         let p = self.knots.degree();
         let width = p + 1;
         let q = self.points[j];
@@ -106,16 +114,19 @@ impl Distances {
         let squared = r.norm_squared();
         let first = span - p;
         let n = 2 * width;
-        let mut gradient = Vec::new();
-        let mut hessian = Vec::new();
+        let Foot {
+            gradient, hessian, ..
+        } = out;
+        gradient.clear();
+        hessian.clear();
         if derivatives {
             // Basis values at u (the evaluation left them in `basis`).
             self.knots
                 .basis_derivatives(span, u, 2, &mut basis[..3 * width]);
             let value = &basis[..width];
             let slope = &basis[width..2 * width];
-            gradient = vec![0.0; n];
-            hessian = vec![0.0; n * n];
+            gradient.resize(n, 0.0);
+            hessian.resize(n * n, 0.0);
             for a in 0..width {
                 gradient[2 * a] = 2.0 * value[a] * r.x;
                 gradient[2 * a + 1] = 2.0 * value[a] * r.y;
@@ -129,7 +140,7 @@ impl Distances {
             let phi_uu = 2.0 * (d[1].norm_squared() + r.dot(&d[2]));
             if interior && phi_uu > 0.0 {
                 // φ_xu = 2 (N′ r + N c′) per local variable.
-                let mut cross = vec![0.0; n];
+                let mut cross = [0.0; 2 * spline_core::MAX_ORDER];
                 for a in 0..width {
                     cross[2 * a] = 2.0 * (slope[a] * r.x + value[a] * d[1].x);
                     cross[2 * a + 1] = 2.0 * (slope[a] * r.y + value[a] * d[1].y);
@@ -141,12 +152,8 @@ impl Distances {
                 }
             }
         }
-        Foot {
-            squared,
-            first,
-            gradient,
-            hessian,
-            param: u,
-        }
+        out.squared = squared;
+        out.first = first;
+        out.param = u;
     }
 }

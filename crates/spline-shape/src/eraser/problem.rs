@@ -27,10 +27,23 @@ use std::cell::RefCell;
 mod barrier_form;
 
 /// Scratch memory of the segment kernel.
+/// Scratch memory of the segment kernel and of the conditions, reused by every evaluation
+/// (no allocation inside the solver's iterations once the buffers have their sizes).
 struct Scratch {
     workspace: SegmentWorkspace<f64>,
     values: Vec<f64>,
     jacobian: Vec<f64>,
+    /// The control points of the current `x`.
+    control: Vec<Vector2<f64>>,
+    /// The Bernstein coefficients of `g` of every segment, `q + 1` each.
+    per_segment: Vec<f64>,
+    /// Their Jacobians, `(q + 1) × local variables` each.
+    segment_jacobians: Vec<f64>,
+    /// `sign · (S g)` of every piece, `q + 1` each.
+    signed: Vec<f64>,
+    /// Hessian weights per segment coefficient, and one segment's weighted Hessian block.
+    omega: Vec<f64>,
+    block: Vec<f64>,
 }
 
 /// `min z` (or `min Σ d_j²`) over the control points subject to the distance bounds and the
@@ -70,6 +83,8 @@ struct FeetCache {
     control: Vec<f64>,
     derivatives: bool,
     feet: Vec<Foot>,
+    /// The control points of `control` (of the wrapped container for a closed curve).
+    points: Vec<Vector2<f64>>,
 }
 
 /// `‖C(u) − centre‖² < radius²`.
@@ -98,6 +113,12 @@ impl EraserProblem {
             workspace: kernel.workspace(),
             values: vec![0.0; q1],
             jacobian: vec![0.0; q1 * kernel.local_variables()],
+            control: Vec::new(),
+            per_segment: Vec::new(),
+            segment_jacobians: Vec::new(),
+            signed: Vec::new(),
+            omega: Vec::new(),
+            block: Vec::new(),
         };
         let mut problem = Self {
             pieces: Vec::new(),
@@ -235,12 +256,18 @@ impl EraserProblem {
 
     /// The control points of `x` (of the wrapped container for a closed curve).
     pub(crate) fn control_points(&self, x: &DVector<f64>) -> Vec<Vector2<f64>> {
-        (0..self.distances.knots.num_basis())
-            .map(|i| {
-                let k = i % self.n;
-                Vector2::new(x[2 * k], x[2 * k + 1])
-            })
-            .collect()
+        let mut points = Vec::new();
+        self.fill_control(x, &mut points);
+        points
+    }
+
+    /// [`EraserProblem::control_points`] into `points` (its buffer reused).
+    fn fill_control(&self, x: &DVector<f64>, points: &mut Vec<Vector2<f64>>) {
+        points.clear();
+        points.extend((0..self.distances.knots.num_basis()).map(|i| {
+            let k = i % self.n;
+            Vector2::new(x[2 * k], x[2 * k + 1])
+        }));
     }
 
     /// Sets the excursion bounds from the anchors and the curve of `x`: the curve point halfway
@@ -315,7 +342,8 @@ impl EraserProblem {
         *self.feet.borrow_mut() = FeetCache::default();
     }
 
-    /// The feet of the data on the curve of `x`, computed once per set of control points.
+    /// The feet of the data on the curve of `x`, computed once per set of control points
+    /// (into the cache's buffers: no allocation once they have their sizes).
     fn feet(&self, x: &DVector<f64>, derivatives: bool) -> std::cell::Ref<'_, FeetCache> {
         let key = &x.as_slice()[..2 * self.n];
         let fresh = {
@@ -323,15 +351,21 @@ impl EraserProblem {
             cache.control.as_slice() == key && (cache.derivatives || !derivatives)
         };
         if !fresh {
-            let control = self.control_points(x);
-            let feet = (0..self.distances.points.len())
-                .map(|j| self.distances.foot(&control, j, derivatives))
-                .collect();
-            *self.feet.borrow_mut() = FeetCache {
-                control: key.to_vec(),
-                derivatives,
+            let mut cache = self.feet.borrow_mut();
+            let FeetCache {
+                control,
+                derivatives: with_derivatives,
                 feet,
-            };
+                points,
+            } = &mut *cache;
+            control.clear();
+            control.extend_from_slice(key);
+            *with_derivatives = derivatives;
+            self.fill_control(x, points);
+            feet.resize_with(self.distances.points.len(), Foot::default);
+            for (j, foot) in feet.iter_mut().enumerate() {
+                self.distances.foot_into(points, j, derivatives, foot);
+            }
         }
         self.feet.borrow()
     }
@@ -351,32 +385,41 @@ impl EraserProblem {
         self.pieces.len() * self.kernel.coefficients_per_segment()
     }
 
-    /// `sign · (S g)` of every piece at `x` (positive when satisfied), unscaled.
-    fn signed_coefficients(&self, x: &DVector<f64>) -> Vec<Vec<f64>> {
+    /// `sign · (S g)` of every piece at `x` (positive when satisfied), unscaled, `q + 1`
+    /// per piece, handed to `f` (computed in the scratch buffers).
+    fn with_signed_coefficients<R>(&self, x: &DVector<f64>, f: impl FnOnce(&[f64]) -> R) -> R {
         let q1 = self.kernel.coefficients_per_segment();
-        let control = self.control_points(x);
         let mut scratch = self.scratch.borrow_mut();
         let Scratch {
-            workspace, values, ..
+            workspace,
+            values,
+            control,
+            per_segment,
+            signed,
+            ..
         } = &mut *scratch;
-        let mut per_segment = Vec::with_capacity(self.kernel.num_segments());
+        self.fill_control(x, control);
+        per_segment.clear();
         for s in 0..self.kernel.num_segments() {
             self.kernel
-                .segment(s, &control, workspace, values, None, None);
-            per_segment.push(values.clone());
+                .segment(s, control, workspace, values, None, None);
+            per_segment.extend_from_slice(values);
         }
-        self.pieces
-            .iter()
-            .map(|piece| {
-                let g = &per_segment[piece.segment];
-                (0..q1)
-                    .map(|r| {
-                        let row = &piece.subdivision[r * q1..(r + 1) * q1];
-                        piece.sign * row.iter().zip(g).map(|(a, b)| a * b).sum::<f64>()
-                    })
-                    .collect()
-            })
-            .collect()
+        signed.clear();
+        for piece in &self.pieces {
+            let g = &per_segment[piece.segment * q1..(piece.segment + 1) * q1];
+            signed.extend((0..q1).map(|r| {
+                let row = &piece.subdivision[r * q1..(r + 1) * q1];
+                piece.sign * row.iter().zip(g).map(|(a, b)| a * b).sum::<f64>()
+            }));
+        }
+        f(signed)
+    }
+
+    /// [`EraserProblem::with_signed_coefficients`], one vector per piece.
+    fn signed_coefficients(&self, x: &DVector<f64>) -> Vec<Vec<f64>> {
+        let q1 = self.kernel.coefficients_per_segment();
+        self.with_signed_coefficients(x, |c| c.chunks(q1).map(<[f64]>::to_vec).collect())
     }
 
     /// Scales every condition by its magnitude at `x` (floored at `1e-3` of the largest):

@@ -81,18 +81,23 @@ impl BarrierProblem for EraserProblem {
                     .map(|d2| d2 / self.unit - z),
             );
         }
-        let control = self.control_points(x);
-        for e in &self.excursions {
-            let c = self.curve_point(&control, e.param);
-            out.push((c - e.centre).norm_squared() / e.radius2 - 1.0);
-        }
-        let coefficients = self.signed_coefficients(x);
-        let tau = self.tau_at(x);
-        for (piece, c) in self.pieces.iter().zip(&coefficients) {
-            for ((v, s), shift) in c.iter().zip(&piece.scale).zip(&piece.shift) {
-                out.push(-v / s - tau * shift);
+        {
+            let mut scratch = self.scratch.borrow_mut();
+            self.fill_control(x, &mut scratch.control);
+            for e in &self.excursions {
+                let c = self.curve_point(&scratch.control, e.param);
+                out.push((c - e.centre).norm_squared() / e.radius2 - 1.0);
             }
         }
+        let tau = self.tau_at(x);
+        let q1 = self.kernel.coefficients_per_segment();
+        self.with_signed_coefficients(x, |coefficients| {
+            for (piece, c) in self.pieces.iter().zip(coefficients.chunks(q1)) {
+                for ((v, s), shift) in c.iter().zip(&piece.scale).zip(&piece.shift) {
+                    out.push(-v / s - tau * shift);
+                }
+            }
+        });
         if self.relaxed {
             out.push(-tau - 1.0);
         }
@@ -102,7 +107,16 @@ impl BarrierProblem for EraserProblem {
     fn constraint_jacobian(&self, x: &DVector<f64>) -> CsrMatrix<f64> {
         let q1 = self.kernel.coefficients_per_segment();
         let nl = self.kernel.local_variables();
-        let control = self.control_points(x);
+        let mut scratch = self.scratch.borrow_mut();
+        let Scratch {
+            workspace,
+            values,
+            jacobian,
+            control,
+            segment_jacobians,
+            ..
+        } = &mut *scratch;
+        self.fill_control(x, control);
         let rows = self.num_constraints();
         let mut offsets = Vec::with_capacity(rows + 1);
         let mut cols = Vec::with_capacity(rows * (nl + 1));
@@ -137,21 +151,16 @@ impl BarrierProblem for EraserProblem {
             }
             offsets.push(cols.len());
         }
-        let mut scratch = self.scratch.borrow_mut();
-        let Scratch {
-            workspace,
-            values,
-            jacobian,
-        } = &mut *scratch;
-        let mut per_segment: Vec<Vec<f64>> = Vec::with_capacity(self.kernel.num_segments());
+        segment_jacobians.clear();
         for s in 0..self.kernel.num_segments() {
             self.kernel
-                .segment(s, &control, workspace, values, Some(jacobian), None);
-            per_segment.push(jacobian.clone());
+                .segment(s, control, workspace, values, Some(jacobian), None);
+            segment_jacobians.extend_from_slice(jacobian);
         }
+        let block = q1 * nl;
         for piece in &self.pieces {
             let first = 2 * self.kernel.first_point(piece.segment);
-            let jac = &per_segment[piece.segment];
+            let jac = &segment_jacobians[piece.segment * block..(piece.segment + 1) * block];
             for r in 0..q1 {
                 let sub = &piece.subdivision[r * q1..(r + 1) * q1];
                 let factor = -piece.sign / piece.scale[r];
@@ -232,28 +241,35 @@ impl BarrierProblem for EraserProblem {
         let md = md + self.excursions.len();
         let q1 = self.kernel.coefficients_per_segment();
         let nl = self.kernel.local_variables();
-        let mut omega = vec![vec![0.0; q1]; self.kernel.num_segments()];
+        let mut scratch = self.scratch.borrow_mut();
+        let Scratch {
+            workspace,
+            values,
+            control,
+            omega,
+            block,
+            ..
+        } = &mut *scratch;
+        omega.clear();
+        omega.resize(q1 * self.kernel.num_segments(), 0.0);
         for (p, piece) in self.pieces.iter().enumerate() {
             for r in 0..q1 {
                 let w = weights[md + p * q1 + r] * (-piece.sign / piece.scale[r]);
                 if w == 0.0 {
                     continue;
                 }
-                for (k, o) in omega[piece.segment].iter_mut().enumerate() {
+                let o = &mut omega[piece.segment * q1..(piece.segment + 1) * q1];
+                for (k, o) in o.iter_mut().enumerate() {
                     *o += w * piece.subdivision[r * q1 + k];
                 }
             }
         }
-        let control = self.control_points(x);
-        let mut scratch = self.scratch.borrow_mut();
-        let Scratch {
-            workspace, values, ..
-        } = &mut *scratch;
-        let mut block = vec![0.0; nl * nl];
-        for (s, w) in omega.iter().enumerate() {
+        self.fill_control(x, control);
+        block.resize(nl * nl, 0.0);
+        for (s, w) in omega.chunks(q1).enumerate() {
             block.iter_mut().for_each(|b| *b = 0.0);
             self.kernel
-                .segment(s, &control, workspace, values, None, Some((w, &mut block)));
+                .segment(s, control, workspace, values, None, Some((w, block)));
             let first = 2 * self.kernel.first_point(s);
             for a in 0..nl {
                 for b in 0..nl {
