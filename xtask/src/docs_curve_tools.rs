@@ -1,11 +1,16 @@
 //! Pictures of the curve tools: an offset family with its cusps, intersections marked, a
-//! smoothing spline with λ chosen by generalised cross-validation.
+//! smoothing spline with λ chosen by generalised cross-validation, a closed contour smoothed by
+//! the eraser.
 
 use nalgebra::Vector2;
 use spline::algebra::{intersect_curves, offset_cusps, self_intersections};
-use spline::fit::{SmoothingParameter, offset_curve, smoothing_spline};
+use spline::fit::{
+    Parametrization, SmoothingParameter, least_squares_periodic, offset_curve, parametrize,
+    smoothing_spline,
+};
 use spline::geom::export::{SvgPlot, sample_params};
-use spline::geom::{BSpline, Curve2};
+use spline::geom::{BSpline, Curve2, PeriodicBSpline};
+use spline::shape::{SmoothingOptions, smooth};
 use std::path::Path;
 
 fn wave() -> Result<Curve2, String> {
@@ -127,5 +132,60 @@ pub(crate) fn render(out: &Path) -> Result<(), String> {
         .map(|&u| Vector2::new(3.0 * u, (std::f64::consts::TAU * u).sin()))
         .collect();
     plot.add_polyline(&truth, "axis");
-    crate::write_doc(out, "smoothing_gcv.svg", &plot.render())
+    crate::write_doc(out, "smoothing_gcv.svg", &plot.render())?;
+    closed_contour(out)
+}
+
+/// A wobbly closed contour: its periodic least-squares fit (left, curvature comb with every
+/// wiggle) and the eraser's closed curve with four curvature extrema (right).
+fn closed_contour(out: &Path) -> Result<(), String> {
+    let err = |e: spline::core::Error| e.to_string();
+    let count = 120;
+    let points: Vec<Vector2<f64>> = (0..count)
+        .map(|k| {
+            let t = 0.3 + std::f64::consts::TAU * f64::from(k) / f64::from(count);
+            let r = 1.0 + 0.04 * (7.0 * t).sin();
+            Vector2::new(1.6 * r * t.cos(), r * t.sin())
+        })
+        .collect();
+    let mut options = SmoothingOptions::new(24);
+    options.closed = true;
+    options.extrema = ["min", "max", "min", "max"]
+        .iter()
+        .map(|k| k.parse())
+        .collect::<Result<_, _>>()
+        .map_err(err)?;
+    let smoothed = smooth(&points, &options).map_err(err)?;
+    // The periodic least-squares fit of the same size, for comparison.
+    let params = {
+        let mut closed = points.clone();
+        closed.push(points[0]);
+        let mut u = parametrize(&closed, &Parametrization::Centripetal).map_err(err)?;
+        u.pop();
+        u
+    };
+    let knots: Vec<f64> = (0..24).map(|i| f64::from(i) / 24.0).collect();
+    let space = PeriodicBSpline::new(3, knots, 1.0, vec![Vector2::zeros(); 24]).map_err(err)?;
+    let fit = least_squares_periodic(&points, &params, &space, None, 0.0).map_err(err)?;
+    let shift = Vector2::new(-4.4, 0.0);
+    let moved_fit = fit
+        .open_at(0.0)
+        .map_err(err)?
+        .map_control_points(|p| p + shift);
+    let moved_points: Vec<Vector2<f64>> = points.iter().map(|p| p + shift).collect();
+    let mut plot = SvgPlot::new();
+    plot.set_title(format!(
+        "Closed contour: least squares (left, {} curvature extrema), eraser with 4 (right, deviation {:.2})",
+        smoothed.start_extrema,
+        smoothed.deviation.to_curve.max
+    ));
+    plot.add_curvature_comb(&moved_fit, 400);
+    plot.add_curve(&moved_fit);
+    plot.add_markers(&moved_points, "data");
+    plot.add_curvature_comb(&smoothed.curve, 400);
+    plot.add_curve(&smoothed.curve);
+    plot.add_markers(&points, "data");
+    let extrema: Vec<Vector2<f64>> = smoothed.extrema.iter().map(|e| e.point).collect();
+    plot.add_markers(&extrema, "extremum");
+    crate::write_doc(out, "closed_smoothing.svg", &plot.render())
 }

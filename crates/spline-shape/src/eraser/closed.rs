@@ -16,7 +16,9 @@ use super::{Objective, SmoothingOptions};
 use crate::barrier::BarrierProblem;
 use nalgebra::{DVector, Vector2};
 use spline_core::{Error, ErrorKind, KnotVector, Result};
-use spline_fit::{Parametrization, least_squares_periodic, parametrize, project_ordered};
+use spline_fit::{
+    Parametrization, closest_point, least_squares_periodic, parametrize, project_ordered,
+};
 use spline_geom::{BSpline, Curve2, PeriodicBSpline};
 
 /// A closed planar curve.
@@ -76,6 +78,53 @@ fn closed_shape(
     fit_closed_with_correction(points, &params, &space, 8)
 }
 
+/// Moves each extremum of `placed` (placed on a coarse fit) to where the curvature of
+/// `shape` needs the least change to be monotone on its two sides (weighted isotonic
+/// regression), within a quarter of the distance to its neighbours: the coarse fit finds the
+/// large turns, the fine one their exact place.
+fn refine_closed_extrema(
+    shape: &ClosedCurve2,
+    placed: &mut [f64],
+    first_rising: bool,
+    orientation: f64,
+) -> Result<()> {
+    let samples = closed_curvature_samples(shape, orientation)?;
+    let k = placed.len();
+    for i in 0..k {
+        let lo = if i == 0 { 0.0 } else { placed[i - 1] };
+        let hi = if i + 1 == k { 1.0 } else { placed[i + 1] };
+        let reach = 0.25 * (placed[i] - lo).min(hi - placed[i]);
+        let before_rising = (i % 2 == 0) == first_rising;
+        let left = samples.partition_point(|s| s.0 < lo);
+        let right = samples.partition_point(|s| s.0 <= hi);
+        let window = &samples[left..right];
+        let before = super::placement::isotonic_prefix_costs(window, before_rising);
+        let reversed: Vec<(f64, f64, f64)> = window.iter().rev().copied().collect();
+        // The piece after rises when the one before falls; read backwards, it falls.
+        let after = super::placement::isotonic_prefix_costs(&reversed, before_rising);
+        let mut best: Option<(f64, f64)> = None;
+        for (j, sample) in window.iter().enumerate() {
+            if (sample.0 - placed[i]).abs() > reach {
+                continue;
+            }
+            let cost = before[j] + after[window.len() - 1 - j];
+            if best.is_none_or(|(c, _)| cost < c) {
+                best = Some((cost, sample.0));
+            }
+        }
+        if let Some((_, u)) = best {
+            placed[i] = u;
+        }
+    }
+    Ok(())
+}
+
+/// The number of control points of the fit on which `k` extrema are placed: `2k + 2` (room for
+/// the turns of `k` monotone pieces), at least `p + 1`, at most `count`.
+fn placement_count(degree: usize, count: usize, k: usize) -> usize {
+    (2 * k + 2).max(degree + 1).min(count)
+}
+
 /// Where the smoothing of a closed contour starts.
 pub(crate) struct ClosedStart {
     /// The data point that becomes the first (the closing point of the curve).
@@ -109,7 +158,11 @@ pub(crate) fn closed_start(
             placed: None,
         });
     };
-    let seam = closed_seam(&shape, k, orientation)?;
+    // The extrema are placed on a coarse fit: its curvature keeps the shape's large turns and
+    // not the wiggles that the eraser is to remove.
+    let coarse = placement_count(degree, count, k);
+    let (rough, _) = closed_shape(points, degree, coarse)?;
+    let seam = closed_seam(&rough, k, orientation)?;
     let cyclic = |u: f64| (u - seam).rem_euclid(1.0).min((seam - u).rem_euclid(1.0));
     let rotation = (0..params.len())
         .min_by(|&a, &b| cyclic(params[a]).total_cmp(&cyclic(params[b])))
@@ -117,12 +170,30 @@ pub(crate) fn closed_start(
     let mut rotated = points.to_vec();
     rotated.rotate_left(rotation);
     let (shape, params) = closed_shape(&rotated, degree, count)?;
-    let placed = place_closed_extrema(&shape, k, orientation)?;
+    let (rough, _) = closed_shape(&rotated, degree, coarse)?;
+    let (on_rough, first_rising) = place_closed_extrema(&rough, k, orientation)?;
+    // The two fits are parametrised differently: each extremum goes to the parameter of the
+    // closest point of the shape.
+    let opened = shape.open_at(0.0)?;
+    let mut placed = Vec::with_capacity(k);
+    for u in on_rough {
+        let hit = closest_point(&opened, rough.eval(u)?)?;
+        placed.push(hit.param);
+    }
+    refine_closed_extrema(&shape, &mut placed, first_rising, orientation)?;
+    if placed.windows(2).any(|w| !(w[1] > w[0])) || placed.iter().any(|&u| !(u > 0.0 && u < 1.0)) {
+        return Err(Error::new(
+            ErrorKind::InvalidArgument,
+            format!(
+                "the {k} automatic curvature extrema of the closed curve do not come in order: give their parameters"
+            ),
+        ));
+    }
     Ok(ClosedStart {
         rotation,
-        shape: shape.open_at(0.0)?,
+        shape: opened,
         params,
-        placed: Some(placed),
+        placed: Some((placed, first_rising)),
     })
 }
 
