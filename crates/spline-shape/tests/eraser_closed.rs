@@ -87,7 +87,7 @@ fn a_noisy_ellipse_gets_its_four_vertices_back() {
                 assert!(e.point.y.abs() < 0.1 && e.point.x.abs() > 1.9, "{e:?}");
             }
             ExtremumKind::Minimum => {
-                assert!(e.point.x.abs() < 0.15 && e.point.y.abs() > 0.95, "{e:?}")
+                assert!(e.point.x.abs() < 0.15 && e.point.y.abs() > 0.95, "{e:?}");
             }
         }
     }
