@@ -117,7 +117,8 @@ pub use space::{
 };
 pub use sparse::kron;
 pub use surface_numerators::{
-    CurvatureNumerators, curvature_numerators, feature_overlays, parabolic_lines,
+    CurvatureNumerators, NumeratorJacobians, curvature_numerators,
+    curvature_numerators_with_jacobians, feature_overlays, parabolic_lines,
 };
 pub use tensor::{
     Partial, QuadraticFunction, TensorMap, TensorProductMap, hessian_determinant, partial,

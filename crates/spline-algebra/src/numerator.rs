@@ -8,7 +8,7 @@ use crate::curves::Differentiated;
 use crate::maps::SplineMap;
 use crate::product::{ProductMap, common_space, linear_combination, product};
 use crate::sparse::{add_scaled, apply_points, csr_from_rows, matmul};
-use crate::tensor::{tensor_linear_combination, tensor_product};
+use crate::tensor::{TensorMap, TensorProductMap, tensor_linear_combination};
 use nalgebra_sparse::CsrMatrix;
 use spline_core::{Result, Scalar, cast};
 use spline_geom::{BSpline, Homogeneous, Surface};
@@ -93,7 +93,8 @@ impl<T: Scalar> Function<T> for BSpline<T, T> {
     }
 }
 
-/// Bivariate functions: no Jacobians (the variables would be the whole net).
+/// Bivariate functions: products through the Kronecker product of the univariate bilinear
+/// maps, combinations through the tensor product of the common-space maps.
 impl<T: Scalar> Function<T> for Surface<T, T> {
     fn coefficients(&self) -> &[T] {
         self.control_points()
@@ -106,9 +107,21 @@ impl<T: Scalar> Function<T> for Surface<T, T> {
     fn times(
         a: &Self,
         b: &Self,
-        _: Option<(&CsrMatrix<T>, &CsrMatrix<T>)>,
+        jacobians: Option<(&CsrMatrix<T>, &CsrMatrix<T>)>,
     ) -> Result<(Self, Option<CsrMatrix<T>>)> {
-        Ok((tensor_product(a, b)?, None))
+        let map = TensorProductMap::new((a.knots_u(), a.knots_v()), (b.knots_u(), b.knots_v()))?;
+        let value = map.product(a, b)?;
+        let Some((ja, jb)) = jacobians else {
+            return Ok((value, None));
+        };
+        let bilinear = map.bilinear();
+        let jacobian = add_scaled(
+            T::one(),
+            &matmul(&bilinear.jacobian_left(b.control_points())?, ja),
+            T::one(),
+            &matmul(&bilinear.jacobian_right(a.control_points())?, jb),
+        );
+        Ok((value, Some(jacobian)))
     }
 
     fn combination(
@@ -116,9 +129,21 @@ impl<T: Scalar> Function<T> for Surface<T, T> {
         a: &Self,
         beta: T,
         b: &Self,
-        _: Option<(&CsrMatrix<T>, &CsrMatrix<T>)>,
+        jacobians: Option<(&CsrMatrix<T>, &CsrMatrix<T>)>,
     ) -> Result<(Self, Option<CsrMatrix<T>>)> {
-        Ok((tensor_linear_combination(alpha, a, beta, b)?, None))
+        let value = tensor_linear_combination(alpha, a, beta, b)?;
+        let Some((ja, jb)) = jacobians else {
+            return Ok((value, None));
+        };
+        let (au, bu) = common_space(a.knots_u(), b.knots_u())?;
+        let (av, bv) = common_space(a.knots_v(), b.knots_v())?;
+        let jacobian = add_scaled(
+            alpha,
+            &matmul(&TensorMap::new(au, av).matrix(), ja),
+            beta,
+            &matmul(&TensorMap::new(bu, bv).matrix(), jb),
+        );
+        Ok((value, Some(jacobian)))
     }
 }
 
@@ -130,7 +155,7 @@ impl<T: Scalar> Function<T> for Surface<T, T> {
 /// numerator on its parabolic circles cancel that way, and sign changes of the noise would
 /// be reported as features.
 ///
-/// With `jacobian` (curves), the sparse Jacobian of the coefficients with respect to the
+/// With `jacobian`, the sparse Jacobian of the coefficients with respect to the
 /// variables of the leaves (rows: coefficients).
 pub(crate) struct Tracked<T: Scalar, F = BSpline<T, T>> {
     pub(crate) value: F,

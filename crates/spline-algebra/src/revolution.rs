@@ -107,7 +107,7 @@ pub fn revolution_numerators<T: Scalar>(
 /// // f(z) = 2 + z³ − z on [−1, 1] (a Bézier cubic): f″ = 6z, one parabolic circle at z = 0.
 /// let f = BSpline::from_knots(
 ///     3,
-///     vec![-1.0, -1.0, -1.0, -1.0, 1.0, 1.0, 1.0, 1.0],
+///     vec![-1.0f64, -1.0, -1.0, -1.0, 1.0, 1.0, 1.0, 1.0],
 ///     vec![2.0, 10.0 / 3.0, 2.0 / 3.0, 2.0],
 /// )?;
 /// let features = spline_algebra::revolution_features(&f, 1e-12)?;

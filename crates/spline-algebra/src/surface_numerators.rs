@@ -4,8 +4,10 @@
 use crate::features::Normalisation;
 use crate::maps::SplineMap;
 use crate::numerator::{Tracked, cross3, dot3};
+use crate::sparse::{csr_from_rows, matmul};
 use crate::tensor::{TensorMap, partial};
 use crate::zero_set::{ZeroSet, zero_set};
+use nalgebra_sparse::CsrMatrix;
 use spline_core::{KnotVector, Result, Scalar};
 use spline_geom::{NurbsSurface, Surface};
 
@@ -75,8 +77,59 @@ type Bivariate<T> = Tracked<T, Surface<T, T>>;
 pub fn curvature_numerators<T: Scalar>(
     surface: &NurbsSurface<T, 3>,
 ) -> Result<CurvatureNumerators<T>> {
+    Ok(numerators(surface, false)?.0)
+}
+
+/// The Jacobians of [`CurvatureNumerators`] with respect to the homogeneous control points
+/// $[w_i x_i, w_i y_i, w_i z_i, w_i]$ (interleaved, row-major over the net): rows are the
+/// numerators' coefficients. A polynomial surface (equal weights) has the polynomial
+/// numerators, and its weight columns are zero: the Jacobian is with respect to the
+/// Cartesian control points.
+#[derive(Clone, Debug)]
+pub struct NumeratorJacobians<T> {
+    /// Of `[E, F, G]`.
+    pub first: [CsrMatrix<T>; 3],
+    /// Of `[L, M, N]`.
+    pub second: [CsrMatrix<T>; 3],
+    /// Of the numerator of the Gaussian curvature.
+    pub gaussian: CsrMatrix<T>,
+    /// Of the numerator of the mean curvature.
+    pub mean: CsrMatrix<T>,
+}
+
+/// [`curvature_numerators`] of the surface as given (no translation or scaling first, so
+/// that the numerators are functions of the control points alone) with their Jacobians
+/// carried along by the product rule through the tensor-product algebra
+/// ([`NumeratorJacobians`]): the derivatives that constraints on the curvature of a
+/// parametric patch (such as `K ≥ 0` on its Bernstein coefficients) need.
+///
+/// # Errors
+/// As [`curvature_numerators`].
+pub fn curvature_numerators_with_jacobians<T: Scalar>(
+    surface: &NurbsSurface<T, 3>,
+) -> Result<(CurvatureNumerators<T>, NumeratorJacobians<T>)> {
+    let (values, jacobians) = numerators(surface, true)?;
+    let jacobians = jacobians.ok_or_else(|| {
+        spline_core::Error::new(
+            spline_core::ErrorKind::InvalidArgument,
+            "the Jacobians of the curvature numerators were not computed",
+        )
+    })?;
+    Ok((values, jacobians))
+}
+
+/// The numerators, normalised (`with_jacobians = false`) or as given with their Jacobians.
+fn numerators<T: Scalar>(
+    surface: &NurbsSurface<T, 3>,
+    with_jacobians: bool,
+) -> Result<(CurvatureNumerators<T>, Option<NumeratorJacobians<T>>)> {
     let polynomial = surface.weights().iter().all(|&w| w == surface.weights()[0]);
-    let frame = Normalisation::of(surface.control_points(), surface.weights());
+    let frame = if with_jacobians {
+        Normalisation::identity()
+    } else {
+        Normalisation::of(surface.control_points(), surface.weights())
+    };
+    let variables = 4 * surface.control_points().len();
     let h = surface.homogeneous();
     let (p, q) = surface.degrees();
     let sw = frame.scale * frame.wscale;
@@ -89,34 +142,65 @@ pub fn curvature_numerators<T: Scalar>(
             }
         })
     };
+    // ∂(coordinate k of control point i)/∂(homogeneous variable 4i + j).
+    let selection = |k: usize| -> CsrMatrix<T> {
+        let count = surface.control_points().len();
+        let rows = (0..count)
+            .map(|i| {
+                if k < 3 {
+                    let mut row = vec![(4 * i + k, T::one() / sw)];
+                    if frame.middle[k] != T::zero() {
+                        row.push((4 * i + 3, -frame.middle[k] / sw));
+                    }
+                    row
+                } else {
+                    vec![(4 * i + 3, T::one() / frame.wscale)]
+                }
+            })
+            .collect();
+        csr_from_rows(variables, rows)
+    };
     let breaks_u = h.knots_u().domain_breaks();
     let breaks_v = h.knots_v().domain_breaks();
     // ∂^{k+l} of a coordinate, in per-patch Bernstein form (zero above the degree).
-    let derivative = |f: &Surface<T, T>, k: usize, l: usize| -> Result<Bivariate<T>> {
-        let (k, l) = (k.min(p + 1), l.min(q + 1));
-        let d = if k > p || l > q {
-            // Identically zero: a constant on the Bernstein space of degree 0.
-            let ku = KnotVector::bernstein(0, &breaks_u)?;
-            let kv = KnotVector::bernstein(0, &breaks_v)?;
-            let n = ku.num_basis() * kv.num_basis();
-            Surface::new_unchecked(ku, kv, vec![T::zero(); n])
-        } else {
-            partial(f, k, l)?
+    let derivative =
+        |f: &Surface<T, T>, coordinate: usize, k: usize, l: usize| -> Result<Bivariate<T>> {
+            let (k, l) = (k.min(p + 1), l.min(q + 1));
+            let d = if k > p || l > q {
+                // Identically zero: a constant on the Bernstein space of degree 0.
+                let ku = KnotVector::bernstein(0, &breaks_u)?;
+                let kv = KnotVector::bernstein(0, &breaks_v)?;
+                let n = ku.num_basis() * kv.num_basis();
+                Surface::new_unchecked(ku, kv, vec![T::zero(); n])
+            } else {
+                partial(f, k, l)?
+            };
+            let to_bernstein = |knots: &KnotVector<T>, breaks: &[T]| {
+                SplineMap::transfer(knots, &KnotVector::bernstein(knots.degree(), breaks)?)
+            };
+            let map = TensorMap::new(
+                to_bernstein(d.knots_u(), &breaks_u)?,
+                to_bernstein(d.knots_v(), &breaks_v)?,
+            );
+            let value = map.apply(&d)?;
+            let jacobian = if !with_jacobians {
+                None
+            } else if k > p || l > q {
+                Some(CsrMatrix::zeros(value.control_points().len(), variables))
+            } else {
+                let partial_map = TensorMap::partial_derivative(f.knots_u(), f.knots_v(), k, l)?;
+                Some(matmul(
+                    &matmul(&map.matrix(), &partial_map.matrix()),
+                    &selection(coordinate),
+                ))
+            };
+            Ok(Tracked::leaf(value, jacobian))
         };
-        let to_bernstein = |knots: &KnotVector<T>, breaks: &[T]| {
-            SplineMap::transfer(knots, &KnotVector::bernstein(knots.degree(), breaks)?)
-        };
-        let map = TensorMap::new(
-            to_bernstein(d.knots_u(), &breaks_u)?,
-            to_bernstein(d.knots_v(), &breaks_v)?,
-        );
-        Ok(Tracked::leaf(map.apply(&d)?, None))
-    };
     let point = |k: usize, l: usize| -> Result<[Bivariate<T>; 3]> {
         Ok([
-            derivative(&coordinate(0), k, l)?,
-            derivative(&coordinate(1), k, l)?,
-            derivative(&coordinate(2), k, l)?,
+            derivative(&coordinate(0), 0, k, l)?,
+            derivative(&coordinate(1), 1, k, l)?,
+            derivative(&coordinate(2), 2, k, l)?,
         ])
     };
     let (x, xu, xv) = (point(0, 0)?, point(1, 0)?, point(0, 1)?);
@@ -130,14 +214,14 @@ pub fn curvature_numerators<T: Scalar>(
     } else {
         let w = coordinate(3);
         let (w0, wu, wv) = (
-            derivative(&w, 0, 0)?,
-            derivative(&w, 1, 0)?,
-            derivative(&w, 0, 1)?,
+            derivative(&w, 3, 0, 0)?,
+            derivative(&w, 3, 1, 0)?,
+            derivative(&w, 3, 0, 1)?,
         );
         let (wuu, wuv, wvv) = (
-            derivative(&w, 2, 0)?,
-            derivative(&w, 1, 1)?,
-            derivative(&w, 0, 2)?,
+            derivative(&w, 3, 2, 0)?,
+            derivative(&w, 3, 1, 1)?,
+            derivative(&w, 3, 0, 2)?,
         );
         let times = |a: &[Bivariate<T>; 3], s: &Bivariate<T>| -> Result<[Bivariate<T>; 3]> {
             Ok([a[0].times(s)?, a[1].times(s)?, a[2].times(s)?])
@@ -182,14 +266,28 @@ pub fn curvature_numerators<T: Scalar>(
     let area = e.times(&g)?.minus(&f.times(&f)?)?.cleaned();
     let umbilic_m = e.times(&m)?.minus(&f.times(&l)?)?.cleaned();
     let umbilic_n = e.times(&n)?.minus(&g.times(&l)?)?.cleaned();
-    Ok(CurvatureNumerators {
-        area: area.value,
-        umbilic: [umbilic_m.value, umbilic_n.value],
-        first: [e.value, f.value, g.value],
-        second: [l.value, m.value, n.value],
-        gaussian: gaussian.value,
-        mean: mean.value,
-    })
+    let jacobian = |t: &Bivariate<T>| {
+        t.jacobian
+            .clone()
+            .unwrap_or_else(|| CsrMatrix::zeros(t.value.control_points().len(), 0))
+    };
+    let jacobians = with_jacobians.then(|| NumeratorJacobians {
+        first: [jacobian(&e), jacobian(&f), jacobian(&g)],
+        second: [jacobian(&l), jacobian(&m), jacobian(&n)],
+        gaussian: jacobian(&gaussian),
+        mean: jacobian(&mean),
+    });
+    Ok((
+        CurvatureNumerators {
+            area: area.value,
+            umbilic: [umbilic_m.value, umbilic_n.value],
+            first: [e.value, f.value, g.value],
+            second: [l.value, m.value, n.value],
+            gaussian: gaussian.value,
+            mean: mean.value,
+        },
+        jacobians,
+    ))
 }
 
 /// The parabolic lines (`K = 0`) of a surface: the [`crate::zero_set`] of the numerator of
