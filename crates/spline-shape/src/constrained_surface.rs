@@ -534,7 +534,7 @@ impl SurfaceApproximation {
 
 /// The quadratic constraints `−½ xᵀ H_k x / c_k < 0` from forms `H_k` (row `k`), with
 /// `c_k` the largest entry of `H_k` in absolute value; identically zero rows are dropped.
-fn normalized_forms(forms: &SparseBilinear<f64>) -> Result<SparseBilinear<f64>> {
+pub(crate) fn normalized_forms(forms: &SparseBilinear<f64>) -> Result<SparseBilinear<f64>> {
     let kept: Vec<(usize, f64)> = (0..forms.nrows())
         .filter_map(|k| {
             let c = forms.row(k).iter().fold(0.0f64, |m, e| m.max(e.2.abs()));

@@ -35,6 +35,7 @@ macro_rules! solver_settings {
 pub mod adaptive;
 pub mod barrier;
 pub mod constrained;
+pub mod constrained_parametric;
 pub mod constrained_surface;
 pub mod eraser;
 mod problem;
@@ -49,6 +50,7 @@ pub use barrier::{
 pub use constrained::{
     ConstraintCheck, FunctionApproximation, FunctionConstraint, FunctionFit, MAX_SIGN_PATTERNS,
 };
+pub use constrained_parametric::{ParametricConvexFit, ParametricConvexity};
 pub use constrained_surface::{
     ConstrainedSurfaceFit, Region, SurfaceApproximation, SurfaceConstraint,
 };
