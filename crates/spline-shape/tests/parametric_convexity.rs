@@ -59,7 +59,7 @@ fn a_rippled_bowl_becomes_convex() {
     // Close to the data: every sample within 0.05.
     for a in 0..=14 {
         for c in 0..=14 {
-            let (u, v) = (a as f64 / 14.0, c as f64 / 14.0);
+            let (u, v) = (f64::from(a) / 14.0, f64::from(c) / 14.0);
             let p = fit.surface.eval(u, v).unwrap();
             assert!((p.z - f(p.x, p.y)).abs() < 0.05, "{u} {v}");
         }
