@@ -1,0 +1,544 @@
+//! The studio in a real browser: headless Chromium driven through WebDriver (chromedriver).
+//!
+//! The test starts the server on a free port, opens the page, places points with the mouse,
+//! drags one, deletes and undoes, switches between the labs, inserts a knot by clicking on
+//! the knot line, steps parameter correction, uploads an airfoil and runs the eraser — and
+//! checks every drawn curve (the `d` of its SVG path, in world coordinates) against the
+//! library's own evaluation of the same points, computed here. Screenshots go to
+//! `target/studio/`; with `STUDIO_SCREENSHOT=FILE` the last one is also copied to `FILE`
+//! (`cargo xtask docs` uses it for the README's picture).
+//!
+//! It needs `/usr/bin/chromium` and `/usr/bin/chromedriver` (Debian's `chromium` and
+//! `chromium-driver`), so it is `#[ignore]`d in a plain `cargo test`; `cargo xtask test`
+//! installs both when missing and runs it with `--ignored` (`xtask/src/test_browser.rs`).
+
+use fantoccini::actions::{
+    Actions, InputSource, KeyAction, KeyActions, MouseActions, PointerAction,
+};
+use fantoccini::{Client, ClientBuilder, Locator};
+use nalgebra::Vector2;
+use serde_json::{Value, json};
+use spline_algebra::CurveFeatures;
+use spline_core::KnotVector;
+use spline_fit::{InterpolationOptions, LeastSquares, Parametrization, nurbs_book_knots};
+use spline_geom::{BSpline, Bezier, ParamCurve};
+use std::net::{SocketAddr, TcpListener, TcpStream};
+use std::path::PathBuf;
+use std::process::{Child, Command, Stdio};
+use std::time::{Duration, Instant};
+
+type P = Vector2<f64>;
+type TestResult<T = ()> = Result<T, Box<dyn std::error::Error>>;
+
+/// Chromium's flags: headless, and no background connections (the network is closed).
+const CHROMIUM_ARGS: &[&str] = &[
+    "--headless",
+    "--no-sandbox",
+    "--disable-gpu",
+    "--disable-quic",
+    "--no-first-run",
+    "--disable-background-networking",
+    "--disable-component-update",
+    "--disable-sync",
+    "--disable-dev-shm-usage",
+    "--window-size=1300,1000",
+];
+
+/// chromedriver, stopped (by its process id) when the test ends, passed or not.
+struct Driver(Child);
+
+impl Drop for Driver {
+    fn drop(&mut self) {
+        let _ = self.0.kill();
+        let _ = self.0.wait();
+    }
+}
+
+fn free_port() -> TestResult<u16> {
+    Ok(TcpListener::bind("127.0.0.1:0")?.local_addr()?.port())
+}
+
+fn target_dir() -> PathBuf {
+    PathBuf::from(env!("CARGO_TARGET_TMPDIR"))
+        .parent()
+        .map_or_else(|| PathBuf::from("target"), PathBuf::from)
+}
+
+fn start_studio() -> SocketAddr {
+    let (tx, rx) = std::sync::mpsc::channel();
+    std::thread::spawn(move || {
+        spline_studio::run("127.0.0.1", 0, |addr| {
+            let _ = tx.send(addr);
+        })
+    });
+    rx.recv_timeout(Duration::from_secs(30))
+        .expect("the studio binds a port")
+}
+
+async fn connect(port: u16, profile: &std::path::Path) -> TestResult<Client> {
+    let mut args: Vec<String> = CHROMIUM_ARGS.iter().map(|s| (*s).to_owned()).collect();
+    args.push(format!("--user-data-dir={}", profile.display()));
+    let mut caps = serde_json::Map::new();
+    caps.insert("browserName".into(), json!("chrome"));
+    caps.insert(
+        "goog:chromeOptions".into(),
+        json!({ "binary": "/usr/bin/chromium", "args": args }),
+    );
+    let deadline = Instant::now() + Duration::from_secs(30);
+    while TcpStream::connect(("127.0.0.1", port)).is_err() {
+        if Instant::now() > deadline {
+            return Err("chromedriver did not start".into());
+        }
+        tokio::time::sleep(Duration::from_millis(100)).await;
+    }
+    let connector = hyper_util::client::legacy::connect::HttpConnector::new();
+    Ok(ClientBuilder::new(connector)
+        .capabilities(caps)
+        .connect(&format!("http://127.0.0.1:{port}"))
+        .await?)
+}
+
+/// Waits until the page has drawn every answer it asked for (and at least `renders`).
+async fn idle(c: &Client, renders: u64) -> TestResult<Value> {
+    let deadline = Instant::now() + Duration::from_secs(60);
+    loop {
+        let state = c
+            .execute(
+                "return window.studio ? {idle: studio.idle(), renders: studio.renders, \
+                 error: document.getElementById('error').textContent} : null",
+                vec![],
+            )
+            .await?;
+        if state["idle"] == json!(true) && state["renders"].as_u64().unwrap_or(0) >= renders {
+            return Ok(state);
+        }
+        if Instant::now() > deadline {
+            return Err(format!("the page did not settle: {state}").into());
+        }
+        tokio::time::sleep(Duration::from_millis(50)).await;
+    }
+}
+
+async fn renders(c: &Client) -> TestResult<u64> {
+    Ok(c.execute("return studio.renders", vec![])
+        .await?
+        .as_u64()
+        .unwrap_or(0))
+}
+
+/// Runs `action`, then waits for the page to draw its consequences without error.
+async fn settle(c: &Client, before: u64) -> TestResult {
+    let state = idle(c, before + 1)
+        .await
+        .map_err(|e| format!("{e} (waiting for render {})", before + 1))?;
+    assert_eq!(state["error"], json!(""), "the page shows an error");
+    Ok(())
+}
+
+async fn js(c: &Client, script: &str) -> TestResult<Value> {
+    Ok(c.execute(script, vec![]).await?)
+}
+
+/// The top-left corner of the drawing area in viewport pixels.
+async fn canvas_origin(c: &Client) -> TestResult<(f64, f64)> {
+    let r = js(
+        c,
+        "const c = document.getElementById('canvas'); const r = c.getBoundingClientRect(); \
+         return [r.left + c.clientLeft, r.top + c.clientTop];",
+    )
+    .await?;
+    Ok((r[0].as_f64().unwrap_or(0.0), r[1].as_f64().unwrap_or(0.0)))
+}
+
+fn mouse(actions: Vec<PointerAction>) -> MouseActions {
+    actions
+        .into_iter()
+        .fold(MouseActions::new("mouse".into()), InputSource::then)
+}
+
+fn move_to(x: f64, y: f64) -> PointerAction {
+    PointerAction::MoveTo {
+        duration: Some(Duration::from_millis(20)),
+        x: x.round(),
+        y: y.round(),
+    }
+}
+
+async fn click_at(c: &Client, x: f64, y: f64, button: u64) -> TestResult {
+    let before = renders(c).await?;
+    c.perform_actions(mouse(vec![
+        move_to(x, y),
+        PointerAction::Down { button },
+        PointerAction::Up { button },
+    ]))
+    .await?;
+    settle(c, before).await
+}
+
+async fn click(c: &Client, css: &str) -> TestResult {
+    let before = renders(c).await?;
+    c.find(Locator::Css(css)).await?.click().await?;
+    settle(c, before)
+        .await
+        .map_err(|e| format!("after a click on {css}: {e}").into())
+}
+
+/// Sets a control's value and fires its events, as a person typing would.
+async fn set_value(c: &Client, id: &str, value: &str) -> TestResult {
+    let before = renders(c).await?;
+    js(
+        c,
+        &format!(
+            "const e = document.getElementById('{id}'); e.value = '{value}'; \
+             e.dispatchEvent(new Event('input')); e.dispatchEvent(new Event('change'));"
+        ),
+    )
+    .await?;
+    settle(c, before).await
+}
+
+fn to_points(value: &Value) -> Vec<P> {
+    value
+        .as_array()
+        .map(|a| {
+            a.iter()
+                .map(|p| {
+                    P::new(
+                        p[0].as_f64().unwrap_or(f64::NAN),
+                        p[1].as_f64().unwrap_or(f64::NAN),
+                    )
+                })
+                .collect()
+        })
+        .unwrap_or_default()
+}
+
+async fn state_points(c: &Client) -> TestResult<Vec<P>> {
+    Ok(to_points(&js(c, "return studio.state.points").await?))
+}
+
+/// The vertices of a drawn path (`M x y L x y …`, world coordinates).
+async fn path(c: &Client, id: &str) -> TestResult<Vec<P>> {
+    let d = c
+        .find(Locator::Id(id))
+        .await?
+        .attr("d")
+        .await?
+        .ok_or("path without d")?;
+    let numbers: Vec<f64> = d
+        .split(|ch: char| ch == 'M' || ch == 'L' || ch.is_whitespace())
+        .filter(|t| !t.is_empty())
+        .map(str::parse)
+        .collect::<Result<_, _>>()?;
+    Ok(numbers.chunks(2).map(|xy| P::new(xy[0], xy[1])).collect())
+}
+
+/// The drawn path matches the library's points, vertex by vertex.
+fn assert_drawn(drawn: &[P], expected: &[P], what: &str) {
+    assert_eq!(drawn.len(), expected.len(), "{what}: number of vertices");
+    let worst = drawn
+        .iter()
+        .zip(expected)
+        .map(|(a, b)| (a - b).norm())
+        .fold(0.0f64, f64::max);
+    assert!(
+        worst < 1e-12,
+        "{what}: drawn path off the library's curve by {worst:e}"
+    );
+}
+
+fn world(origin: (f64, f64), pixel: (f64, f64)) -> P {
+    // The page's initial view: 500 pixels per unit, world origin at pixel (60, 520), y up.
+    P::new(
+        (pixel.0 - origin.0 - 60.0) / 500.0,
+        (520.0 - (pixel.1 - origin.1)) / 500.0,
+    )
+}
+
+async fn screenshot(c: &Client, name: &str) -> TestResult<PathBuf> {
+    let dir = target_dir().join("studio");
+    std::fs::create_dir_all(&dir)?;
+    let file = dir.join(name);
+    std::fs::write(&file, c.screenshot().await?)?;
+    println!("screenshot: {}", file.display());
+    Ok(file)
+}
+
+#[test]
+#[ignore = "needs chromium and chromedriver; `cargo xtask test` installs them and runs it"]
+fn the_labs_in_a_real_browser() -> TestResult {
+    let addr = start_studio();
+    let port = free_port()?;
+    let profile = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join(format!("chromium-{port}"));
+    let _ = std::fs::remove_dir_all(&profile);
+    let _driver = Driver(
+        Command::new("/usr/bin/chromedriver")
+            .arg(format!("--port={port}"))
+            .stdout(Stdio::null())
+            .stderr(Stdio::null())
+            .spawn()?,
+    );
+    let runtime = tokio::runtime::Builder::new_current_thread()
+        .enable_all()
+        .build()?;
+    runtime.block_on(async {
+        let c = connect(port, &profile).await?;
+        let result = labs(&c, addr).await;
+        c.close().await?;
+        result
+    })
+}
+
+async fn labs(c: &Client, addr: SocketAddr) -> TestResult {
+    c.goto(&format!("http://{addr}/")).await?;
+    idle(c, 1).await?;
+    let origin = canvas_origin(c).await?;
+    let pixel = |x: f64, y: f64| (origin.0 + x, origin.1 + y);
+
+    // Bézier (TDsm 1): five points placed with the mouse.
+    let clicks = [
+        (100.0, 420.0),
+        (230.0, 140.0),
+        (430.0, 460.0),
+        (640.0, 110.0),
+        (800.0, 380.0),
+    ];
+    for &(x, y) in &clicks {
+        let (px, py) = pixel(x, y);
+        click_at(c, px, py, 0).await?;
+    }
+    let points = state_points(c).await?;
+    assert_eq!(points.len(), 5);
+    for (p, &(x, y)) in points.iter().zip(&clicks) {
+        let expected = world(origin, pixel(x, y));
+        assert!(
+            (p - expected).norm() < 2.0 / 500.0,
+            "click at ({x}, {y}) placed {p:?}, expected {expected:?}"
+        );
+    }
+    let check_bezier = |points: Vec<P>, drawn: Vec<P>| {
+        let curve = Bezier::new(points).expect("a Bézier curve");
+        let expected: Vec<P> = (0..=200)
+            .map(|k| curve.eval(f64::from(k) / 200.0).expect("t in [0, 1]"))
+            .collect();
+        assert_drawn(&drawn, &expected, "Bézier curve");
+    };
+    check_bezier(points.clone(), path(c, "curve-main").await?);
+
+    // Drag the third point up by 150 pixels.
+    let before = renders(c).await?;
+    let (px, py) = pixel(430.0, 460.0);
+    c.perform_actions(mouse(vec![
+        move_to(px, py),
+        PointerAction::Down { button: 0 },
+        move_to(px + 10.0, py - 50.0),
+        move_to(px + 20.0, py - 100.0),
+        move_to(px + 20.0, py - 150.0),
+        PointerAction::Up { button: 0 },
+    ]))
+    .await?;
+    settle(c, before).await?;
+    let dragged = state_points(c).await?;
+    let expected = world(origin, (px + 20.0, py - 150.0));
+    assert!(
+        (dragged[2] - expected).norm() < 2.0 / 500.0,
+        "dragged to {:?}",
+        dragged[2]
+    );
+    assert_eq!(dragged[0], points[0], "the other points stay");
+    check_bezier(dragged.clone(), path(c, "curve-main").await?);
+    screenshot(c, "bezier.png").await?;
+
+    // Delete a point with Shift+click, then undo.
+    let (px, py) = pixel(800.0, 380.0);
+    let before = renders(c).await?;
+    let shift = '\u{e008}';
+    let keys = KeyActions::new("keyboard".into())
+        .then(KeyAction::Down { value: shift })
+        .then(KeyAction::Pause {
+            duration: Duration::ZERO,
+        })
+        .then(KeyAction::Pause {
+            duration: Duration::ZERO,
+        })
+        .then(KeyAction::Pause {
+            duration: Duration::ZERO,
+        })
+        .then(KeyAction::Up { value: shift });
+    let pointer = mouse(vec![
+        PointerAction::Pause {
+            duration: Duration::ZERO,
+        },
+        move_to(px, py),
+        PointerAction::Down { button: 0 },
+        PointerAction::Up { button: 0 },
+        PointerAction::Pause {
+            duration: Duration::ZERO,
+        },
+    ]);
+    c.perform_actions(Actions::from(keys).and(pointer)).await?;
+    settle(c, before).await?;
+    assert_eq!(state_points(c).await?.len(), 4);
+    click(c, "#undo").await?;
+    assert_eq!(state_points(c).await?, dragged);
+
+    // B-spline: clamped uniform cubic, then a knot inserted by a click on the knot line.
+    click(c, "button[data-mode=bspline]").await?;
+    let cubic = BSpline::new(
+        KnotVector::clamped_uniform(3, 5, 0.0, 1.0)?,
+        dragged.clone(),
+    )?;
+    assert_drawn(
+        &path(c, "curve-main").await?,
+        &cubic.eval_many(&cubic.sample_params(24))?,
+        "B-spline",
+    );
+    let axis = js(c, "const r = document.getElementById('knot-axis').getBoundingClientRect(); return [r.left, r.right, r.top];").await?;
+    let (left, right, top) = (
+        axis[0].as_f64().unwrap_or(0.0),
+        axis[1].as_f64().unwrap_or(0.0),
+        axis[2].as_f64().unwrap_or(0.0),
+    );
+    click_at(c, left + 0.3 * (right - left), top, 0).await?;
+    let inserted = state_points(c).await?;
+    assert_eq!(inserted.len(), 6, "one control point more");
+    let knots: Vec<f64> = serde_json::from_value(js(c, "return studio.state.knots").await?)?;
+    let u = knots[4];
+    assert!((u - 0.3).abs() < 0.01, "knot inserted at {u}");
+    let refined = cubic.insert_knot(u, 1)?;
+    let worst = refined
+        .control_points()
+        .iter()
+        .zip(&inserted)
+        .map(|(a, b)| (a - b).norm())
+        .fold(0.0, f64::max);
+    assert!(
+        worst < 1e-12,
+        "control points after insertion differ by {worst:e}"
+    );
+    assert_drawn(
+        &path(c, "curve-main").await?,
+        &refined.eval_many(&refined.sample_params(24))?,
+        "B-spline after insertion",
+    );
+
+    // Interpolation (TDsm 2): the three parametrisations side by side.
+    click(c, "button[data-mode=interpolate]").await?;
+    let data = state_points(c).await?;
+    for (id, param) in [
+        ("uniform", Parametrization::Uniform),
+        ("chordal", Parametrization::Chordal),
+        ("centripetal", Parametrization::Centripetal),
+    ] {
+        let options = InterpolationOptions {
+            parametrization: param,
+            ..InterpolationOptions::default()
+        };
+        let fit = spline_fit::interpolate(&data, 3, &options)?;
+        let drawn = path(c, &format!("curve-{id}")).await?;
+        assert_drawn(
+            &drawn,
+            &fit.curve.eval_many(&fit.curve.sample_params(24))?,
+            id,
+        );
+    }
+
+    // Approximation (TDsm 3): least squares with 4 control points, then correction steps.
+    set_value(c, "approx-n", "4").await?;
+    click(c, "button[data-mode=approximate]").await?;
+    let params = spline_fit::parametrize(&data, &Parametrization::Chordal)?;
+    let fit = LeastSquares::new(&data, &params, nurbs_book_knots(3, 4, &params)?).solve()?;
+    assert_drawn(
+        &path(c, "curve-main").await?,
+        &fit.curve.eval_many(&fit.curve.sample_params(24))?,
+        "least squares",
+    );
+    let projections = c.find_all(Locator::Css("line.projection")).await?.len();
+    assert_eq!(projections, data.len(), "one projection per data point");
+    click(c, "#correct-step").await?;
+    let first = js(c, "return studio.state.correction").await?;
+    assert_eq!(first["iterations"], json!(1));
+    click(c, "#correct-step").await?;
+    click(c, "#correct-converge").await?;
+    let last = js(c, "return studio.state.correction").await?;
+    let errors: Vec<f64> = serde_json::from_value(last["errors"].clone())?;
+    assert!(
+        errors.windows(2).all(|e| e[1] <= e[0] * (1.0 + 1e-12)),
+        "errors rise: {errors:?}"
+    );
+    let corrected = first["errors"][0].as_f64().unwrap_or(0.0);
+    assert!(
+        errors[errors.len() - 1] < corrected,
+        "correction lowers the error"
+    );
+    screenshot(c, "approximation.png").await?;
+
+    // An airfoil uploaded through the file input, its curvature, and the eraser.
+    let file = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../data/airfoils/clarkv.dat");
+    let file = file.canonicalize()?;
+    let before = renders(c).await?;
+    c.find(Locator::Id("file"))
+        .await?
+        .send_keys(&file.display().to_string())
+        .await?;
+    idle(c, before + 1).await?;
+    let airfoil = spline_geom::airfoil::parse_airfoil(&std::fs::read_to_string(&file)?)?;
+    assert_eq!(
+        state_points(c).await?,
+        airfoil.points,
+        "the uploaded points"
+    );
+    click(c, "button[data-mode=curvature]").await?;
+    set_value(c, "curv-n", "20").await?;
+    let params = spline_fit::parametrize(&airfoil.points, &Parametrization::Chordal)?;
+    let fit =
+        LeastSquares::new(&airfoil.points, &params, nurbs_book_knots(3, 20, &params)?).solve()?;
+    assert_drawn(
+        &path(c, "curve-main").await?,
+        &fit.curve.eval_many(&fit.curve.sample_params(24))?,
+        "airfoil fit",
+    );
+    let features = fit.curve.features(1e-12)?;
+    let marked = c
+        .find_all(Locator::Css("#layer-marks circle.extremum"))
+        .await?
+        .len();
+    assert_eq!(
+        marked,
+        features.curvature_extrema.len(),
+        "curvature extrema marked"
+    );
+    let inflections = c
+        .find_all(Locator::Css("#layer-marks circle.inflection"))
+        .await?
+        .len();
+    assert_eq!(
+        inflections,
+        features.inflections.len(),
+        "inflections marked"
+    );
+    assert!(
+        c.find_all(Locator::Css("line.comb")).await?.len() > 100,
+        "the comb is drawn"
+    );
+    click(c, "#erase").await?;
+    let deadline = Instant::now() + Duration::from_secs(120);
+    while js(c, "return studio.state.erased !== null && studio.idle()").await? != json!(true) {
+        if Instant::now() > deadline {
+            return Err("the eraser did not answer".into());
+        }
+        tokio::time::sleep(Duration::from_millis(100)).await;
+    }
+    let erased = js(c, "return studio.state.erased").await?;
+    assert_eq!(
+        erased["extrema"].as_array().map(Vec::len),
+        Some(1),
+        "one curvature extremum left"
+    );
+    let shot = screenshot(c, "curvature.png").await?;
+    if let Ok(out) = std::env::var("STUDIO_SCREENSHOT") {
+        std::fs::copy(&shot, &out)?;
+        println!("screenshot copied to {out}");
+    }
+    Ok(())
+}
