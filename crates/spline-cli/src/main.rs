@@ -20,6 +20,7 @@ mod objects;
 mod plot;
 mod shape;
 mod structural;
+mod studio;
 mod surface_features;
 mod surfaces;
 
@@ -94,6 +95,8 @@ enum Command {
     Reduce(curves::ReduceArgs),
     /// Smoothing spline of data: lambda given or by GCV (scipy), or a residual target (FITPACK).
     Smoothing(curves::SmoothingArgs),
+    /// Serve the interactive curve-design page (seed 003's labs) on 127.0.0.1; prints its URL.
+    Studio(studio::StudioArgs),
 }
 
 fn run(command: Command) -> spline_core::Result<()> {
@@ -126,6 +129,7 @@ fn run(command: Command) -> spline_core::Result<()> {
         Command::Arclength(args) => curves::arclength(&args),
         Command::Reduce(args) => curves::reduce(&args),
         Command::Smoothing(args) => curves::smoothing(&args),
+        Command::Studio(args) => studio::studio(&args),
     }
 }
 
