@@ -4,7 +4,8 @@
 //!   documentation with warnings denied, tests.
 //! - `test`: the whole test suite (the README's test command; see `test_all`).
 //! - `help` (`--help`, `-h`): the list of tasks.
-//! - `docs`: regenerate the SVG pictures in `docs/`.
+//! - `docs`: regenerate the SVG pictures in `docs/` (and `docs/studio.png`, a screenshot of
+//!   `spline studio` taken by its browser test).
 //! - `bench airfoils [--jobs J]`: the whole UIUC database (fetched once from the
 //!   `aerosandbox` wheel into `target/airfoils/`) smoothed by the release tool, 20 control
 //!   points and one curvature maximum: the distribution of deviations and times.
@@ -37,6 +38,7 @@ mod docs_constructions;
 mod docs_curve_tools;
 mod docs_curves;
 mod docs_shape_functions;
+mod docs_studio;
 mod docs_surface_features;
 mod docs_surfaces;
 mod fuzz;
@@ -45,6 +47,7 @@ mod fuzz_oracles;
 mod mutate;
 mod reproduce;
 mod test_all;
+mod test_browser;
 
 use std::path::{Path, PathBuf};
 use std::process::{Command, ExitCode};
@@ -85,6 +88,7 @@ fn run_docs(root: &Path) -> Result<(), String> {
     docs_surface_features::render(&out)?;
     docs_shape_functions::render(&out)?;
     demo::render(root, &out)?;
+    docs_studio::render(root, &out)?;
     println!("pictures written to {}", out.display());
     Ok(())
 }
@@ -99,7 +103,10 @@ const TASKS: &[(&str, &str)] = &[
         "test",
         "the whole test suite: cargo test --workspace and the suites that need more than Rust",
     ),
-    ("docs", "redraw the SVG pictures in docs/"),
+    (
+        "docs",
+        "redraw the SVG pictures in docs/ and the studio's screenshot (docs/studio.png)",
+    ),
     (
         "demo",
         "fit and smooth an airfoil from data/airfoils/, print the result, draw it under target/demo/",

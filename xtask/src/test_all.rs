@@ -3,6 +3,8 @@
 //!
 //! Every suite runs in turn and the first failure stops the run with its name:
 //! 1. `cargo test --workspace`: unit, integration, property and doc tests of every crate.
+//! 2. The browser test of `spline studio` in headless Chromium (`test_browser`), which
+//!    installs `chromium` and `chromium-driver` with apt-get when they are missing.
 //!
 //! Suites that need more than the Rust toolchain (a Python virtual environment, a browser)
 //! install what they need under `target/` or through the system's package manager first, so
@@ -29,6 +31,7 @@ fn cargo(root: &Path, suite: &str, args: &[&str]) -> Result<(), String> {
 /// Runs every suite; see the module documentation.
 pub(crate) fn run(root: &Path) -> Result<(), String> {
     cargo(root, "cargo test --workspace", &["test", "--workspace"])?;
+    crate::test_browser::run_browser_test(root, None)?;
     println!("xtask test: every suite passed");
     Ok(())
 }
