@@ -107,6 +107,11 @@ fn each_endpoint_answers() {
     assert_eq!(status, 200, "{a}");
     // x(1/4) of the quadratic: (3/4)² P0 + 2 (3/4)(1/4) P1 + (1/4)² P2 = (0.5, 0.75).
     assert_eq!(a["point"], json!([0.5, 0.75]));
+    // The de Casteljau triangle by hand: level 1 is (3/4) P_i + (1/4) P_{i+1}; the left half
+    // of the subdivision is P0, the first point of each level; the right half the last ones.
+    assert_eq!(a["casteljau"][1], json!([[0.25, 0.5], [1.25, 1.5]]));
+    assert_eq!(a["left"], json!([[0.0, 0.0], [0.25, 0.5], [0.5, 0.75]]));
+    assert_eq!(a["right"], json!([[0.5, 0.75], [1.5, 1.5], [2.0, 0.0]]));
     assert_eq!(a["elevated"].as_array().map(Vec::len), Some(5));
     let (status, a) = post(
         "bspline",
