@@ -111,7 +111,7 @@ fn each_endpoint_answers() {
     // of the subdivision is P0, the first point of each level; the right half the last ones.
     assert_eq!(a["casteljau"][1], json!([[0.25, 0.5], [1.25, 1.5]]));
     assert_eq!(a["left"], json!([[0.0, 0.0], [0.25, 0.5], [0.5, 0.75]]));
-    assert_eq!(a["right"], json!([[0.5, 0.75], [1.5, 1.5], [2.0, 0.0]]));
+    assert_eq!(a["right"], json!([[0.5, 0.75], [1.25, 1.5], [2.0, 0.0]]));
     assert_eq!(a["elevated"].as_array().map(Vec::len), Some(5));
     let (status, a) = post(
         "bspline",
