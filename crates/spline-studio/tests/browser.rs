@@ -28,7 +28,7 @@ use std::process::{Child, Command, Stdio};
 use std::time::{Duration, Instant};
 
 type P = Vector2<f64>;
-type TestResult<T = ()> = Result<T, Box<dyn std::error::Error>>;
+type TestResult<T = ()> = Result<T, Box<dyn std::error::Error + Send + Sync>>;
 
 /// Chromium's flags: headless, and no background connections (the network is closed).
 const CHROMIUM_ARGS: &[&str] = &[
@@ -283,9 +283,18 @@ fn the_labs_in_a_real_browser() -> TestResult {
         .build()?;
     runtime.block_on(async {
         let c = connect(port, &profile).await?;
-        let result = labs(&c, addr).await;
+        // The labs run as a task, so that the browser is closed even when a check panics
+        // (killing chromedriver alone would leave Chromium running).
+        let task = tokio::spawn({
+            let c = c.clone();
+            async move { labs(&c, addr).await.map_err(|e| e.to_string()) }
+        });
+        let result = task.await;
         c.close().await?;
-        result
+        match result {
+            Ok(outcome) => outcome.map_err(Into::into),
+            Err(join) => std::panic::resume_unwind(join.into_panic()),
+        }
     })
 }
 
