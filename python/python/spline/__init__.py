@@ -1,0 +1,57 @@
+"""``spline``: B-splines, NURBS and spline algebra with Jacobians, from Rust.
+
+numpy arrays in, numpy arrays out; every loop over points runs in the compiled library with
+the GIL released; errors are ``SplineError`` (a ``ValueError``) carrying the library's message.
+
+Where scipy has the same thing, the same names: ``BSpline(t, c, k)``, ``s(x, nu)``,
+``s.derivative()``, ``s.insert_knot(x, m)``, ``make_interp_spline``, ``make_lsq_spline``.
+Beyond: NURBS curves and surfaces with their constructions, fitting with parameter
+correction (``fit_curve``), the eraser of curvature extrema (``smooth``), inflections and
+curvature extrema (``features``), products and structural operations with their Jacobians as
+``scipy.sparse`` arrays, and the JSON exchange format (``to_json``, ``read_json``).
+
+>>> import numpy as np, spline
+>>> x = np.linspace(0, 1, 11)
+>>> s = spline.make_interp_spline(x, np.sin(x))
+>>> bool(abs(s(0.55) - np.sin(0.55)) < 1e-6)
+True
+"""
+
+from ._core import SplineError
+from ._bspline import (
+    BSpline,
+    Features,
+    make_interp_spline,
+    make_lsq_spline,
+    product,
+    read_json,
+)
+from ._nurbs import NurbsCurve, NurbsSurface
+from ._fit import (
+    CurvatureExtremum,
+    CurveFit,
+    SmoothedCurve,
+    fit_curve,
+    read_airfoil,
+    smooth,
+    smooth_file,
+)
+
+__all__ = [
+    "SplineError",
+    "BSpline",
+    "Features",
+    "make_interp_spline",
+    "make_lsq_spline",
+    "product",
+    "read_json",
+    "NurbsCurve",
+    "NurbsSurface",
+    "CurvatureExtremum",
+    "CurveFit",
+    "SmoothedCurve",
+    "fit_curve",
+    "read_airfoil",
+    "smooth",
+    "smooth_file",
+]

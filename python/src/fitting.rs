@@ -1,0 +1,341 @@
+//! Interpolation, least squares, parameter correction, the eraser (`smooth`) and the airfoil
+//! reader, as the library (and the CLI's `interpolate`, `approximate`, `smooth`) call them.
+
+use crate::curve::{Curve, Dyn, flatten};
+use crate::{IntoPy, array, bad_input, slice};
+use numpy::{PyArray1, PyReadonlyArray1};
+use pyo3::prelude::*;
+use spline::KnotVector;
+use spline::fit::{
+    CorrectionOptions, LeastSquares, Parametrization, correct_parameters, interpolate_with_knots,
+    nurbs_book_knots, parametrize,
+};
+use spline::geom::airfoil::parse_airfoil;
+use spline::nalgebra::{SVector, Vector2};
+use spline::shape::{
+    Extremum, MAX_CURVATURE_EXTREMA, Objective, SmoothingOptions, smooth as erase,
+    smooth_to_tolerance,
+};
+
+/// Runs `$e` with `$P` the point type of dimension `$dim` (`0`: scalar) and wraps the
+/// resulting B-spline in the matching [`Dyn`] variant.
+macro_rules! by_dim {
+    ($dim:expr, $P:ident => $e:expr) => {
+        match $dim {
+            0 => {
+                type $P = f64;
+                $e.map(Dyn::S)
+            }
+            1 => {
+                type $P = SVector<f64, 1>;
+                $e.map(Dyn::V1)
+            }
+            2 => {
+                type $P = SVector<f64, 2>;
+                $e.map(Dyn::V2)
+            }
+            3 => {
+                type $P = SVector<f64, 3>;
+                $e.map(Dyn::V3)
+            }
+            4 => {
+                type $P = SVector<f64, 4>;
+                $e.map(Dyn::V4)
+            }
+            d => Err(spline::Error::new(
+                spline::ErrorKind::DimensionMismatch,
+                format!(
+                    "values of dimension {d}: 1 to {} are supported",
+                    crate::curve::MAX_DIM
+                ),
+            )),
+        }
+    };
+}
+
+/// Points of type `P` from a flat array (checked to make whole rows).
+fn rows<P: spline::ControlPoint<f64>>(flat: &[f64]) -> spline::Result<Vec<P>> {
+    if flat.len() % P::DIM != 0 {
+        return Err(spline::Error::new(
+            spline::ErrorKind::DimensionMismatch,
+            format!("{} values do not make rows of {}", flat.len(), P::DIM),
+        ));
+    }
+    Ok(flat
+        .chunks_exact(P::DIM)
+        .map(|r| P::from_coords(|i| r[i]))
+        .collect())
+}
+
+/// Interpolation at abscissae `x` (`make_interp_spline`): on `t`, or on the not-a-knot
+/// knots of degree `k` when `t` is `None`.
+#[pyfunction]
+#[pyo3(signature = (x, y, dim, k, t=None))]
+fn interpolate<'py>(
+    py: Python<'py>,
+    x: PyReadonlyArray1<'py, f64>,
+    y: PyReadonlyArray1<'py, f64>,
+    dim: usize,
+    k: usize,
+    t: Option<PyReadonlyArray1<'py, f64>>,
+) -> PyResult<Curve> {
+    let x = slice(&x, "x")?;
+    let y = slice(&y, "y")?;
+    let knots = match &t {
+        Some(t) => KnotVector::new(k, slice(t, "t")?.to_vec()),
+        None => KnotVector::not_a_knot(k, x),
+    }
+    .py()?;
+    py.detach(
+        || by_dim!(dim, P => rows::<P>(y).and_then(|q| interpolate_with_knots(&knots, x, &q))),
+    )
+    .py()
+    .map(Curve)
+}
+
+/// Weighted least squares on the knots `t` (`make_lsq_spline`): minimises
+/// $\sum_j (w_j \lVert y_j - f(x_j) \rVert)^2$.
+#[pyfunction]
+#[pyo3(signature = (x, y, dim, t, k, w=None))]
+fn least_squares<'py>(
+    py: Python<'py>,
+    x: PyReadonlyArray1<'py, f64>,
+    y: PyReadonlyArray1<'py, f64>,
+    dim: usize,
+    t: PyReadonlyArray1<'py, f64>,
+    k: usize,
+    w: Option<PyReadonlyArray1<'py, f64>>,
+) -> PyResult<Curve> {
+    let x = slice(&x, "x")?;
+    let y = slice(&y, "y")?;
+    let w = w.as_ref().map(|w| slice(w, "w")).transpose()?;
+    let knots = KnotVector::new(k, slice(&t, "t")?.to_vec()).py()?;
+    py.detach(|| {
+        by_dim!(dim, P => rows::<P>(y).and_then(|q| {
+            let mut problem = LeastSquares::new(&q, x, knots.clone());
+            if let Some(w) = w {
+                problem = problem.weights(w);
+            }
+            problem.solve().map(|fit| fit.curve)
+        }))
+    })
+    .py()
+    .map(Curve)
+}
+
+/// The parametrisation named `name`.
+fn parametrization(name: &str) -> PyResult<Parametrization<f64>> {
+    match name {
+        "uniform" => Ok(Parametrization::Uniform),
+        "chordal" | "chord" => Ok(Parametrization::Chordal),
+        "centripetal" => Ok(Parametrization::Centripetal),
+        other => Err(bad_input(format!(
+            "parametrization: unknown choice '{other}' (uniform, chordal or centripetal)"
+        ))),
+    }
+}
+
+/// A fit with parameter correction: the curve, the parameters of the data, the largest and
+/// the RMS deviation, the sweeps done and whether the angle criterion stopped them.
+type Fitted<'py> = (Curve, Bound<'py, PyArray1<f64>>, f64, f64, usize, bool);
+
+/// Least squares of points with `n` control points and parameter correction (seed 003):
+/// `(curve, params, max deviation, rms, sweeps, converged)`.
+#[pyfunction]
+#[pyo3(signature = (points, dim, n, k, parametrization, iterations, angle_tolerance))]
+#[allow(clippy::too_many_arguments)]
+fn fit<'py>(
+    py: Python<'py>,
+    points: PyReadonlyArray1<'py, f64>,
+    dim: usize,
+    n: usize,
+    k: usize,
+    parametrization: &str,
+    iterations: usize,
+    angle_tolerance: f64,
+) -> PyResult<Fitted<'py>> {
+    let flat = slice(&points, "points")?;
+    let how = self::parametrization(parametrization)?;
+    let options = CorrectionOptions {
+        max_iterations: iterations,
+        angle_tolerance,
+        ..CorrectionOptions::default()
+    };
+    let mut extra = (Vec::new(), 0.0, 0.0, 0, false);
+    let curve = py
+        .detach(|| {
+            by_dim!(dim, P => rows::<P>(flat).and_then(|q| {
+                let params = parametrize(&q, &how)?;
+                let knots = nurbs_book_knots(k, n, &params)?;
+                let (fit, report) =
+                    correct_parameters(&LeastSquares::new(&q, &params, knots), &options)?;
+                extra = (
+                    fit.params,
+                    fit.deviation.max,
+                    fit.deviation.rms,
+                    report.iterations,
+                    report.converged,
+                );
+                Ok(fit.curve)
+            }))
+        })
+        .py()?;
+    let (params, max, rms, sweeps, converged) = extra;
+    Ok((Curve(curve), array(py, params), max, rms, sweeps, converged))
+}
+
+/// The options of `spline smooth` (the CLI's flags, by the same names).
+#[allow(clippy::too_many_arguments)]
+fn smoothing_options(
+    control_points: Option<usize>,
+    max_deviation: Option<f64>,
+    degree: usize,
+    curvature_extrema: Option<usize>,
+    extrema: &[String],
+    objective: &str,
+    thorough: bool,
+    knot_exponents: Option<Vec<f64>>,
+) -> PyResult<SmoothingOptions> {
+    let control = match (control_points, max_deviation) {
+        (Some(n), None) => n,
+        (None, Some(_)) => 0,
+        _ => {
+            return Err(bad_input(
+                "give control_points or max_deviation (one of them)",
+            ));
+        }
+    };
+    let mut options = SmoothingOptions::new(control);
+    options.degree = degree;
+    options.thorough = thorough;
+    if let Some(betas) = knot_exponents {
+        options.knot_exponents = betas;
+    }
+    options.objective = match objective {
+        "max" => Objective::MaxDeviation,
+        "least-squares" | "lsq" => Objective::LeastSquares,
+        other => {
+            return Err(bad_input(format!(
+                "objective: unknown choice '{other}' (max or least-squares)"
+            )));
+        }
+    };
+    if !extrema.is_empty() {
+        if curvature_extrema.is_some_and(|k| k != extrema.len()) {
+            return Err(bad_input(format!(
+                "curvature_extrema disagrees with the {} extrema given",
+                extrema.len()
+            )));
+        }
+        options.extrema = extrema
+            .iter()
+            .map(|t| t.parse::<Extremum>().map_err(|e| e.context("extrema")))
+            .collect::<spline::Result<_>>()
+            .py()?;
+    } else if let Some(k) = curvature_extrema {
+        if k > MAX_CURVATURE_EXTREMA {
+            return Err(bad_input(format!(
+                "curvature_extrema: at most {MAX_CURVATURE_EXTREMA} extrema can be allowed, got {k}"
+            )));
+        }
+        options.extrema = (0..k)
+            .map(|i| {
+                if i % 2 == 0 {
+                    Extremum::maximum()
+                } else {
+                    Extremum::minimum()
+                }
+            })
+            .collect();
+    }
+    Ok(options)
+}
+
+/// What `smooth` returns besides the curve: the CLI's report fields.
+type SmoothReport = (
+    f64,
+    usize,
+    f64,
+    f64,
+    Vec<(f64, f64, f64, String)>,
+    Vec<f64>,
+    usize,
+    usize,
+    usize,
+    usize,
+);
+
+/// The selective eraser of curvature extrema (`spline smooth`) on planar points (flat,
+/// `x0, y0, x1, …`): `(curve, (max_deviation, max_deviation_index, max_deviation_to_data,
+/// rms, extrema (u, x, y, kind), inflections, refinements, conditions,
+/// least_squares_curvature_extrema, newton_steps))`.
+#[pyfunction]
+#[pyo3(signature = (points, control_points, max_deviation, degree, curvature_extrema, extrema, objective, thorough, knot_exponents))]
+#[allow(clippy::too_many_arguments)]
+fn smooth(
+    py: Python<'_>,
+    points: PyReadonlyArray1<'_, f64>,
+    control_points: Option<usize>,
+    max_deviation: Option<f64>,
+    degree: usize,
+    curvature_extrema: Option<usize>,
+    extrema: Vec<String>,
+    objective: &str,
+    thorough: bool,
+    knot_exponents: Option<Vec<f64>>,
+) -> PyResult<(Curve, SmoothReport)> {
+    let options = smoothing_options(
+        control_points,
+        max_deviation,
+        degree,
+        curvature_extrema,
+        &extrema,
+        objective,
+        thorough,
+        knot_exponents,
+    )?;
+    let q: Vec<Vector2<f64>> = rows(slice(&points, "points")?).py()?;
+    let r = py
+        .detach(|| match max_deviation {
+            Some(d) => smooth_to_tolerance(&q, d, &options),
+            None => erase(&q, &options),
+        })
+        .py()?;
+    let report = (
+        r.deviation.to_curve.max,
+        r.deviation.to_curve.max_index,
+        r.deviation.to_data,
+        r.deviation.to_curve.rms,
+        r.extrema
+            .iter()
+            .map(|e| (e.param, e.point.x, e.point.y, e.kind.to_string()))
+            .collect(),
+        r.inflections,
+        r.refinements,
+        r.conditions,
+        r.start_extrema,
+        r.newton_steps,
+    );
+    Ok((Curve(Dyn::V2(r.curve)), report))
+}
+
+/// The points of an airfoil file's text (Selig or Lednicer), flat, in Selig order, and the
+/// name line if any.
+#[pyfunction]
+fn parse_airfoil_text<'py>(
+    py: Python<'py>,
+    text: &str,
+) -> PyResult<(Bound<'py, PyArray1<f64>>, Option<String>)> {
+    let airfoil = parse_airfoil(text).py()?;
+    Ok((array(py, flatten(&airfoil.points)), airfoil.name))
+}
+
+/// Registers the functions.
+pub(crate) fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    m.add_function(wrap_pyfunction!(interpolate, m)?)?;
+    m.add_function(wrap_pyfunction!(least_squares, m)?)?;
+    m.add_function(wrap_pyfunction!(fit, m)?)?;
+    m.add_function(wrap_pyfunction!(smooth, m)?)?;
+    m.add_function(wrap_pyfunction!(parse_airfoil_text, m)?)?;
+    Ok(())
+}

@@ -1,0 +1,109 @@
+//! `spline._core`: the compiled half of the Python package `spline` (`python/python/spline/`
+//! is the other half: scipy-style wrappers, `scipy.sparse` Jacobians and the type stubs).
+//!
+//! Everything here binds the library (`spline`), it computes nothing of its own: arrays come
+//! in as contiguous `float64` numpy arrays (the Python layer converts), go out as flat numpy
+//! arrays that the Python layer reshapes without copying, long work runs with the GIL
+//! released, and every library error becomes a `spline.SplineError` (a `ValueError`)
+//! carrying the library's one-line message, its kind in `.kind`.
+
+// PyO3 extracts arguments by value (numpy borrows, vectors): the lint's advice to take a
+// reference does not apply to `#[pyfunction]`s and `#[pymethods]`.
+#![allow(clippy::needless_pass_by_value)]
+
+mod curve;
+mod fitting;
+mod nurbs;
+
+use numpy::{PyArray1, PyReadonlyArray1};
+use pyo3::create_exception;
+use pyo3::exceptions::PyValueError;
+use pyo3::prelude::*;
+use spline::algebra::CsrMatrix;
+
+create_exception!(
+    _core,
+    SplineError,
+    PyValueError,
+    "An error reported by the spline library: bad input (the message says which), or a \
+     computation that cannot succeed. `.kind` names the library's error kind."
+);
+
+/// A library error as a Python exception: `SplineError(message)` with `.kind` set.
+pub(crate) fn py_err(e: &spline::Error) -> PyErr {
+    let err = SplineError::new_err(e.to_string());
+    Python::attach(|py| {
+        // Setting an attribute on a fresh exception instance cannot fail in practice; if it
+        // did, the message is still there.
+        let _ = err.value(py).setattr("kind", format!("{:?}", e.kind()));
+    });
+    err
+}
+
+/// `Result<T, spline::Error>` → `PyResult<T>`.
+pub(crate) trait IntoPy<T> {
+    /// Converts the error with [`py_err`].
+    fn py(self) -> PyResult<T>;
+}
+
+impl<T> IntoPy<T> for spline::Result<T> {
+    fn py(self) -> PyResult<T> {
+        self.map_err(|e| py_err(&e))
+    }
+}
+
+/// A bad argument found before the library is called (a shape, a name): `SplineError` too.
+pub(crate) fn bad_input(message: impl Into<String>) -> PyErr {
+    py_err(&spline::Error::new(
+        spline::ErrorKind::InvalidArgument,
+        message,
+    ))
+}
+
+/// The contents of a contiguous 1-D array.
+pub(crate) fn slice<'a>(array: &'a PyReadonlyArray1<'_, f64>, what: &str) -> PyResult<&'a [f64]> {
+    array
+        .as_slice()
+        .map_err(|_| bad_input(format!("{what}: expected a contiguous float64 array")))
+}
+
+/// A flat vector as a 1-D numpy array (no copy).
+pub(crate) fn array(py: Python<'_>, values: Vec<f64>) -> Bound<'_, PyArray1<f64>> {
+    PyArray1::from_vec(py, values)
+}
+
+/// A sparse matrix in CSR form for `scipy.sparse.csr_array((data, indices, indptr), shape)`.
+pub(crate) type Csr<'py> = (
+    Bound<'py, PyArray1<f64>>,
+    Vec<usize>,
+    Vec<usize>,
+    (usize, usize),
+);
+
+/// Inflections, curvature extrema and the constant curvature of a planar curve.
+pub(crate) type Features<'py> = (
+    Bound<'py, PyArray1<f64>>,
+    Bound<'py, PyArray1<f64>>,
+    Option<f64>,
+);
+
+/// A library CSR matrix as the parts of a `scipy.sparse.csr_array`.
+pub(crate) fn csr<'py>(py: Python<'py>, m: &CsrMatrix<f64>) -> Csr<'py> {
+    let (indptr, indices, data) = m.csr_data();
+    (
+        array(py, data.to_vec()),
+        indices.to_vec(),
+        indptr.to_vec(),
+        (m.nrows(), m.ncols()),
+    )
+}
+
+/// The module `spline._core`.
+#[pymodule]
+fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    m.add("SplineError", m.py().get_type::<SplineError>())?;
+    curve::register(m)?;
+    fitting::register(m)?;
+    nurbs::register(m)?;
+    Ok(())
+}
