@@ -41,13 +41,24 @@ fn status_of(command: &mut Command, what: &str) -> Result<(), String> {
 
 /// The Python of `<target>/bench-venv`, created and given scipy on first use.
 pub(crate) fn ensure_venv(target: &Path) -> Result<PathBuf, String> {
-    let venv = target.join("bench-venv");
+    ensure_venv_with(target, "bench-venv", "import scipy, numpy", &["scipy"])
+}
+
+/// The Python of the virtual environment `<target>/<name>`, created on first use; `packages`
+/// are installed with pip whenever the Python statement `check` fails in it.
+pub(crate) fn ensure_venv_with(
+    target: &Path,
+    name: &str,
+    check: &str,
+    packages: &[&str],
+) -> Result<PathBuf, String> {
+    let venv = target.join(name);
     let python = venv_python(&venv);
     if !python.exists() {
         std::fs::create_dir_all(target)
             .map_err(|e| format!("cannot create {}: {e}", target.display()))?;
         eprintln!(
-            "bench: creating a Python virtual environment in {}",
+            "creating a Python virtual environment in {}",
             venv.display()
         );
         let base = if cfg!(windows) { "python" } else { "python3" };
@@ -56,17 +67,19 @@ pub(crate) fn ensure_venv(target: &Path) -> Result<PathBuf, String> {
             &format!("{base} -m venv"),
         )?;
     }
-    let has_scipy = Command::new(&python)
-        .args(["-c", "import scipy, numpy"])
+    let ready = Command::new(&python)
+        .args(["-c", check])
         .stdout(Stdio::null())
         .stderr(Stdio::null())
         .status()
         .is_ok_and(|s| s.success());
-    if !has_scipy {
-        eprintln!("bench: installing scipy with pip");
+    if !ready {
+        eprintln!("installing {} with pip", packages.join(", "));
         status_of(
-            Command::new(&python).args(["-m", "pip", "install", "--quiet", "scipy"]),
-            "pip install scipy",
+            Command::new(&python)
+                .args(["-m", "pip", "install", "--quiet"])
+                .args(packages),
+            &format!("pip install {}", packages.join(" ")),
         )?;
     }
     Ok(python)

@@ -28,7 +28,7 @@ fn run(command: &mut Command, what: &str) -> Result<(), String> {
 }
 
 /// The directory of `.dat` files, fetched and unpacked on first use.
-fn database(target: &Path) -> Result<PathBuf, String> {
+pub(crate) fn database(target: &Path) -> Result<PathBuf, String> {
     let root = target.join("airfoils");
     let dir = root.join("uiuc");
     let count = std::fs::read_dir(&dir).map_or(0, Iterator::count);

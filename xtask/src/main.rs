@@ -2,7 +2,8 @@
 //!
 //! - `ci`: exactly what CI runs (`.ci/run`): format check, clippy with warnings denied,
 //!   documentation with warnings denied, tests.
-//! - `test`: the whole test suite (the README's test command; see `test_all`).
+//! - `test`: the whole test suite (the README's test command; see `test_all`); `test python`:
+//!   only the Python package's suite.
 //! - `help` (`--help`, `-h`): the list of tasks.
 //! - `docs`: regenerate the SVG pictures in `docs/` (and `docs/studio.png`, a screenshot of
 //!   `spline studio` taken by its browser test).
@@ -12,6 +13,11 @@
 //! - `bench fit`, `bench eval`, `bench smoothing`: criterion benchmarks of fitting, of curve
 //!   evaluation and of smoothing splines against scipy in the same run (a Python virtual
 //!   environment with scipy is created under `target/`).
+//! - `bench python`: 10⁶-point evaluation through the Python package against the Rust batch
+//!   and scipy's `BSpline.__call__`, in the same run.
+//! - `dask [--all | --limit N] [--workers W]`: the UIUC database smoothed with Dask through
+//!   the Python package (`python/examples/dask_smooth.py`), compared with the tool's batch
+//!   summary.
 //! - `bench surfaces`: criterion benchmarks of closest points on surfaces against
 //!   truck-geometry and of scattered least squares against scipy, in the same run.
 //! - `fuzz [--cases N | --seconds S] [--seed S] [--target T] [--coverage]`: structured mutation
@@ -30,9 +36,11 @@ mod bench;
 mod bench_airfoils;
 mod bench_eval;
 mod bench_fit;
+mod bench_python;
 mod bench_smoothing;
 mod bench_surfaces;
 mod campaign;
+mod dask;
 mod demo;
 mod docs_constructions;
 mod docs_curve_tools;
@@ -48,6 +56,7 @@ mod mutate;
 mod reproduce;
 mod test_all;
 mod test_browser;
+mod test_python;
 
 use std::path::{Path, PathBuf};
 use std::process::{Command, ExitCode};
@@ -100,8 +109,9 @@ const TASKS: &[(&str, &str)] = &[
         "exactly what CI runs (.ci/run): format check, clippy -D warnings, docs, tests",
     ),
     (
-        "test",
-        "the whole test suite: cargo test --workspace and the suites that need more than Rust",
+        "test [python]",
+        "the whole test suite: cargo test --workspace and the suites that need more than Rust \
+         (python: only the Python package's)",
     ),
     (
         "docs",
@@ -122,6 +132,14 @@ const TASKS: &[(&str, &str)] = &[
     (
         "bench eval",
         "criterion benchmarks of curve evaluation, with scipy in the same run",
+    ),
+    (
+        "bench python",
+        "10⁶-point evaluation: the Python package vs the Rust batch vs scipy, in the same run",
+    ),
+    (
+        "dask [--all | --limit N] [--workers W]",
+        "smooth the UIUC database with Dask via the Python package; compare with the batch summary",
     ),
     (
         "bench surfaces",
@@ -174,20 +192,25 @@ fn main() -> ExitCode {
             Ok(())
         }
         Some("ci") => run_ci(&root),
+        Some("test") if args.get(1).is_some_and(|a| a == "python") => {
+            test_python::run_suite(&root)
+        }
         Some("test") => test_all::run(&root),
         Some("docs") => run_docs(&root),
         Some("demo") => demo::run(&root),
         Some("reproduce") => reproduce::run(&root),
         Some("campaign") => campaign::run(&root, &args[1..]),
         Some("fuzz") => fuzz::run(&root, &args[1..]),
+        Some("dask") => dask::run(&root, &args[1..]),
         Some("bench") => match args.get(1).map(String::as_str) {
             Some("fit") => bench_fit::run(&root),
             Some("eval") => bench_eval::run(&root),
             Some("surfaces") => bench_surfaces::run(&root),
             Some("smoothing") => bench_smoothing::run(&root),
+            Some("python") => bench_python::run(&root),
             Some("airfoils") => bench_airfoils::run_bench(&root, &args[2..]),
             _ => Err(
-                "usage: cargo xtask bench fit | eval | smoothing | surfaces | airfoils [--jobs J]"
+                "usage: cargo xtask bench fit | eval | smoothing | surfaces | python | airfoils [--jobs J]"
                     .into(),
             ),
         },

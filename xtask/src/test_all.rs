@@ -5,6 +5,8 @@
 //! 1. `cargo test --workspace`: unit, integration, property and doc tests of every crate.
 //! 2. The browser test of `spline studio` in headless Chromium (`test_browser`), which
 //!    installs `chromium` and `chromium-driver` with apt-get when they are missing.
+//! 3. The Python package (`python/`): built as a wheel and installed into a virtual
+//!    environment under `target/`, then its pytest suite (`test_python`).
 //!
 //! Suites that need more than the Rust toolchain (a Python virtual environment, a browser)
 //! install what they need under `target/` or through the system's package manager first, so
@@ -32,6 +34,7 @@ fn cargo(root: &Path, suite: &str, args: &[&str]) -> Result<(), String> {
 pub(crate) fn run(root: &Path) -> Result<(), String> {
     cargo(root, "cargo test --workspace", &["test", "--workspace"])?;
     crate::test_browser::run_browser_test(root, None)?;
+    crate::test_python::run_suite(root)?;
     println!("xtask test: every suite passed");
     Ok(())
 }
