@@ -31,6 +31,8 @@ def test_values_and_derivatives(rng, dim):
         assert ours(x).shape == x.shape + c.shape[1:]
         X = x[:12].reshape(3, 4)
         assert ours(X, 1).shape == theirs(X, 1).shape
+        assert ours(0.5).shape == theirs(0.5).shape  # a scalar gives shape c.shape[1:]
+        close(ours(x[::3]), theirs(x[::3]))  # strided input
         np.testing.assert_array_equal(ours.t, t)
         np.testing.assert_array_equal(ours.c, c)
         assert ours.k == k

@@ -18,9 +18,11 @@ FloatArray = npt.NDArray[np.float64]
 def _floats(values: ArrayLike, what: str) -> FloatArray:
     """A contiguous float64 copy-if-needed of ``values``."""
     try:
-        return np.ascontiguousarray(values, dtype=np.float64)
+        a = np.asarray(values, dtype=np.float64)
     except (TypeError, ValueError) as e:
         raise _core.SplineError(f"{what}: expected numbers ({e})") from None
+    # (np.ascontiguousarray would turn a scalar into shape (1,).)
+    return a if a.flags.c_contiguous else np.ascontiguousarray(a)
 
 
 def _flat_rows(values: ArrayLike, what: str) -> Tuple[FloatArray, int]:
