@@ -15,7 +15,7 @@ pub(crate) const MAX_DIM: usize = 4;
 
 /// Parameters evaluated per chunk: the points of a chunk stay in cache between the library's
 /// batch evaluation and the copy into the flat output.
-const CHUNK: usize = 1024;
+const CHUNK: usize = 16_384;
 
 type B<P> = BSpline<f64, P>;
 
