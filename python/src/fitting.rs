@@ -194,6 +194,7 @@ fn smoothing_options(
     extrema: &[String],
     objective: &str,
     thorough: bool,
+    closed: bool,
     knot_exponents: Option<Vec<f64>>,
 ) -> PyResult<SmoothingOptions> {
     let control = match (control_points, max_deviation) {
@@ -208,6 +209,7 @@ fn smoothing_options(
     let mut options = SmoothingOptions::new(control);
     options.degree = degree;
     options.thorough = thorough;
+    options.closed = closed;
     if let Some(betas) = knot_exponents {
         options.knot_exponents = betas;
     }
@@ -253,6 +255,7 @@ fn smoothing_options(
 
 /// What `smooth` returns besides the curve: the CLI's report fields.
 type SmoothReport = (
+    (bool, usize, usize, usize),
     f64,
     usize,
     f64,
@@ -266,11 +269,12 @@ type SmoothReport = (
 );
 
 /// The selective eraser of curvature extrema (`spline smooth`) on planar points (flat,
-/// `x0, y0, x1, …`): `(curve, (max_deviation, max_deviation_index, max_deviation_to_data,
-/// rms, extrema (u, x, y, kind), inflections, refinements, conditions,
-/// least_squares_curvature_extrema, newton_steps))`.
+/// `x0, y0, x1, …`): `(curve, ((closed, first_point, control_points, control points of the
+/// opened curve), max_deviation, max_deviation_index, max_deviation_to_data, rms, extrema
+/// (u, x, y, kind), inflections, refinements, conditions, least_squares_curvature_extrema,
+/// newton_steps))`. A closed curve comes as its wrapped container (as the CLI writes it).
 #[pyfunction]
-#[pyo3(signature = (points, control_points, max_deviation, degree, curvature_extrema, extrema, objective, thorough, knot_exponents))]
+#[pyo3(signature = (points, control_points, max_deviation, degree, curvature_extrema, extrema, objective, thorough, closed, knot_exponents))]
 #[allow(clippy::too_many_arguments)]
 fn smooth(
     py: Python<'_>,
@@ -282,6 +286,7 @@ fn smooth(
     extrema: Vec<String>,
     objective: &str,
     thorough: bool,
+    closed: bool,
     knot_exponents: Option<Vec<f64>>,
 ) -> PyResult<(Curve, SmoothReport)> {
     let options = smoothing_options(
@@ -292,6 +297,7 @@ fn smooth(
         &extrema,
         objective,
         thorough,
+        closed,
         knot_exponents,
     )?;
     let q: Vec<Vector2<f64>> = rows(slice(&points, "points")?).py()?;
@@ -301,7 +307,13 @@ fn smooth(
             None => erase(&q, &options),
         })
         .py()?;
+    let opened = r.curve.control_points().len();
+    let (curve, count) = match &r.periodic {
+        Some(periodic) => (periodic.wrapped().clone(), periodic.len()),
+        None => (r.curve.clone(), opened),
+    };
     let report = (
+        (r.periodic.is_some(), r.first_point, count, opened),
         r.deviation.to_curve.max,
         r.deviation.to_curve.max_index,
         r.deviation.to_data,
@@ -316,7 +328,7 @@ fn smooth(
         r.start_extrema,
         r.newton_steps,
     );
-    Ok((Curve(Dyn::V2(r.curve)), report))
+    Ok((Curve(Dyn::V2(curve)), report))
 }
 
 /// The points of an airfoil file's text (Selig or Lednicer), flat, in Selig order, and the

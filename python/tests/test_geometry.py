@@ -121,3 +121,19 @@ def test_interpolation_reproduces_cubics():
     np.testing.assert_allclose(s(xx), xx**3 - xx, atol=1e-12)
     np.testing.assert_allclose(s(xx, 1), 3 * xx**2 - 1, atol=1e-11)
     assert isinstance(si.BSpline(s.t, s.c, s.k), si.BSpline)
+
+
+def test_smooth_closed_contour():
+    # An ellipse 2 × 1 with a deterministic jitter: four vertices round the closed curve.
+    k = np.arange(80)
+    t = 0.3 + 2 * np.pi * k / 80
+    noise = 1e-3 * (((k * 7919) % 13) / 6.0 - 1.0)
+    pts = np.c_[2 * np.cos(t) + noise, np.sin(t) - noise]
+    r = spline.smooth(pts, 16, closed=True, extrema=["min", "max", "min", "max"])
+    assert r.closed and r.control_points == 16
+    assert sorted(e.kind for e in r.extrema) == ["maximum", "maximum", "minimum", "minimum"]
+    assert r.max_deviation < 6e-3
+    # The wrapped container closes: it starts and ends at the same point with the same tangent.
+    lo, hi = r.curve.domain
+    np.testing.assert_allclose(r.curve(lo), r.curve(hi), atol=1e-12)
+    np.testing.assert_allclose(r.curve(lo, 1), r.curve(hi, 1), rtol=1e-9, atol=1e-9)

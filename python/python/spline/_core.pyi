@@ -63,10 +63,12 @@ def smooth(
     extrema: List[str],
     objective: str,
     thorough: bool,
+    closed: bool,
     knot_exponents: Optional[List[float]],
 ) -> Tuple[
     Curve,
     Tuple[
+        Tuple[bool, int, int, int],
         float,
         int,
         float,

@@ -68,6 +68,9 @@ class SmoothedCurve:
     """The result of ``smooth`` (the fields of ``spline smooth``'s JSON output)."""
 
     curve: BSpline
+    closed: bool
+    first_point: int
+    control_points: int
     max_deviation: float
     max_deviation_index: int
     max_deviation_to_data: float
@@ -78,11 +81,7 @@ class SmoothedCurve:
     conditions: int
     least_squares_curvature_extrema: int
     newton_steps: int
-
-    @property
-    def control_points(self) -> int:
-        """The number of control points of the curve."""
-        return len(self.curve.t) - self.curve.k - 1
+    opened_control_points: int
 
 
 def smooth(
@@ -95,6 +94,7 @@ def smooth(
     extrema: Sequence[str] = (),
     objective: str = "max",
     thorough: bool = False,
+    closed: bool = False,
     knot_exponents: Optional[Sequence[float]] = None,
 ) -> SmoothedCurve:
     """The selective eraser of curvature extrema (thesis ch. 6), as ``spline smooth``: the
@@ -106,7 +106,9 @@ def smooth(
     - ``curvature_extrema`` (alternating max, min, …) or ``extrema``: ``"max"``, ``"min"``,
       ``"max@U"``, ``"min@U"`` in the order of the data (default: one maximum);
     - ``objective``: ``"max"`` (largest deviation) or ``"least-squares"``;
-    - ``thorough``: try every knot density; ``knot_exponents``: the exponents tried.
+    - ``thorough``: try every knot density; ``knot_exponents``: the exponents tried;
+    - ``closed``: the data are a closed contour; the result is periodic, returned as its
+      wrapped container (the last ``degree`` control points repeat the first ones).
     """
     pts = _floats(points, "points")
     if pts.ndim != 2 or pts.shape[1] != 2:
@@ -120,11 +122,16 @@ def smooth(
         [str(e) for e in extrema],
         objective,
         bool(thorough),
+        bool(closed),
         None if knot_exponents is None else [float(b) for b in knot_exponents],
     )
-    mx, imx, to_data, rms, ext, infl, refinements, conditions, start, newton = r
+    (closed_, first, count, opened), mx, imx, to_data, rms, ext, infl = r[:7]
+    refinements, conditions, start, newton = r[7:]
     return SmoothedCurve(
         curve=BSpline._wrap(curve),
+        closed=closed_,
+        first_point=first,
+        control_points=count,
         max_deviation=mx,
         max_deviation_index=imx,
         max_deviation_to_data=to_data,
@@ -135,6 +142,7 @@ def smooth(
         conditions=conditions,
         least_squares_curvature_extrema=start,
         newton_steps=newton,
+        opened_control_points=opened,
     )
 
 
@@ -166,7 +174,7 @@ def smooth_file(path: Union[str, os.PathLike], **options: Any) -> Dict[str, Any]
         r = smooth(points, **options)
         line: Dict[str, Any] = {
             "name": name,
-            "control_points": r.control_points,
+            "control_points": r.opened_control_points,
             "max_deviation": r.max_deviation,
             "max_deviation_to_data": r.max_deviation_to_data,
             "extrema": len(r.extrema),
