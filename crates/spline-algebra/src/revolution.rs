@@ -112,7 +112,7 @@ pub fn revolution_numerators<T: Scalar>(
 /// )?;
 /// let features = spline_algebra::revolution_features(&f, 1e-12)?;
 /// assert_eq!(features.parabolic.len(), 1);
-/// assert!(features.parabolic[0].abs() < 1e-12);
+/// assert!(f64::abs(features.parabolic[0]) < 1e-12);
 /// # Ok::<(), spline_core::Error>(())
 /// ```
 ///
