@@ -36,6 +36,10 @@ pub struct BSpline<T, P> {
     control_points: Vec<P>,
 }
 
+/// Up to this many knot spans, batches search spans by bisection instead of
+/// [`BatchBasis`]'s tables.
+const FEW_SPANS: usize = 16;
+
 /// Accessors, for any point type (control points, [`spline_core::SymbolicPoint`]s, lines of
 /// a surface's net).
 impl<T: Scalar, P> BSpline<T, P> {
@@ -91,6 +95,16 @@ impl<T: Scalar, P> BSpline<T, P> {
     #[inline]
     pub fn control_points_mut(&mut self) -> &mut [P] {
         &mut self.control_points
+    }
+
+    /// Inserts the sorted knots `x` (A5.4) in place, no checks: the kernel of every
+    /// insertion and refinement.
+    pub(crate) fn refine_sorted_unchecked(&mut self, x: &[T])
+    where
+        T: Scalar,
+        P: spline_core::VectorSpace<T>,
+    {
+        crate::transfer::refine_in_place(&mut self.knots, &mut self.control_points, x);
     }
 
     /// Splits the spline into its knot vector and control points.
@@ -340,19 +354,31 @@ impl<T: Scalar, P: ControlPoint<T>> BSpline<T, P> {
     /// [`ErrorKind::InvalidLength`] if the lengths differ; [`ErrorKind::NonFinite`] or
     /// [`ErrorKind::OutOfDomain`] for the first bad parameter.
     pub fn eval_many_into(&self, params: &[T], out: &mut [P]) -> Result<()> {
+        self.eval_many_map(params, out, |point| point)
+    }
+
+    /// [`BSpline::eval_many_into`] writing `map(C(u))`: the batch kernel shared with rational
+    /// curves (which project each homogeneous point).
+    #[inline]
+    pub(crate) fn eval_many_map<Q>(
+        &self,
+        params: &[T],
+        out: &mut [Q],
+        map: impl Fn(P) -> Q,
+    ) -> Result<()> {
         check_same_len(params.len(), out.len())?;
         self.check_params_in_domain(params)?;
         match self.degree() {
-            1 => self.eval_many_fixed::<2>(params, out),
-            2 => self.eval_many_fixed::<3>(params, out),
-            3 => self.eval_many_fixed::<4>(params, out),
-            4 => self.eval_many_fixed::<5>(params, out),
-            5 => self.eval_many_fixed::<6>(params, out),
+            1 => self.eval_many_fixed::<2, Q>(params, out, map),
+            2 => self.eval_many_fixed::<3, Q>(params, out, map),
+            3 => self.eval_many_fixed::<4, Q>(params, out, map),
+            4 => self.eval_many_fixed::<5, Q>(params, out, map),
+            5 => self.eval_many_fixed::<6, Q>(params, out, map),
             _ => {
                 let mut span = self.degree();
                 for (slot, &u) in out.iter_mut().zip(params) {
                     span = self.knots.span_in_domain_from(u, span);
-                    *slot = self.combine_general(span, u);
+                    *slot = map(self.combine_general(span, u));
                 }
             }
         }
@@ -361,7 +387,24 @@ impl<T: Scalar, P: ControlPoint<T>> BSpline<T, P> {
 
     /// Batch evaluation for a fixed degree, parameters in any order: spans from a bucket
     /// table, division-free basis functions ([`BatchBasis`]).
-    fn eval_many_fixed<const N: usize>(&self, params: &[T], out: &mut [P]) {
+    #[inline]
+    fn eval_many_fixed<const N: usize, Q>(
+        &self,
+        params: &[T],
+        out: &mut [Q],
+        map: impl Fn(P) -> Q,
+    ) {
+        if self.knots.num_basis() - self.degree() <= FEW_SPANS {
+            // A few spans (a circle has four): bisection takes at most four branch-free steps
+            // and the plain basis functions are then faster than the tables (measured by
+            // `cargo xtask bench peers`, the NURBS circle).
+            // No hint from the previous span: in random order its test is a coin toss.
+            for (slot, &u) in out.iter_mut().zip(params) {
+                let span = self.knots.span_in_domain(u);
+                *slot = map(self.combine_fixed::<N>(span, u));
+            }
+            return;
+        }
         let batch = BatchBasis::new(&self.knots);
         let mut span = usize::MAX;
         for (slot, &u) in out.iter_mut().zip(params) {
@@ -372,7 +415,7 @@ impl<T: Scalar, P: ControlPoint<T>> BSpline<T, P> {
             for r in 1..N {
                 acc += points[r] * basis[r];
             }
-            *slot = acc;
+            *slot = map(acc);
         }
     }
 

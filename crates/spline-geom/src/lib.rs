@@ -43,6 +43,8 @@ mod homogeneous;
 mod mesh;
 mod nurbs;
 mod operations;
+#[cfg(feature = "parallel")]
+mod parallel;
 mod param;
 mod param_impls;
 mod periodic;

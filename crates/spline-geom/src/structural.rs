@@ -7,7 +7,7 @@
 //! The target knot vectors come from the rules of [`KnotVector`] in spline-core.
 
 use crate::bspline::BSpline;
-use crate::transfer::{reduce_points, refine_points};
+use crate::transfer::reduce_points;
 use spline_core::{
     ControlPoint, Error, ErrorKind, KnotVector, Result, Scalar, VectorSpace, binomial, from_count,
     to_f64,
@@ -70,8 +70,9 @@ fn differences<T: Scalar, V: VectorSpace<T>>(knots: &KnotVector<T>, points: &[V]
 impl<T: Scalar, V: VectorSpace<T>> BSpline<T, V> {
     /// The spline with the sorted knots `x` inserted (A5.4), no checks.
     fn refined_unchecked(&self, x: &[T]) -> Self {
-        let (knots, points) = refine_points(self.knots(), self.control_points(), x);
-        Self::new_unchecked(KnotVector::new_unchecked(self.degree(), knots), points)
+        let mut curve = self.clone();
+        curve.refine_sorted_unchecked(x);
+        curve
     }
 
     /// The spline on a space contained in this one (see [`BSpline::reduced`]), no checks.
@@ -158,10 +159,32 @@ impl<T: Scalar, V: VectorSpace<T>> BSpline<T, V> {
     /// [`ErrorKind::NonFinite`]/[`ErrorKind::OutOfDomain`] for `u`;
     /// [`ErrorKind::KnotMultiplicity`] if `u` would appear more than `p + 1` times.
     pub fn insert_knot(&self, u: T, times: usize) -> Result<Self> {
-        let target = self.knots().with_inserted(u, times)?;
-        let curve = self.refined_unchecked(&vec![u; times]);
-        debug_assert_eq!(curve.knots(), &target);
+        let mut curve = self.clone();
+        curve.insert_knot_mut(u, times)?;
         Ok(curve)
+    }
+
+    /// [`BSpline::insert_knot`] in place: the knots and control points grow by `times`
+    /// entries (amortised, no new allocation per call) and `p` points change. Inserting many
+    /// knots one at a time this way costs a shift of the tail per knot.
+    ///
+    /// ```
+    /// use spline_geom::BSpline;
+    /// let mut f = BSpline::from_knots(2, vec![0.0, 0.0, 0.0, 1.0, 1.0, 1.0], vec![0.0, 1.0, 0.0])?;
+    /// f.insert_knot_mut(0.5, 1)?;
+    /// assert_eq!(f.control_points(), &[0.0, 0.5, 0.5, 0.0]);
+    /// assert!(f.insert_knot_mut(0.5, 3).is_err()); // multiplicity 4 > p + 1: unchanged
+    /// assert_eq!(f.len(), 4);
+    /// # Ok::<(), spline_core::Error>(())
+    /// ```
+    ///
+    /// # Errors
+    /// As [`BSpline::insert_knot`]; the curve is unchanged on error.
+    pub fn insert_knot_mut(&mut self, u: T, times: usize) -> Result<()> {
+        self.knots().check_insertion(u, times)?;
+        let x = [u; spline_core::MAX_ORDER];
+        self.refine_sorted_unchecked(&x[..times]);
+        Ok(())
     }
 
     /// Inserts many knots at once (knot refinement, The NURBS Book A5.4), in `O(n + r p)`.
@@ -170,15 +193,27 @@ impl<T: Scalar, V: VectorSpace<T>> BSpline<T, V> {
     /// # Errors
     /// As [`BSpline::insert_knot`] for each knot, checked before anything is computed.
     pub fn refine(&self, new_knots: &[T]) -> Result<Self> {
-        if new_knots.is_empty() {
-            return Ok(self.clone());
-        }
-        let target = self.knots().refined(new_knots)?;
-        let mut x = new_knots.to_vec();
-        x.sort_by(|a, b| a.partial_cmp(b).unwrap_or(std::cmp::Ordering::Equal));
-        let curve = self.refined_unchecked(&x);
-        debug_assert_eq!(curve.knots(), &target);
+        let mut curve = self.clone();
+        curve.refine_mut(new_knots)?;
         Ok(curve)
+    }
+
+    /// [`BSpline::refine`] in place (sorted knots need no copy of them).
+    ///
+    /// # Errors
+    /// As [`BSpline::refine`]; the curve is unchanged on error.
+    pub fn refine_mut(&mut self, new_knots: &[T]) -> Result<()> {
+        self.knots().check_new_knots(new_knots)?;
+        if new_knots.is_sorted_by(|a, b| a <= b) {
+            self.knots().check_refinement(new_knots)?;
+            self.refine_sorted_unchecked(new_knots);
+        } else {
+            let mut x = new_knots.to_vec();
+            x.sort_by(|a, b| a.partial_cmp(b).unwrap_or(std::cmp::Ordering::Equal));
+            self.knots().check_refinement(&x)?;
+            self.refine_sorted_unchecked(&x);
+        }
+        Ok(())
     }
 
     /// The spline on a *subspace* (same degree and domain, every knot at most as often as

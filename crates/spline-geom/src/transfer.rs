@@ -1,6 +1,6 @@
 //! The two kernels behind every structural operation, generic over the point type:
 //!
-//! - [`refine_points`]: knot refinement (The NURBS Book A5.4), which also serves insertion,
+//! - [`refine_in_place`]: knot refinement (The NURBS Book A5.4), which also serves insertion,
 //!   clamping, restriction, splitting and Bézier extraction (refine, then slice);
 //! - [`reduce_points`]: the transfer onto a space contained in the source space (exact knot
 //!   removal, the last step of degree elevation, unclamping), where every target
@@ -18,60 +18,67 @@
 use spline_core::{KnotVector, MAX_ORDER, Scalar, VectorSpace, to_f64};
 
 /// Inserts the sorted knots `x` (inside the domain, multiplicities checked by the caller)
-/// into the spline with coefficients `points` on `knots` (The NURBS Book A5.4, in
-/// `O(n + r p)`): returns the refined knots and coefficients.
-// The indices mirror A5.4 so that the code can be checked against the book.
+/// into the spline with coefficients `points` on `knot_vector` (The NURBS Book A5.4, in
+/// `O(n + r p)`), in the vectors themselves: both grow by `x.len()` and are updated from
+/// the back, so that every old value is read before its slot is written. No allocation
+/// beyond the growth of the two vectors.
+// The indices mirror A5.4 so that the code can be checked against the book: `old(i)` is
+// the old knot `i`, still in place whenever it is read (every write lands above it).
 #[allow(clippy::many_single_char_names)]
-pub(crate) fn refine_points<T: Scalar, V: VectorSpace<T>>(
-    knots: &KnotVector<T>,
-    points: &[V],
+pub(crate) fn refine_in_place<T: Scalar, V: VectorSpace<T>>(
+    knot_vector: &mut KnotVector<T>,
+    points: &mut Vec<V>,
     x: &[T],
-) -> (Vec<T>, Vec<V>) {
+) {
     if x.is_empty() {
-        return (knots.knots().to_vec(), points.to_vec());
+        return;
     }
-    let p = knots.degree();
-    let old_knots = knots.knots();
+    let p = knot_vector.degree();
+    let a = knot_vector.span_in_domain(x[0]);
+    let b = knot_vector.span_in_domain(x[x.len() - 1]) + 1;
+    knot_vector.update_unchecked(|knots| refine_vectors(p, (a, b), knots, points, x));
+}
+
+#[allow(clippy::many_single_char_names)]
+fn refine_vectors<T: Scalar, V: VectorSpace<T>>(
+    p: usize,
+    (a, b): (usize, usize),
+    knots: &mut Vec<T>,
+    points: &mut Vec<V>,
+    x: &[T],
+) {
     let n = points.len() - 1; // index of the last control point
     let m = n + p + 1; // index of the last knot
     let r = x.len() - 1;
-    let a = knots.span_in_domain(x[0]);
-    let b = knots.span_in_domain(x[r]) + 1;
-    let mut q = Vec::with_capacity(n + r + 2);
-    q.extend_from_slice(&points[..=a - p]);
-    q.resize(n + r + 2, V::zero_vector());
-    for j in b - 1..=n {
-        q[j + r + 1] = points[j].clone();
-    }
-    let mut ubar = vec![T::zero(); m + r + 2];
-    ubar[..=a].copy_from_slice(&old_knots[..=a]);
-    for j in b + p..=m {
-        ubar[j + r + 1] = old_knots[j];
-    }
+    // Shift the unchanged tails right by r + 1 (one memmove each; old values below b − 1
+    // and b + p stay put).
+    points.resize(n + r + 2, V::zero_vector());
+    points[b - 1..].rotate_right(r + 1);
+    knots.resize(m + r + 2, T::zero());
+    knots[b + p..].rotate_right(r + 1);
     let mut i = b + p - 1;
     let mut k = b + p + r;
     for j in (0..=r).rev() {
-        while x[j] <= old_knots[i] && i > a {
-            q[k - p - 1] = points[i - p - 1].clone();
-            ubar[k] = old_knots[i];
+        while x[j] <= knots[i] && i > a {
+            points[k - p - 1] = points[i - p - 1].clone();
+            knots[k] = knots[i];
             k -= 1;
             i -= 1;
         }
-        q[k - p - 1] = q[k - p].clone();
+        points[k - p - 1] = points[k - p].clone();
         for l in 1..=p {
             let ind = k - p + l;
-            let alpha = ubar[k + l] - x[j];
+            let alpha = knots[k + l] - x[j];
             if alpha == T::zero() {
-                q[ind - 1] = q[ind].clone();
+                points[ind - 1] = points[ind].clone();
             } else {
-                let alpha = alpha / (ubar[k + l] - old_knots[i + l - p]);
-                q[ind - 1] = q[ind - 1].combine(alpha, &q[ind], T::one() - alpha);
+                let alpha = alpha / (knots[k + l] - knots[i + l - p]);
+                points[ind - 1] = points[ind - 1].combine(alpha, &points[ind], T::one() - alpha);
             }
         }
-        ubar[k] = x[j];
+        knots[k] = x[j];
         k -= 1;
     }
-    (ubar, q)
 }
 
 /// Writes into `out[r]`, `r = 0..=p`, the blossom at `args` (length `p`) of the basis

@@ -156,6 +156,29 @@ impl<T: Scalar> KnotVector<T> {
         Self { degree, knots }
     }
 
+    /// Changes the knots in place through `f`, which must leave them valid (the library's
+    /// own in-place algorithms: knot insertion and refinement grow the vector without a new
+    /// allocation per call). The invariants are checked in debug builds.
+    ///
+    /// ```
+    /// let mut k = spline_core::KnotVector::new(1, vec![0.0, 0.0, 1.0, 1.0])?;
+    /// k.update_unchecked(|knots| knots.insert(2, 0.5));
+    /// assert_eq!(k.knots(), &[0.0, 0.0, 0.5, 1.0, 1.0]);
+    /// # Ok::<(), spline_core::Error>(())
+    /// ```
+    ///
+    /// # Panics
+    /// In debug builds, if the knots are invalid afterwards.
+    #[inline]
+    pub fn update_unchecked<R>(&mut self, f: impl FnOnce(&mut Vec<T>) -> R) -> R {
+        let out = f(&mut self.knots);
+        #[cfg(debug_assertions)]
+        if let Err(e) = Self::new(self.degree, self.knots.clone()) {
+            panic!("invalid knot vector from a trusted caller: {e}");
+        }
+        out
+    }
+
     /// `p + 1` copies of `a`, `n − p − 1` uniformly spaced interior knots, `p + 1` copies of `b`.
     ///
     /// ```

@@ -23,6 +23,22 @@ impl<T: Scalar> KnotVector<T> {
     /// [`ErrorKind::OutOfDomain`] outside the domain; [`ErrorKind::KnotMultiplicity`] if the
     /// multiplicity would exceed `p + 1`.
     pub fn with_inserted(&self, u: T, times: usize) -> Result<Self> {
+        self.check_insertion(u, times)?;
+        let at = self.knots().partition_point(|&k| k <= u);
+        let mut knots = Vec::with_capacity(self.len() + times);
+        knots.extend_from_slice(&self.knots()[..at]);
+        knots.extend(std::iter::repeat_n(u, times));
+        knots.extend_from_slice(&self.knots()[at..]);
+        Self::new(self.degree(), knots)
+    }
+
+    /// Checks that `u` can be inserted `times` times (the errors of
+    /// [`KnotVector::with_inserted`]) without building the new knot vector: two binary
+    /// searches, no allocation.
+    ///
+    /// # Errors
+    /// As [`KnotVector::with_inserted`].
+    pub fn check_insertion(&self, u: T, times: usize) -> Result<()> {
         self.check_param(u)?;
         let present = self.multiplicity(u);
         let room = self.order() - present.min(self.order());
@@ -39,12 +55,7 @@ impl<T: Scalar> KnotVector<T> {
             .with_value(to_f64(u))
             .with_counts(room, times));
         }
-        let at = self.knots().partition_point(|&k| k <= u);
-        let mut knots = Vec::with_capacity(self.len() + times);
-        knots.extend_from_slice(&self.knots()[..at]);
-        knots.extend(std::iter::repeat_n(u, times));
-        knots.extend_from_slice(&self.knots()[at..]);
-        Self::new(self.degree(), knots)
+        Ok(())
     }
 
     /// The knot vector with all of `new_knots` inserted (knot refinement; any order,
@@ -54,15 +65,66 @@ impl<T: Scalar> KnotVector<T> {
     /// [`ErrorKind::NonFinite`] or [`ErrorKind::OutOfDomain`] for a knot (named by its index);
     /// [`ErrorKind::KnotMultiplicity`] if a multiplicity would exceed `p + 1`.
     pub fn refined(&self, new_knots: &[T]) -> Result<Self> {
+        self.check_new_knots(new_knots)?;
+        let mut sorted = new_knots.to_vec();
+        sorted.sort_by(|a, b| a.partial_cmp(b).unwrap_or(std::cmp::Ordering::Equal));
+        self.check_refinement(&sorted)?;
+        let mut all = Vec::with_capacity(self.len() + new_knots.len());
+        all.extend_from_slice(self.knots());
+        all.extend_from_slice(&sorted);
+        all.sort_by(|a, b| a.partial_cmp(b).unwrap_or(std::cmp::Ordering::Equal));
+        Ok(Self::new_unchecked(self.degree(), all))
+    }
+
+    /// Checks that every one of `new_knots` is a finite parameter of the domain (the first
+    /// error of [`KnotVector::refined`], naming the knot by its index).
+    ///
+    /// # Errors
+    /// [`ErrorKind::NonFinite`] or [`ErrorKind::OutOfDomain`].
+    pub fn check_new_knots(&self, new_knots: &[T]) -> Result<()> {
         for (j, &u) in new_knots.iter().enumerate() {
             self.check_param(u)
                 .map_err(|e| e.with_index(j).context(format_args!("knot {j}")))?;
         }
-        let mut all = Vec::with_capacity(self.len() + new_knots.len());
-        all.extend_from_slice(self.knots());
-        all.extend_from_slice(new_knots);
-        all.sort_by(|a, b| a.partial_cmp(b).unwrap_or(std::cmp::Ordering::Equal));
-        Self::new(self.degree(), all)
+        Ok(())
+    }
+
+    /// Checks that inserting the *sorted* knots `sorted` (already checked to lie in the
+    /// domain) leaves every multiplicity at most `p + 1`: one merge, no allocation.
+    ///
+    /// # Errors
+    /// [`ErrorKind::KnotMultiplicity`] naming the first knot that would appear too often.
+    pub fn check_refinement(&self, sorted: &[T]) -> Result<()> {
+        let order = self.order();
+        let old = self.knots();
+        // Walks both sorted sequences once: `i` is the first old knot not below `u`.
+        let mut i = 0;
+        let mut j = 0;
+        while j < sorted.len() {
+            let u = sorted[j];
+            let mut end = j + 1;
+            while end < sorted.len() && sorted[end] == u {
+                end += 1;
+            }
+            while i < old.len() && old[i] < u {
+                i += 1;
+            }
+            let present = old[i..].iter().take_while(|&&k| k == u).count();
+            let count = end - j + present;
+            if count > order {
+                return Err(Error::new(
+                    ErrorKind::KnotMultiplicity,
+                    format!(
+                        "knot {} appears {count} times; a degree-{} spline allows at most {order}",
+                        to_f64(u),
+                        self.degree()
+                    ),
+                )
+                .with_value(to_f64(u)));
+            }
+            j = end;
+        }
+        Ok(())
     }
 
     /// The knot vector with the interior knot `u` removed `times` times.

@@ -151,25 +151,42 @@ impl<T: Scalar, const D: usize> NurbsCurve<T, D> {
         Ok(self.container.eval_in_span(span, u).project())
     }
 
-    /// Evaluates at many parameters (increasing order takes a constant-time span search).
+    /// Evaluates at many parameters.
     ///
     /// # Errors
-    /// [`ErrorKind::NonFinite`] or [`ErrorKind::OutOfDomain`] for the first bad parameter.
+    /// As [`NurbsCurve::eval_many_into`].
     pub fn eval_many(&self, params: &[T]) -> Result<Vec<SVector<T, D>>> {
-        let knots = self.container.knots();
-        for (i, &u) in params.iter().enumerate() {
-            knots
-                .check_param(u)
-                .map_err(|e| e.context(format_args!("parameter {i}")))?;
-        }
-        let mut span = self.degree();
-        Ok(params
-            .iter()
-            .map(|&u| {
-                span = knots.span_in_domain_from(u, span);
-                self.container.eval_in_span(span, u).project()
-            })
-            .collect())
+        let mut out = vec![SVector::zeros(); params.len()];
+        self.eval_many_into(params, &mut out)?;
+        Ok(out)
+    }
+
+    /// Evaluates at many parameters into `out` (same length), in any order and without
+    /// allocating: the batch kernel of [`BSpline::eval_many_into`] in homogeneous space
+    /// (spans from a bucket table, division-free basis functions), then the projection.
+    /// All parameters are checked before anything is written.
+    ///
+    /// ```
+    /// use nalgebra::Vector2;
+    /// use spline_geom::NurbsCurve;
+    /// let quarter = NurbsCurve::from_knots(2, vec![0.0, 0.0, 0.0, 1.0, 1.0, 1.0],
+    ///     vec![Vector2::new(1.0, 0.0), Vector2::new(1.0, 1.0), Vector2::new(0.0, 1.0)],
+    ///     vec![1.0, 1.0, 2.0])?;
+    /// let params = [0.9, 0.1, 0.5];
+    /// let mut out = [Vector2::zeros(); 3];
+    /// quarter.eval_many_into(&params, &mut out)?;
+    /// for (p, &u) in out.iter().zip(&params) {
+    ///     assert!((p - quarter.eval(u)?).norm() < 1e-15);
+    ///     assert!((p.norm() - 1.0).abs() < 1e-15);
+    /// }
+    /// # Ok::<(), spline_core::Error>(())
+    /// ```
+    ///
+    /// # Errors
+    /// [`ErrorKind::InvalidLength`] if the lengths differ; [`ErrorKind::NonFinite`] or
+    /// [`ErrorKind::OutOfDomain`] for the first bad parameter.
+    pub fn eval_many_into(&self, params: &[T], out: &mut [SVector<T, D>]) -> Result<()> {
+        self.container.eval_many_map(params, out, |h| h.project())
     }
 
     /// $R(u), R'(u), …, R^{(k)}(u)$ with `k = out.len() − 1` (The NURBS Book A4.2), written

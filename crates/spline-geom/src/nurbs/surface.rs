@@ -180,10 +180,18 @@ impl<T: Scalar, const D: usize> NurbsSurface<T, D> {
         let (su, sv) = self.container.find_spans(u, v)?;
         let (p, q) = self.container.degrees();
         let top = order.min(p.max(q));
-        let mut hom = vec![Homogeneous::<T, D>::origin(); (top + 1) * (top + 1)];
-        self.container
-            .derivatives_in_spans(su, sv, u, v, top, &mut hom);
-        rational_surface_derivatives(&hom, top, order, out)
+        // On the stack up to order 5 (the usual case), on the heap above.
+        let len = (top + 1) * (top + 1);
+        let mut stack = [Homogeneous::<T, D>::origin(); 36];
+        let mut heap = Vec::new();
+        let hom = if len <= stack.len() {
+            &mut stack[..len]
+        } else {
+            heap.resize(len, Homogeneous::<T, D>::origin());
+            &mut heap[..]
+        };
+        self.container.derivatives_in_spans(su, sv, u, v, top, hom);
+        rational_surface_derivatives(hom, top, order, out)
     }
 
     /// The rational partial derivatives `[k][l]` for `0 ≤ k, l ≤ order`.

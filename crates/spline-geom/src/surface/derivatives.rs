@@ -1,7 +1,7 @@
 //! Partial derivatives of surfaces (all orders up to a bound, or one) and evaluation on
 //! grids by the tensor fast path.
 
-use super::{BasisTable, Surface, basis_into};
+use super::{BasisTable, SMALL_DEGREE, SMALL_TABLE, Surface, basis_into};
 #[cfg(doc)]
 use spline_core::ErrorKind;
 use spline_core::{ControlPoint, MAX_ORDER, Result, Scalar};
@@ -40,14 +40,38 @@ impl<T: Scalar, P: ControlPoint<T>> Surface<T, P> {
         out: &mut [P],
     ) {
         let (p, q) = self.degrees();
+        if p.max(q) <= SMALL_DEGREE {
+            let mut table_u = BasisTable::<T, SMALL_TABLE>::new();
+            let mut table_v = BasisTable::<T, SMALL_TABLE>::new();
+            let du = table_u.fill(&self.knots_u, su, u, order);
+            let dv = table_v.fill(&self.knots_v, sv, v, order);
+            let mut temp = [P::origin(); SMALL_DEGREE + 1];
+            self.combine_derivatives((su, sv), (du, dv), order, &mut temp, out);
+        } else {
+            let mut table_u = BasisTable::<T, { MAX_ORDER * MAX_ORDER }>::new();
+            let mut table_v = BasisTable::<T, { MAX_ORDER * MAX_ORDER }>::new();
+            let du = table_u.fill(&self.knots_u, su, u, order);
+            let dv = table_v.fill(&self.knots_v, sv, v, order);
+            let mut temp = [P::origin(); MAX_ORDER];
+            self.combine_derivatives((su, sv), (du, dv), order, &mut temp, out);
+        }
+    }
+
+    /// The partial derivatives from the basis-derivative tables of both directions (rows
+    /// of `p + 1` and `q + 1`), `temp` holding at least `q + 1` points.
+    #[inline]
+    fn combine_derivatives(
+        &self,
+        (su, sv): (usize, usize),
+        (du, dv): (&[T], &[T]),
+        order: usize,
+        temp: &mut [P],
+        out: &mut [P],
+    ) {
+        let (p, q) = self.degrees();
         let nv = self.knots_v.num_basis();
         let width = order + 1;
-        let mut table_u = BasisTable::new();
-        let mut table_v = BasisTable::new();
-        let du = table_u.fill(&self.knots_u, su, u, order);
-        let dv = table_v.fill(&self.knots_v, sv, v, order);
         out.iter_mut().for_each(|o| *o = P::origin());
-        let mut temp = [P::origin(); MAX_ORDER];
         for k in 0..=order.min(p) {
             let nu_k = &du[k * (p + 1)..(k + 1) * (p + 1)];
             temp[..=q].iter_mut().for_each(|t| *t = P::origin());
@@ -108,8 +132,8 @@ impl<T: Scalar, P: ControlPoint<T>> Surface<T, P> {
             return Ok(P::origin());
         }
         let nv = self.knots_v.num_basis();
-        let mut table_u = BasisTable::new();
-        let mut table_v = BasisTable::new();
+        let mut table_u = BasisTable::<T, { MAX_ORDER * MAX_ORDER }>::new();
+        let mut table_v = BasisTable::<T, { MAX_ORDER * MAX_ORDER }>::new();
         let du = &table_u.fill(&self.knots_u, su, u, k)[k * (p + 1)..];
         let dv = &table_v.fill(&self.knots_v, sv, v, l)[l * (q + 1)..];
         let mut acc = P::origin();

@@ -106,19 +106,28 @@ fn basis_into<T: Scalar>(knots: &KnotVector<T>, span: usize, t: T, out: &mut [T;
 }
 
 /// Working memory for basis-function derivatives, on the stack: orders above the degree
-/// are zero and never stored.
-struct BasisTable<T> {
-    stack: [T; MAX_ORDER * MAX_ORDER],
+/// are zero and never stored. `LEN` entries: [`SMALL_TABLE`] for degrees up to 5 (zeroing
+/// the full `MAX_ORDER²` table would cost more than the derivatives), `MAX_ORDER²` above.
+struct BasisTable<T, const LEN: usize> {
+    stack: [T; LEN],
 }
 
-impl<T: Scalar> BasisTable<T> {
+/// Table length for degrees up to 5: `(p + 1)²` with `p = 5`.
+const SMALL_TABLE: usize = 36;
+
+/// The largest degree whose tables fit in [`SMALL_TABLE`].
+const SMALL_DEGREE: usize = 5;
+
+impl<T: Scalar, const LEN: usize> BasisTable<T, LEN> {
+    #[inline]
     fn new() -> Self {
         Self {
-            stack: [T::zero(); MAX_ORDER * MAX_ORDER],
+            stack: [T::zero(); LEN],
         }
     }
 
     /// The derivatives of orders `0 … min(order, p)`, rows of `p + 1`.
+    #[inline]
     fn fill(&mut self, knots: &KnotVector<T>, span: usize, t: T, order: usize) -> &[T] {
         let order = order.min(knots.degree());
         let table = &mut self.stack[..(order + 1) * knots.order()];
@@ -355,6 +364,37 @@ impl<T: Scalar, P: ControlPoint<T>> Surface<T, P> {
     /// `(p + 1)(q + 1)` control points of the spans.
     #[inline]
     pub(crate) fn eval_in_spans(&self, su: usize, sv: usize, u: T, v: T) -> P {
+        match self.degrees() {
+            (1, 1) => self.eval_fixed::<2>(su, sv, u, v),
+            (2, 2) => self.eval_fixed::<3>(su, sv, u, v),
+            (3, 3) => self.eval_fixed::<4>(su, sv, u, v),
+            (4, 4) => self.eval_fixed::<5>(su, sv, u, v),
+            (5, 5) => self.eval_fixed::<6>(su, sv, u, v),
+            _ => self.eval_general(su, sv, u, v),
+        }
+    }
+
+    /// [`Surface::eval_in_spans`] for equal degrees `N − 1` in both directions: the basis
+    /// functions of [`KnotVector::basis_values_fixed`] and a fully unrolled tensor sum.
+    #[inline(always)]
+    fn eval_fixed<const N: usize>(&self, su: usize, sv: usize, u: T, v: T) -> P {
+        let nv = self.knots_v.num_basis();
+        let bu = self.knots_u.basis_values_fixed::<N>(su, u);
+        let bv = self.knots_v.basis_values_fixed::<N>(sv, v);
+        let first = (su + 1 - N) * nv + sv + 1 - N;
+        let mut acc = P::origin();
+        for (r, &nu) in bu.iter().enumerate() {
+            let row = &self.control_points[first + r * nv..first + r * nv + N];
+            let mut inner = row[0] * bv[0];
+            for s in 1..N {
+                inner += row[s] * bv[s];
+            }
+            acc += inner * nu;
+        }
+        acc
+    }
+
+    fn eval_general(&self, su: usize, sv: usize, u: T, v: T) -> P {
         let (p, q) = self.degrees();
         let nv = self.knots_v.num_basis();
         let mut bu = [T::zero(); MAX_ORDER];
