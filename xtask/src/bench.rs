@@ -132,9 +132,22 @@ pub(crate) fn run_criterion(
     bench: &str,
     tags: &[&str],
 ) -> Result<std::collections::BTreeMap<String, f64>, String> {
+    run_criterion_args(repo_root, &["-p", "spline-fit", "--bench", bench], tags)
+}
+
+/// [`run_criterion`] for `cargo bench ARGS` (another package, features).
+///
+/// # Errors
+/// As [`run_criterion`].
+pub(crate) fn run_criterion_args(
+    repo_root: &Path,
+    args: &[&str],
+    tags: &[&str],
+) -> Result<std::collections::BTreeMap<String, f64>, String> {
     let cargo = std::env::var_os("CARGO").unwrap_or_else(|| "cargo".into());
     let out = Command::new(cargo)
-        .args(["bench", "-p", "spline-fit", "--bench", bench])
+        .arg("bench")
+        .args(args)
         .current_dir(repo_root)
         .stderr(Stdio::inherit())
         .output()
@@ -143,7 +156,8 @@ pub(crate) fn run_criterion(
     print!("{text}");
     if !out.status.success() {
         return Err(format!(
-            "cargo bench -p spline-fit --bench {bench} failed ({})",
+            "cargo bench {} failed ({})",
+            args.join(" "),
             out.status
         ));
     }

@@ -18,6 +18,10 @@
 //! - `dask [--all | --limit N] [--workers W]`: the UIUC database smoothed with Dask through
 //!   the Python package (`python/examples/dask_smooth.py`), compared with the tool's batch
 //!   summary.
+//! - `bench peers [--readme]`: ours against curvo and truck-geometry in one criterion
+//!   binary (evaluation, derivatives, insertion, refinement, elevation, surfaces, NURBS,
+//!   the `parallel` feature at 1 and 2 threads) and scipy's evaluation in the same run;
+//!   `--readme` rewrites the performance table of the README.
 //! - `bench surfaces`: criterion benchmarks of closest points on surfaces against
 //!   truck-geometry and of scattered least squares against scipy, in the same run.
 //! - `fuzz [--cases N | --seconds S] [--seed S] [--target T] [--coverage]`: structured mutation
@@ -36,6 +40,7 @@ mod bench;
 mod bench_airfoils;
 mod bench_eval;
 mod bench_fit;
+mod bench_peers;
 mod bench_python;
 mod bench_smoothing;
 mod bench_surfaces;
@@ -146,6 +151,10 @@ const TASKS: &[(&str, &str)] = &[
         "closest points on surfaces vs truck-geometry, scattered least squares vs scipy",
     ),
     (
+        "bench peers [--readme]",
+        "evaluation, insertion, elevation, surfaces, NURBS vs curvo and truck (and scipy) in one run; --readme rewrites the README table",
+    ),
+    (
         "bench smoothing",
         "criterion benchmarks of smoothing splines at 10⁵ data, with scipy in the same run",
     ),
@@ -209,8 +218,9 @@ fn main() -> ExitCode {
             Some("smoothing") => bench_smoothing::run(&root),
             Some("python") => bench_python::run(&root),
             Some("airfoils") => bench_airfoils::run_bench(&root, &args[2..]),
+            Some("peers") => bench_peers::run(&root, &args[2..]),
             _ => Err(
-                "usage: cargo xtask bench fit | eval | smoothing | surfaces | python | airfoils [--jobs J]"
+                "usage: cargo xtask bench fit | eval | peers [--readme] | smoothing | surfaces | python | airfoils [--jobs J]"
                     .into(),
             ),
         },

@@ -17,12 +17,16 @@
 //!   points at 500² parameters (one call per point, random order, or one grid call), and
 //!   S_u, S_v at 10⁵ random points;
 //! - `nurbs_point`, `nurbs_batch`: the NURBS unit circle at 10⁶ random parameters;
-//!   `nurbs_surface`: a NURBS sphere at 10⁵ random points.
+//!   `nurbs_surface`: a NURBS sphere at 10⁵ random points;
+//! - with the `parallel` feature, `peers_parallel`: the batch and a grid in rayon pools of 1
+//!   and 2 threads.
 
 // criterion_group! generates an undocumented public function.
 #![allow(missing_docs)]
 
 mod curves;
+#[cfg(feature = "parallel")]
+mod parallel;
 mod surfaces;
 
 use criterion::{Criterion, criterion_group, criterion_main};
@@ -63,4 +67,15 @@ criterion_group! {
     config = criterion();
     targets = curves::evaluation, curves::structural, surfaces::surfaces, curves::nurbs
 }
+
+#[cfg(feature = "parallel")]
+criterion_group! {
+    name = threads;
+    config = criterion();
+    targets = parallel::parallel
+}
+
+#[cfg(feature = "parallel")]
+criterion_main!(benches, threads);
+#[cfg(not(feature = "parallel"))]
 criterion_main!(benches);

@@ -21,7 +21,7 @@ fn gap(a: Vector3<f64>, x: f64, y: f64, z: f64) -> f64 {
 }
 
 /// The bicubic with 50 × 50 control points over the unit square, random heights.
-fn bicubic() -> Surface3 {
+pub(crate) fn bicubic() -> Surface3 {
     let n = 50;
     let knots = KnotVector::clamped_uniform(3, n, 0.0, 1.0).unwrap();
     let zs = uniform_samples(n * n, 9);

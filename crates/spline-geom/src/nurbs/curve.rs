@@ -1,8 +1,8 @@
 //! NURBS curves: the rational view over a B-spline of homogeneous points.
 
 use super::{
-    Rational, cartesian_scale, check_rational_removal, mapped, rational_curve_derivatives,
-    weighted_points,
+    Rational, cartesian_scale, check_rational_removal, check_result_weights, mapped,
+    rational_curve_derivatives, weighted_points,
 };
 use crate::bezier::bezier_as_bspline;
 use crate::bspline::BSpline;
@@ -173,7 +173,7 @@ impl<T: Scalar, const D: usize> NurbsCurve<T, D> {
     ///     vec![Vector2::new(1.0, 0.0), Vector2::new(1.0, 1.0), Vector2::new(0.0, 1.0)],
     ///     vec![1.0, 1.0, 2.0])?;
     /// let params = [0.9, 0.1, 0.5];
-    /// let mut out = [Vector2::zeros(); 3];
+    /// let mut out = [Vector2::<f64>::zeros(); 3];
     /// quarter.eval_many_into(&params, &mut out)?;
     /// for (p, &u) in out.iter().zip(&params) {
     ///     assert!((p - quarter.eval(u)?).norm() < 1e-15);
@@ -246,6 +246,27 @@ impl<T: Scalar, const D: usize> NurbsCurve<T, D> {
     /// As [`BSpline::refine`].
     pub fn refine(&self, knots: &[T]) -> Result<Self> {
         Self::checked(self.container.refine(knots)?)
+    }
+
+    /// [`NurbsCurve::insert_knot`] in place ([`BSpline::insert_knot_mut`] on the homogeneous
+    /// points). The new weights are convex combinations of positive ones: always valid.
+    ///
+    /// # Errors
+    /// As [`BSpline::insert_knot`]; the curve is unchanged on error.
+    pub fn insert_knot_mut(&mut self, u: T, times: usize) -> Result<()> {
+        self.container.insert_knot_mut(u, times)?;
+        debug_assert!(check_result_weights(self.container.control_points()).is_ok());
+        Ok(())
+    }
+
+    /// [`NurbsCurve::refine`] in place ([`BSpline::refine_mut`] on the homogeneous points).
+    ///
+    /// # Errors
+    /// As [`BSpline::refine`]; the curve is unchanged on error.
+    pub fn refine_mut(&mut self, knots: &[T]) -> Result<()> {
+        self.container.refine_mut(knots)?;
+        debug_assert!(check_result_weights(self.container.control_points()).is_ok());
+        Ok(())
     }
 
     /// Removes the interior knot `u` `times` times if the curve moves by at most `tolerance`
