@@ -131,7 +131,7 @@ pub(crate) fn surfaces(c: &mut Criterion) {
     group.bench_function("ours", |b| {
         b.iter(|| {
             ours.eval_grid_into(black_box(&grid), &grid, &mut out)
-                .unwrap()
+                .unwrap();
         });
     });
     group.bench_function("curvo", |b| {
