@@ -36,6 +36,7 @@ pub mod adaptive;
 pub mod barrier;
 pub mod constrained;
 pub mod constrained_parametric;
+pub mod constrained_spatial;
 pub mod constrained_surface;
 pub mod eraser;
 mod problem;
@@ -51,6 +52,9 @@ pub use constrained::{
     ConstraintCheck, FunctionApproximation, FunctionConstraint, FunctionFit, MAX_SIGN_PATTERNS,
 };
 pub use constrained_parametric::{ParametricConvexFit, ParametricConvexity};
+pub use constrained_spatial::{
+    MAX_SPATIAL_CONTROL_POINTS, SpatialConvexFit, SpatialConvexProblem, SpatialConvexity,
+};
 pub use constrained_surface::{
     ConstrainedSurfaceFit, Region, SurfaceApproximation, SurfaceConstraint,
 };
