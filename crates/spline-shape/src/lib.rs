@@ -39,6 +39,7 @@ pub mod constrained_parametric;
 pub mod constrained_spatial;
 pub mod constrained_surface;
 pub mod eraser;
+pub mod flecnodal;
 mod problem;
 pub mod revolution;
 
@@ -62,6 +63,7 @@ pub use eraser::{
     CurvatureExtremum, Extremum, ExtremumKind, MAX_CURVATURE_EXTREMA, Objective, SampledExtremum,
     SmoothedCurve, SmoothingOptions, sampled_curvature_extrema, smooth, smooth_to_tolerance,
 };
+pub use flecnodal::{FlecnodalCircles, control_flecnodal_circles};
 pub use problem::{ApproximationProblem, Sign};
 pub use revolution::{
     MeridianControl, ParabolicCircles, RidgeControl, TranslationControl, control_parabolic_circles,

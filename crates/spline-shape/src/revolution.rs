@@ -38,6 +38,52 @@ pub struct MeridianControl {
     pub fit: FunctionFit,
 }
 
+/// The meridian's knots refined `refine` times by midpoints, for a meridian of degree 3 or
+/// more (`f″` continuous, `f‴` defined).
+pub(crate) fn refined_knots(
+    meridian: &BSpline<f64, f64>,
+    refine: usize,
+) -> Result<KnotVector<f64>> {
+    if meridian.degree() < 3 {
+        return Err(Error::new(
+            ErrorKind::InvalidArgument,
+            format!(
+                "the meridian needs degree 3 or more (a continuous f''), got {}",
+                meridian.degree()
+            ),
+        ));
+    }
+    if refine > 8 {
+        return Err(Error::new(
+            ErrorKind::InvalidArgument,
+            format!("at most 8 refinements, got {refine}"),
+        ));
+    }
+    let mut knots: KnotVector<f64> = meridian.knots().clone();
+    for _ in 0..refine {
+        let breaks = knots.domain_breaks();
+        let mids: Vec<f64> = breaks.windows(2).map(|w| 0.5 * (w[0] + w[1])).collect();
+        knots = knots.refined(&mids)?;
+    }
+    Ok(knots)
+}
+
+/// The largest `|new(z) − old(z)|` at `20 · samples` equally spaced heights (ends included).
+pub(crate) fn max_deviation(
+    new: &BSpline<f64, f64>,
+    old: &BSpline<f64, f64>,
+    samples: usize,
+) -> Result<f64> {
+    let (a, b) = old.domain();
+    let n = 20 * samples.max(2);
+    let mut largest = 0.0f64;
+    for k in 0..=n {
+        let z = a + (b - a) * k as f64 / n as f64;
+        largest = largest.max((new.eval(z)? - old.eval(z)?).abs());
+    }
+    Ok(largest)
+}
+
 /// The surface of revolution of the meridian radius `f(z)` about the `z` axis: the profile
 /// curve `(f(z), 0, z)` (exact: `z` is the B-spline with the Greville abscissae as
 /// coefficients) revolved by a full turn ([`NurbsSurface::revolution`]); `u` runs along the
@@ -107,21 +153,7 @@ fn constrain_second_derivative(
     refine: usize,
     positive: bool,
 ) -> Result<MeridianControl> {
-    if meridian.degree() < 3 {
-        return Err(Error::new(
-            ErrorKind::InvalidArgument,
-            format!(
-                "the meridian needs degree 3 or more (a continuous f''), got {}",
-                meridian.degree()
-            ),
-        ));
-    }
-    if refine > 8 {
-        return Err(Error::new(
-            ErrorKind::InvalidArgument,
-            format!("at most 8 refinements, got {refine}"),
-        ));
-    }
+    let knots = refined_knots(meridian, refine)?;
     let (a, b) = meridian.domain();
     let mut previous = a;
     for &(s, t) in &circles.allowed {
@@ -134,12 +166,6 @@ fn constrain_second_derivative(
             ));
         }
         previous = t;
-    }
-    let mut knots: KnotVector<f64> = meridian.knots().clone();
-    for _ in 0..refine {
-        let breaks = knots.domain_breaks();
-        let mids: Vec<f64> = breaks.windows(2).map(|w| 0.5 * (w[0] + w[1])).collect();
-        knots = knots.refined(&mids)?;
     }
     let mut approximation = FunctionApproximation::new(knots);
     if positive {
@@ -160,12 +186,7 @@ fn constrain_second_derivative(
     }
     approximation = approximation.sign_on(2, sign, start, b);
     let fit = approximation.fit_function(samples, |z| meridian.eval(z).unwrap_or(f64::NAN))?;
-    let n = 20 * samples.max(2);
-    let mut max_deviation = 0.0f64;
-    for k in 0..=n {
-        let z = a + (b - a) * k as f64 / n as f64;
-        max_deviation = max_deviation.max((fit.spline.eval(z)? - meridian.eval(z)?).abs());
-    }
+    let max_deviation = max_deviation(&fit.spline, meridian, samples)?;
     Ok(MeridianControl {
         meridian: fit.spline.clone(),
         max_deviation,
