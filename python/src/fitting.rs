@@ -12,10 +12,7 @@ use spline::fit::{
 };
 use spline::geom::airfoil::parse_airfoil;
 use spline::nalgebra::{SVector, Vector2};
-use spline::shape::{
-    Extremum, MAX_CURVATURE_EXTREMA, Objective, SmoothingOptions, smooth as erase,
-    smooth_to_tolerance,
-};
+use spline::shape::{Extremum, Objective, SmoothingOptions, smooth as erase, smooth_to_tolerance};
 
 /// Runs `$e` with `$P` the point type of dimension `$dim` (`0`: scalar) and wraps the
 /// resulting B-spline in the matching [`Dyn`] variant.
@@ -213,43 +210,18 @@ fn smoothing_options(
     if let Some(betas) = knot_exponents {
         options.knot_exponents = betas;
     }
-    options.objective = match objective {
-        "max" => Objective::MaxDeviation,
-        "least-squares" | "lsq" => Objective::LeastSquares,
-        other => {
-            return Err(bad_input(format!(
-                "objective: unknown choice '{other}' (max or least-squares)"
-            )));
-        }
-    };
-    if !extrema.is_empty() {
-        if curvature_extrema.is_some_and(|k| k != extrema.len()) {
-            return Err(bad_input(format!(
-                "curvature_extrema disagrees with the {} extrema given",
-                extrema.len()
-            )));
-        }
-        options.extrema = extrema
-            .iter()
-            .map(|t| t.parse::<Extremum>().map_err(|e| e.context("extrema")))
-            .collect::<spline::Result<_>>()
-            .py()?;
-    } else if let Some(k) = curvature_extrema {
-        if k > MAX_CURVATURE_EXTREMA {
-            return Err(bad_input(format!(
-                "curvature_extrema: at most {MAX_CURVATURE_EXTREMA} extrema can be allowed, got {k}"
-            )));
-        }
-        options.extrema = (0..k)
-            .map(|i| {
-                if i % 2 == 0 {
-                    Extremum::maximum()
-                } else {
-                    Extremum::minimum()
-                }
-            })
-            .collect();
-    }
+    options.objective = objective
+        .parse::<Objective>()
+        .map_err(|e| e.context("objective"))
+        .py()?;
+    let given = extrema
+        .iter()
+        .map(|t| t.parse::<Extremum>().map_err(|e| e.context("extrema")))
+        .collect::<spline::Result<_>>()
+        .py()?;
+    options.extrema = Extremum::resolve(curvature_extrema, given)
+        .map_err(|e| e.context("curvature_extrema"))
+        .py()?;
     Ok(options)
 }
 

@@ -11,7 +11,7 @@ use spline_core::{Error, ErrorKind, Result};
 use spline_geom::airfoil::parse_airfoil;
 use spline_geom::exchange::CurveRecord;
 use spline_shape::{
-    AdaptiveOptions, Extremum, MAX_CURVATURE_EXTREMA, Objective, SmoothedCurve, SmoothingOptions,
+    AdaptiveOptions, Extremum, Objective, SmoothedCurve, SmoothingOptions,
     optimise_perimeter_over_area, smooth as erase, smooth_to_tolerance,
 };
 use std::io::IsTerminal;
@@ -86,57 +86,17 @@ fn options(args: &SmoothArgs) -> Result<SmoothingOptions> {
     if let Some(text) = &args.knot_exponents {
         options.knot_exponents = io::parse_arg("--knot-exponents", text)?;
     }
-    options.objective = match args.objective.as_str() {
-        "max" => Objective::MaxDeviation,
-        "least-squares" | "lsq" => Objective::LeastSquares,
-        other => {
-            return Err(Error::new(
-                ErrorKind::InvalidArgument,
-                format!(
-                    "--objective: unknown choice {} (max or least-squares)",
-                    io::quote(other)
-                ),
-            ));
-        }
-    };
-    if !args.extrema.is_empty() {
-        if args
-            .curvature_extrema
-            .is_some_and(|k| k != args.extrema.len())
-        {
-            return Err(Error::new(
-                ErrorKind::InvalidArgument,
-                format!(
-                    "--curvature-extrema {} disagrees with the {} --extremum given",
-                    args.curvature_extrema.unwrap_or(0),
-                    args.extrema.len()
-                ),
-            ));
-        }
-        options.extrema = args
-            .extrema
-            .iter()
-            .map(|t| t.parse::<Extremum>().map_err(|e| e.context("--extremum")))
-            .collect::<Result<_>>()?;
-    } else if let Some(k) = args.curvature_extrema {
-        if k > MAX_CURVATURE_EXTREMA {
-            return Err(Error::new(
-                ErrorKind::InvalidArgument,
-                format!(
-                    "--curvature-extrema: at most {MAX_CURVATURE_EXTREMA} extrema can be allowed, got {k}"
-                ),
-            ));
-        }
-        options.extrema = (0..k)
-            .map(|i| {
-                if i % 2 == 0 {
-                    Extremum::maximum()
-                } else {
-                    Extremum::minimum()
-                }
-            })
-            .collect();
-    }
+    options.objective = args
+        .objective
+        .parse::<Objective>()
+        .map_err(|e| e.context("--objective"))?;
+    let given = args
+        .extrema
+        .iter()
+        .map(|t| t.parse::<Extremum>().map_err(|e| e.context("--extremum")))
+        .collect::<Result<_>>()?;
+    options.extrema = Extremum::resolve(args.curvature_extrema, given)
+        .map_err(|e| e.context("--curvature-extrema"))?;
     Ok(options)
 }
 

@@ -30,6 +30,7 @@ mod driver;
 mod pieces;
 mod placement;
 mod problem;
+mod request;
 mod verify;
 
 pub use verify::{SampledExtremum, sampled_curvature_extrema};
