@@ -9,12 +9,11 @@
 //! nested periodic knot vectors, knot insertion carrying a feasible curve from one level to
 //! the next.
 
-use super::driver::{Attempt, Solver};
+use super::driver::{Attempt, Topology, continuation};
 use super::placement::{nested_levels, new_knots};
 use super::problem::EraserProblem;
 use super::{Objective, SmoothingOptions};
-use crate::barrier::BarrierProblem;
-use nalgebra::{DVector, Vector2};
+use nalgebra::Vector2;
 use spline_core::{Error, ErrorKind, KnotVector, Result};
 use spline_fit::{
     Parametrization, closest_point, least_squares_periodic, parametrize, project_ordered,
@@ -197,13 +196,81 @@ pub(crate) fn closed_start(
     })
 }
 
+/// Closed curves: nested periodic knot vectors (those of [`nested_levels`], each with the
+/// closing point `0` as a knot); the containers are the wrapped ones.
+struct Closed {
+    levels: Vec<(KnotVector<f64>, ClosedCurve2)>,
+}
+
+impl Topology for Closed {
+    type Curve = ClosedCurve2;
+
+    fn num_levels(&self) -> usize {
+        self.levels.len()
+    }
+
+    fn fit(
+        &self,
+        level: usize,
+        points: &[Vector2<f64>],
+        params: &[f64],
+    ) -> Result<(Self::Curve, Vec<f64>)> {
+        fit_closed_with_correction(points, params, &self.levels[level].1, 12)
+    }
+
+    fn problem(
+        &self,
+        level: usize,
+        points: &[Vector2<f64>],
+        params: &[f64],
+        objective: Objective,
+        extrema: &[f64],
+        first_sign: f64,
+    ) -> Result<EraserProblem> {
+        EraserProblem::new_closed(
+            self.levels[level].1.wrapped().knots(),
+            points,
+            params,
+            objective,
+            extrema.to_vec(),
+            first_sign,
+        )
+    }
+
+    fn control_points(curve: &Self::Curve) -> Vec<Vector2<f64>> {
+        curve.wrapped().control_points().to_vec()
+    }
+
+    fn solution(
+        &self,
+        level: usize,
+        control: Vec<Vector2<f64>>,
+    ) -> Result<(Self::Curve, Curve2<f64>)> {
+        let wrapped = BSpline::new(self.levels[level].1.wrapped().knots().clone(), control)?;
+        Ok((PeriodicBSpline::from_wrapped(&wrapped)?, wrapped))
+    }
+
+    fn next(
+        &self,
+        level: usize,
+        curve: &Self::Curve,
+        anchors: Vec<f64>,
+        points: &[Vector2<f64>],
+    ) -> Result<(Self::Curve, Vec<f64>)> {
+        let mut refined = curve.clone();
+        for u in new_knots(&self.levels[level].0, &self.levels[level + 1].0) {
+            refined = refined.insert_knot(u, 1)?;
+        }
+        let params = project_ordered(&refined, points, &sorted_in_period(&anchors))?;
+        Ok((refined, params))
+    }
+}
+
 /// The constrained fit of closed `points` (normalised, at `params` in `[0, 1)`) on the
 /// periodic knots of `clamped` (see [`periodic_space`]), with the allowed extrema at the
-/// knots `extrema` and the sign of the first piece `first_sign`: coarse-to-fine continuation
-/// over nested periodic knot vectors (those of [`nested_levels`], each with the closing
-/// point `0` as a knot), entering at the finest level whose periodic least-squares fit leads
-/// to a strictly feasible curve. The attempt's curve is the wrapped container. `None` when no
-/// strictly feasible curve was found.
+/// knots `extrema` and the sign of the first piece `first_sign`: the continuation of open
+/// curves over nested periodic knot vectors. The attempt's curve is the wrapped container.
+/// `None` when no strictly feasible curve was found.
 pub(crate) fn attempt_closed(
     points: &[Vector2<f64>],
     params: &[f64],
@@ -226,120 +293,14 @@ pub(crate) fn attempt_closed(
     if levels.is_empty() {
         return Ok(None);
     }
-    let mut solver = Solver {
+    continuation(
+        &Closed { levels },
+        points,
+        params,
+        extrema,
+        first_sign,
         options,
-        newton_steps: 0,
-    };
-    let setup = |control: &ClosedCurve2,
-                 params: &[f64],
-                 finest: bool,
-                 unit: Option<f64>|
-     -> Result<(EraserProblem, DVector<f64>, f64)> {
-        let wrapped = control.wrapped();
-        let mut problem = EraserProblem::new_closed(
-            wrapped.knots(),
-            points,
-            params,
-            options.objective,
-            extrema.to_vec(),
-            first_sign,
-        )?;
-        // Fixed parameters on the coarse levels, as for open curves.
-        problem.set_projection(finest);
-        let largest = problem
-            .squared_distances(&problem.variables(wrapped.control_points(), 0.0))
-            .iter()
-            .copied()
-            .fold(0.0, f64::max)
-            .max(1e-24);
-        let unit = unit.unwrap_or(largest);
-        problem.set_unit(unit);
-        let x = problem.variables(wrapped.control_points(), 1.25 * largest / unit);
-        if finest {
-            problem.set_excursions(&x, 2.0 * largest.sqrt());
-        }
-        problem.rescale(&x);
-        Ok((problem, x, unit))
-    };
-    let z_of = |x: &DVector<f64>, count: usize| {
-        if options.objective == Objective::MaxDeviation {
-            x[2 * count]
-        } else {
-            0.0
-        }
-    };
-    let mut entry = None;
-    for level in (0..levels.len()).rev() {
-        let finest = level + 1 == levels.len();
-        let (fit, corrected) =
-            match fit_closed_with_correction(points, params, &levels[level].1, 12) {
-                Ok(found) => found,
-                Err(e)
-                    if matches!(
-                        e.kind(),
-                        ErrorKind::SchoenbergWhitney | ErrorKind::SingularSystem
-                    ) =>
-                {
-                    continue;
-                }
-                Err(e) => return Err(e),
-            };
-        let (mut problem, x, unit) = setup(&fit, &corrected, finest, None)?;
-        if problem.constraints(&x).iter().all(|&c| c < 0.0) {
-            entry = Some((level, problem, x, unit));
-            break;
-        }
-        let z = z_of(&x, fit.len());
-        if let Some(found) = solver.phase_one(&mut problem, fit.wrapped().control_points(), z) {
-            entry = Some((level, problem, found, unit));
-            break;
-        }
-    }
-    let Some((first, mut problem, mut x, unit)) = entry else {
-        return Ok(None);
-    };
-    let mut level = first;
-    loop {
-        let finest = level + 1 == levels.len();
-        let (gap, max_refinements) = if finest {
-            (options.barrier.gap_tolerance, options.max_refinements)
-        } else {
-            (1e-4, 0)
-        };
-        let refinements = solver.phase_two(&mut problem, &mut x, gap, max_refinements)?;
-        let wrapped = BSpline::new(
-            levels[level].1.wrapped().knots().clone(),
-            problem.control_points(&x),
-        )?;
-        if finest {
-            return Ok(Some(Attempt {
-                curve: wrapped,
-                refinements,
-                conditions: problem.num_conditions(),
-                newton_steps: solver.newton_steps,
-                levels: levels.len() - first,
-            }));
-        }
-        // The same curve on the next level's knots: unchanged, so still strictly feasible.
-        let params = problem.anchors();
-        let mut refined = PeriodicBSpline::from_wrapped(&wrapped)?;
-        for u in new_knots(&levels[level].0, &levels[level + 1].0) {
-            refined = refined.insert_knot(u, 1)?;
-        }
-        level += 1;
-        let params = project_ordered(&refined, points, &sorted_in_period(&params))?;
-        let (mut next_problem, mut next_x, _) =
-            setup(&refined, &params, level + 1 == levels.len(), Some(unit))?;
-        if !next_problem.constraints(&next_x).iter().all(|&c| c < 0.0) {
-            let z = z_of(&next_x, refined.len());
-            match solver.phase_one(&mut next_problem, refined.wrapped().control_points(), z) {
-                Some(found) => next_x = found,
-                None => return Ok(None),
-            }
-        }
-        problem = next_problem;
-        x = next_x;
-    }
+    )
 }
 
 /// Foot-point parameters as [`project_ordered`] takes them: in `[0, 1]` and not decreasing
@@ -512,6 +473,8 @@ pub(crate) fn place_closed_extrema(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::barrier::BarrierProblem;
+    use nalgebra::DVector;
 
     /// The closed problem of a wobbly contour: derivatives of every function of the barrier
     /// method against central differences (the wrapped control points fold onto the free

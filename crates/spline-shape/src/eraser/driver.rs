@@ -155,6 +155,131 @@ impl Solver<'_> {
     }
 }
 
+/// What differs between open and closed curves in the coarse-to-fine continuation of
+/// [`continuation`]: the levels, the fit a level starts from, the problem, and how a curve
+/// moves to the next level.
+pub(super) trait Topology {
+    /// The curve the continuation carries from level to level.
+    type Curve;
+    /// The number of levels, coarse to fine.
+    fn num_levels(&self) -> usize;
+    /// Least squares with parameter correction on `level`: the curve and the parameters.
+    ///
+    /// # Errors
+    /// As the fit.
+    fn fit(
+        &self,
+        level: usize,
+        points: &[Vector2<f64>],
+        params: &[f64],
+    ) -> Result<(Self::Curve, Vec<f64>)>;
+    /// The eraser's problem on `level`'s knots.
+    ///
+    /// # Errors
+    /// As [`EraserProblem::new`].
+    fn problem(
+        &self,
+        level: usize,
+        points: &[Vector2<f64>],
+        params: &[f64],
+        objective: Objective,
+        extrema: &[f64],
+        first_sign: f64,
+    ) -> Result<EraserProblem>;
+    /// The control points the problem's variables hold (the wrapped ones of a closed curve).
+    fn control_points(curve: &Self::Curve) -> Vec<Vector2<f64>>;
+    /// The curve of the solution's control points on `level`, and the container the attempt
+    /// returns (the wrapped one of a closed curve).
+    ///
+    /// # Errors
+    /// As the containers' constructors.
+    fn solution(
+        &self,
+        level: usize,
+        control: Vec<Vector2<f64>>,
+    ) -> Result<(Self::Curve, Curve2<f64>)>;
+    /// The same curve on the knots of `level + 1` (unchanged, so still strictly feasible)
+    /// and the data's parameters on it, from the solution's anchors.
+    ///
+    /// # Errors
+    /// As refinement and projection.
+    fn next(
+        &self,
+        level: usize,
+        curve: &Self::Curve,
+        anchors: Vec<f64>,
+        points: &[Vector2<f64>],
+    ) -> Result<(Self::Curve, Vec<f64>)>;
+}
+
+/// Open curves: nested clamped knot vectors, the ends pinned to the first and last points.
+struct Open {
+    levels: Vec<KnotVector<f64>>,
+}
+
+impl Topology for Open {
+    type Curve = Curve2<f64>;
+
+    fn num_levels(&self) -> usize {
+        self.levels.len()
+    }
+
+    fn fit(
+        &self,
+        level: usize,
+        points: &[Vector2<f64>],
+        params: &[f64],
+    ) -> Result<(Self::Curve, Vec<f64>)> {
+        fit_with_correction(points, params, &self.levels[level], 12)
+    }
+
+    fn problem(
+        &self,
+        level: usize,
+        points: &[Vector2<f64>],
+        params: &[f64],
+        objective: Objective,
+        extrema: &[f64],
+        first_sign: f64,
+    ) -> Result<EraserProblem> {
+        EraserProblem::new(
+            &self.levels[level],
+            points,
+            params,
+            objective,
+            extrema.to_vec(),
+            first_sign,
+        )
+    }
+
+    fn control_points(curve: &Self::Curve) -> Vec<Vector2<f64>> {
+        curve.control_points().to_vec()
+    }
+
+    fn solution(
+        &self,
+        level: usize,
+        control: Vec<Vector2<f64>>,
+    ) -> Result<(Self::Curve, Curve2<f64>)> {
+        let curve = BSpline::new(self.levels[level].clone(), control)?;
+        Ok((curve.clone(), curve))
+    }
+
+    fn next(
+        &self,
+        level: usize,
+        curve: &Self::Curve,
+        mut anchors: Vec<f64>,
+        points: &[Vector2<f64>],
+    ) -> Result<(Self::Curve, Vec<f64>)> {
+        pin_ends(&mut anchors);
+        let refined = curve.refine(&new_knots(curve.knots(), &self.levels[level + 1]))?;
+        let mut params = project_ordered(&refined, points, &anchors)?;
+        pin_ends(&mut params);
+        Ok((refined, params))
+    }
+}
+
 /// The constrained fit of `points` (normalised, at `params`) on `knots` with the allowed
 /// extrema at the knots `extrema` and the sign of the first piece `first_sign`. `None` when
 /// no strictly feasible curve was found on any level.
@@ -166,23 +291,42 @@ pub(crate) fn attempt(
     first_sign: f64,
     options: &SmoothingOptions,
 ) -> Result<Option<Attempt>> {
-    let levels = nested_levels(knots, extrema)?;
+    let open = Open {
+        levels: nested_levels(knots, extrema)?,
+    };
+    continuation(&open, points, params, extrema, first_sign, options)
+}
+
+/// The coarse-to-fine continuation of one attempt, for open and closed curves alike: entry at
+/// the finest level whose least-squares fit leads to a strictly feasible curve (at once or by
+/// phase I), so that it starts as close to the data as it can; path following on each level
+/// (loosely on the coarse ones), the solution carried to the next level's knots (phase I
+/// mends what rounding breaks there); refinement of active conditions on the finest.
+pub(super) fn continuation<T: Topology>(
+    topology: &T,
+    points: &[Vector2<f64>],
+    params: &[f64],
+    extrema: &[f64],
+    first_sign: f64,
+    options: &SmoothingOptions,
+) -> Result<Option<Attempt>> {
+    let levels = topology.num_levels();
     let mut solver = Solver {
         options,
         newton_steps: 0,
     };
-    let setup = |level_knots: &KnotVector<f64>,
+    let setup = |level: usize,
                  control: &[Vector2<f64>],
                  params: &[f64],
-                 finest: bool,
                  unit: Option<f64>|
      -> Result<(EraserProblem, DVector<f64>, f64)> {
-        let mut problem = EraserProblem::new(
-            level_knots,
+        let finest = level + 1 == levels;
+        let mut problem = topology.problem(
+            level,
             points,
             params,
             options.objective,
-            extrema.to_vec(),
+            extrema,
             first_sign,
         )?;
         // Fixed parameters on the coarse levels (a coarse curve could otherwise fit the data
@@ -203,13 +347,18 @@ pub(crate) fn attempt(
         problem.rescale(&x);
         Ok((problem, x, unit))
     };
-    // The entry: the finest level whose least-squares fit leads to a strictly feasible
-    // curve (at once or by phase I), so that the continuation starts as close to the data
-    // as it can.
+    // The maximum deviation's bound: the variable after the control points' coordinates
+    // (just before phase I's τ).
+    let z_of = |x: &DVector<f64>, problem: &EraserProblem| {
+        if options.objective == Objective::MaxDeviation {
+            x[problem.tau_index() - 1]
+        } else {
+            0.0
+        }
+    };
     let mut entry = None;
-    for level in (0..levels.len()).rev() {
-        let finest = level + 1 == levels.len();
-        let (fit, corrected) = match fit_with_correction(points, params, &levels[level], 12) {
+    for level in (0..levels).rev() {
+        let (fit, corrected) = match topology.fit(level, points, params) {
             Ok(found) => found,
             Err(e)
                 if matches!(
@@ -221,17 +370,13 @@ pub(crate) fn attempt(
             }
             Err(e) => return Err(e),
         };
-        let control = fit.control_points().to_vec();
-        let (mut problem, x, unit) = setup(&levels[level], &control, &corrected, finest, None)?;
+        let control = T::control_points(&fit);
+        let (mut problem, x, unit) = setup(level, &control, &corrected, None)?;
         if problem.constraints(&x).iter().all(|&c| c < 0.0) {
             entry = Some((level, problem, x, unit));
             break;
         }
-        let z = if options.objective == Objective::MaxDeviation {
-            x[2 * levels[level].num_basis()]
-        } else {
-            0.0
-        };
+        let z = z_of(&x, &problem);
         if let Some(found) = solver.phase_one(&mut problem, &control, z) {
             entry = Some((level, problem, found, unit));
             break;
@@ -242,44 +387,31 @@ pub(crate) fn attempt(
     };
     let mut level = first;
     loop {
-        let finest = level + 1 == levels.len();
+        let finest = level + 1 == levels;
         let (gap, max_refinements) = if finest {
             (options.barrier.gap_tolerance, options.max_refinements)
         } else {
             (1e-4, 0)
         };
         let refinements = solver.phase_two(&mut problem, &mut x, gap, max_refinements)?;
-        let mut params = problem.anchors();
-        pin_ends(&mut params);
-        let curve = BSpline::new(levels[level].clone(), problem.control_points(&x))?;
+        let (curve, container) = topology.solution(level, problem.control_points(&x))?;
         if finest {
             return Ok(Some(Attempt {
-                curve,
+                curve: container,
                 refinements,
                 conditions: problem.num_conditions(),
                 newton_steps: solver.newton_steps,
-                levels: levels.len() - first,
+                levels: levels - first,
             }));
         }
-        // The same curve on the next level's knots: unchanged, so still strictly feasible.
+        let (refined, params) = topology.next(level, &curve, problem.anchors(), points)?;
         level += 1;
-        let refined = curve.refine(&new_knots(curve.knots(), &levels[level]))?;
-        let mut params = project_ordered(&refined, points, &params)?;
-        pin_ends(&mut params);
-        let (mut next_problem, mut next_x, _) = setup(
-            &levels[level],
-            refined.control_points(),
-            &params,
-            level + 1 == levels.len(),
-            Some(unit),
-        )?;
+        let control = T::control_points(&refined);
+        let (mut next_problem, mut next_x, _) = setup(level, &control, &params, Some(unit))?;
         // Rounding can leave a condition at zero after the insertion: phase I mends it.
         if !next_problem.constraints(&next_x).iter().all(|&c| c < 0.0) {
-            let z = next_x
-                .get(2 * levels[level].num_basis())
-                .copied()
-                .unwrap_or(0.0);
-            match solver.phase_one(&mut next_problem, refined.control_points(), z) {
+            let z = z_of(&next_x, &next_problem);
+            match solver.phase_one(&mut next_problem, &control, z) {
                 Some(found) => next_x = found,
                 None => return Ok(None),
             }
