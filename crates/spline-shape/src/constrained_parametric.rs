@@ -177,23 +177,7 @@ impl ParametricConvexity {
     /// [`ErrorKind::NonFinite`]; the errors of the least squares;
     /// [`ErrorKind::NoConvergence`] if no strictly feasible patch is found near the data.
     pub fn fit_grid(&self, us: &[f64], vs: &[f64], values: &[f64]) -> Result<ParametricConvexFit> {
-        if us.is_empty() || vs.is_empty() || values.len() != us.len() * vs.len() {
-            return Err(Error::new(
-                ErrorKind::InvalidLength,
-                format!(
-                    "a grid of {} × {} parameters needs as many values, got {}",
-                    us.len(),
-                    vs.len(),
-                    values.len()
-                ),
-            ));
-        }
-        if let Some(j) = values.iter().position(|v| !v.is_finite()) {
-            return Err(Error::new(
-                ErrorKind::NonFinite,
-                format!("value {j} is not finite"),
-            ));
-        }
+        check_grid(us, vs, values.len(), |j| values[j].is_finite(), "value")?;
         let knots = (self.base.knots_u(), self.base.knots_v());
         let lsq = LeastSquaresObjective::grid(knots, us, vs, values)?;
         let n = self.base.control_points().len();
@@ -251,4 +235,36 @@ impl ParametricConvexity {
             .collect::<Result<_>>()?;
         self.fit_grid(&us, &vs, &values)
     }
+}
+
+/// Checks samples on a grid of parameters: `us.len() · vs.len() > 0` of them (`count`), each
+/// finite (`finite(j)`; `what` names one in the message).
+///
+/// # Errors
+/// [`ErrorKind::InvalidLength`] for another count or an empty grid; [`ErrorKind::NonFinite`]
+/// naming the first sample that is not finite.
+pub(crate) fn check_grid(
+    us: &[f64],
+    vs: &[f64],
+    count: usize,
+    finite: impl Fn(usize) -> bool,
+    what: &str,
+) -> Result<()> {
+    if us.is_empty() || vs.is_empty() || count != us.len() * vs.len() {
+        return Err(Error::new(
+            ErrorKind::InvalidLength,
+            format!(
+                "a grid of {} × {} parameters needs as many samples (at least one), got {count}",
+                us.len(),
+                vs.len()
+            ),
+        ));
+    }
+    if let Some(j) = (0..count).find(|&j| !finite(j)) {
+        return Err(Error::new(
+            ErrorKind::NonFinite,
+            format!("{what} {j} is not finite"),
+        ));
+    }
+    Ok(())
 }

@@ -34,6 +34,7 @@
 
 use crate::barrier::{BarrierOptions, BarrierReport};
 use crate::constrained::{ConstraintCheck, span_samples, uniform_samples};
+use crate::constrained_parametric::check_grid;
 use crate::problem::{
     ApproximationProblem, LeastSquaresObjective, Sign, check_interval, check_samples, derived_map,
     furthest_feasible, normalized_rows, refined, solve, strictly_feasible, vstack,
@@ -298,23 +299,7 @@ impl SurfaceApproximation {
     /// parameter outside the domain; [`ErrorKind::InvalidArgument`] for a bad constraint.
     pub fn problem(&self, us: &[f64], vs: &[f64], values: &[f64]) -> Result<ApproximationProblem> {
         self.validate()?;
-        if us.is_empty() || vs.is_empty() || values.len() != us.len() * vs.len() {
-            return Err(Error::new(
-                ErrorKind::InvalidLength,
-                format!(
-                    "a grid of {} × {} parameters needs as many values (at least one), got {}",
-                    us.len(),
-                    vs.len(),
-                    values.len()
-                ),
-            ));
-        }
-        if let Some(j) = values.iter().position(|v| !v.is_finite()) {
-            return Err(Error::new(
-                ErrorKind::NonFinite,
-                format!("value {j} is not finite"),
-            ));
-        }
+        check_grid(us, vs, values.len(), |j| values[j].is_finite(), "value")?;
         let lsq = LeastSquaresObjective::grid((&self.knots_u, &self.knots_v), us, vs, values)?;
         let n = self.knots_u.num_basis() * self.knots_v.num_basis();
         let mut linear = Vec::new();

@@ -24,7 +24,7 @@
 //! below that of the heights-only patch.
 
 use crate::barrier::{BarrierOptions, BarrierProblem, BarrierReport, find_feasible_near, minimize};
-use crate::constrained_parametric::ParametricConvexity;
+use crate::constrained_parametric::{ParametricConvexity, check_grid};
 use crate::problem::{LeastSquaresObjective, Sign};
 use nalgebra::{DMatrix, DVector, SymmetricEigen, Vector2, Vector3};
 use nalgebra_sparse::{CooMatrix, CsrMatrix};
@@ -204,23 +204,13 @@ impl SpatialConvexity {
         vs: &[f64],
         points: &[Vector3<f64>],
     ) -> Result<(SpatialConvexProblem, DVector<f64>)> {
-        if us.is_empty() || vs.is_empty() || points.len() != us.len() * vs.len() {
-            return Err(Error::new(
-                ErrorKind::InvalidLength,
-                format!(
-                    "a grid of {} × {} parameters needs as many points, got {}",
-                    us.len(),
-                    vs.len(),
-                    points.len()
-                ),
-            ));
-        }
-        if let Some(j) = points.iter().position(|p| !p.iter().all(|c| c.is_finite())) {
-            return Err(Error::new(
-                ErrorKind::NonFinite,
-                format!("point {j} is not finite"),
-            ));
-        }
+        check_grid(
+            us,
+            vs,
+            points.len(),
+            |j| points[j].iter().all(|c| c.is_finite()),
+            "point",
+        )?;
         let knots = (&self.knots.0, &self.knots.1);
         let coordinate = |c: usize| -> Vec<f64> { points.iter().map(|p| p[c]).collect() };
         let lsq = [
