@@ -20,7 +20,7 @@ use crate::problem::{
     ApproximationProblem, LeastSquaresObjective, Sign, derived_map, normalized_rows, refined,
     solve, vstack,
 };
-use crate::revolution::{MeridianControl, refined_knots};
+use crate::revolution::{MeridianControl, check_allowed, refined_knots};
 use nalgebra_sparse::{CooMatrix, CsrMatrix};
 use spline_algebra::{SparseBilinear, SplineMap, revolution_numerators};
 use spline_core::{Error, ErrorKind, KnotVector, Result};
@@ -81,18 +81,7 @@ pub fn control_flecnodal_circles(
             format!("the controlled interval ({a}, {b}) must lie inside the domain ({lo}, {hi})"),
         ));
     }
-    let mut previous = a;
-    for &(s, t) in &circles.allowed {
-        if !(s > previous && t > s && t < b) {
-            return Err(Error::new(
-                ErrorKind::InvalidArgument,
-                format!(
-                    "the allowed intervals must be increasing, disjoint and inside ({a}, {b}); got ({s}, {t})"
-                ),
-            ));
-        }
-        previous = t;
-    }
+    check_allowed(&circles.allowed, (a, b))?;
     let params = uniform_samples((lo, hi), samples)?;
     let values: Vec<f64> = params
         .iter()

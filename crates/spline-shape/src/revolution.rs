@@ -68,6 +68,27 @@ pub(crate) fn refined_knots(
     Ok(knots)
 }
 
+/// Checks intervals of allowed feature circles: increasing, disjoint and strictly inside
+/// `(a, b)`.
+///
+/// # Errors
+/// [`ErrorKind::InvalidArgument`] naming the first interval that is not.
+pub(crate) fn check_allowed(allowed: &[(f64, f64)], (a, b): (f64, f64)) -> Result<()> {
+    let mut previous = a;
+    for &(s, t) in allowed {
+        if !(s > previous && t > s && t < b) {
+            return Err(Error::new(
+                ErrorKind::InvalidArgument,
+                format!(
+                    "the allowed intervals must be increasing, disjoint and inside ({a}, {b}); got ({s}, {t})"
+                ),
+            ));
+        }
+        previous = t;
+    }
+    Ok(())
+}
+
 /// The largest `|new(z) − old(z)|` at `20 · samples` equally spaced heights (ends included).
 pub(crate) fn max_deviation(
     new: &BSpline<f64, f64>,
@@ -155,18 +176,7 @@ fn constrain_second_derivative(
 ) -> Result<MeridianControl> {
     let knots = refined_knots(meridian, refine)?;
     let (a, b) = meridian.domain();
-    let mut previous = a;
-    for &(s, t) in &circles.allowed {
-        if !(s > previous && t > s && t < b) {
-            return Err(Error::new(
-                ErrorKind::InvalidArgument,
-                format!(
-                    "the allowed intervals must be increasing, disjoint and inside ({a}, {b}); got ({s}, {t})"
-                ),
-            ));
-        }
-        previous = t;
-    }
+    check_allowed(&circles.allowed, (a, b))?;
     let mut approximation = FunctionApproximation::new(knots);
     if positive {
         approximation = approximation.sign(0, Sign::NonNegative);
