@@ -219,7 +219,8 @@ fn smoothing_options(
         .map(|t| t.parse::<Extremum>().map_err(|e| e.context("extrema")))
         .collect::<spline::Result<_>>()
         .py()?;
-    options.extrema = Extremum::resolve(curvature_extrema, given)
+    options
+        .request_extrema(curvature_extrema, given)
         .map_err(|e| e.context("curvature_extrema"))
         .py()?;
     Ok(options)

@@ -95,7 +95,8 @@ fn options(args: &SmoothArgs) -> Result<SmoothingOptions> {
         .iter()
         .map(|t| t.parse::<Extremum>().map_err(|e| e.context("--extremum")))
         .collect::<Result<_>>()?;
-    options.extrema = Extremum::resolve(args.curvature_extrema, given)
+    options
+        .request_extrema(args.curvature_extrema, given)
         .map_err(|e| e.context("--curvature-extrema"))?;
     Ok(options)
 }

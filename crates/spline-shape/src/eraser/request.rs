@@ -1,7 +1,7 @@
 //! Requests in words, as the tool and the Python package take them: the objective by name and
 //! the allowed extrema as a count, a list, or both (one mapping for every front end).
 
-use super::{Extremum, MAX_CURVATURE_EXTREMA, Objective};
+use super::{Extremum, MAX_CURVATURE_EXTREMA, Objective, SmoothingOptions};
 use spline_core::{Error, ErrorKind, Result};
 use std::str::FromStr;
 
@@ -22,25 +22,30 @@ impl FromStr for Objective {
     }
 }
 
-impl Extremum {
-    /// The allowed extrema of a request: the `given` ones when there are any (then `count`,
-    /// if also given, must be their number), else `count` extrema alternating from a maximum
-    /// (`max, min, max, …`), each placed automatically, else none.
+impl SmoothingOptions {
+    /// Sets the allowed extrema of a request: the `given` ones when there are any (then
+    /// `count`, if also given, must be their number), else `count` extrema alternating from a
+    /// maximum (`max, min, max, …`), each placed automatically; with neither, the default of
+    /// [`SmoothingOptions::new`] (one maximum) stays.
     ///
     /// ```
-    /// use spline_shape::{Extremum, ExtremumKind};
-    /// let three = Extremum::resolve(Some(3), Vec::new())?;
-    /// assert_eq!(three[1].kind, ExtremumKind::Minimum);
+    /// use spline_shape::{ExtremumKind, SmoothingOptions};
+    /// let mut options = SmoothingOptions::new(12);
+    /// options.request_extrema(None, Vec::new())?;
+    /// assert_eq!(options.extrema.len(), 1); // the default
+    /// options.request_extrema(Some(3), Vec::new())?;
+    /// assert_eq!(options.extrema[1].kind, ExtremumKind::Minimum);
     /// let given = vec!["min@0.2".parse()?];
-    /// assert_eq!(Extremum::resolve(None, given.clone())?, given);
-    /// assert!(Extremum::resolve(Some(2), given).is_err());
+    /// options.request_extrema(None, given.clone())?;
+    /// assert_eq!(options.extrema, given);
+    /// assert!(options.request_extrema(Some(2), given).is_err());
     /// # Ok::<(), spline_core::Error>(())
     /// ```
     ///
     /// # Errors
     /// [`ErrorKind::InvalidArgument`] when `count` disagrees with the extrema given, or for a
-    /// count above [`MAX_CURVATURE_EXTREMA`].
-    pub fn resolve(count: Option<usize>, given: Vec<Extremum>) -> Result<Vec<Extremum>> {
+    /// count above [`MAX_CURVATURE_EXTREMA`]; the options are then unchanged.
+    pub fn request_extrema(&mut self, count: Option<usize>, given: Vec<Extremum>) -> Result<()> {
         if !given.is_empty() {
             if let Some(k) = count.filter(|&k| k != given.len()) {
                 return Err(Error::new(
@@ -48,23 +53,27 @@ impl Extremum {
                     format!("{k} disagrees with the {} extrema given", given.len()),
                 ));
             }
-            return Ok(given);
+            self.extrema = given;
+            return Ok(());
         }
-        let k = count.unwrap_or(0);
+        let Some(k) = count else {
+            return Ok(());
+        };
         if k > MAX_CURVATURE_EXTREMA {
             return Err(Error::new(
                 ErrorKind::InvalidArgument,
                 format!("at most {MAX_CURVATURE_EXTREMA} extrema can be allowed, got {k}"),
             ));
         }
-        Ok((0..k)
+        self.extrema = (0..k)
             .map(|i| {
                 if i % 2 == 0 {
-                    Self::maximum()
+                    Extremum::maximum()
                 } else {
-                    Self::minimum()
+                    Extremum::minimum()
                 }
             })
-            .collect())
+            .collect();
+        Ok(())
     }
 }
