@@ -17,10 +17,14 @@ use spline_core::{Error, ErrorKind, Result};
 mod newton;
 mod phase_one;
 mod trust_region;
+mod workspace;
 
-use newton::{DENSE_LIMIT, NewtonSystem};
+use newton::{DENSE_LIMIT, SparseNewton};
 pub use phase_one::{find_feasible, find_feasible_near};
 use trust_region::centre_trust_region;
+pub(crate) use workspace::Workspace;
+pub use workspace::SparseRows;
+use workspace::with_workspace;
 
 /// A smooth problem `min f0(x) s.t. f_i(x) < 0` with first and second derivatives.
 pub trait BarrierProblem {
@@ -54,6 +58,56 @@ pub trait BarrierProblem {
         _out: &mut DMatrix<f64>,
     ) -> bool {
         false
+    }
+
+    /// [`BarrierProblem::objective_gradient`] written into `out` (`n` entries). The solver
+    /// calls this form; the default calls the owned one, so implementors that care about
+    /// allocations override it.
+    fn objective_gradient_into(&self, x: &DVector<f64>, out: &mut DVector<f64>) {
+        out.copy_from(&self.objective_gradient(x));
+    }
+
+    /// [`BarrierProblem::constraints`] written into `out` (`m` entries).
+    fn constraints_into(&self, x: &DVector<f64>, out: &mut DVector<f64>) {
+        out.copy_from(&self.constraints(x));
+    }
+
+    /// [`BarrierProblem::constraint_jacobian`] written into `out`: cleared, then one row per
+    /// constraint (columns in increasing order), `n` columns.
+    fn constraint_jacobian_into(&self, x: &DVector<f64>, out: &mut SparseRows) {
+        out.clear(self.dimension());
+        out.extend_from_csr(&self.constraint_jacobian(x));
+    }
+
+    /// Adds `scale · ∇²f0(x)` to the dense `n × n` matrix `out`.
+    fn add_objective_hessian(&self, x: &DVector<f64>, scale: f64, out: &mut DMatrix<f64>) {
+        for (i, j, v) in self.objective_hessian(x).triplet_iter() {
+            out[(i, j)] += scale * v;
+        }
+    }
+
+    /// [`BarrierProblem::objective_hessian`] written into `out`. Implementors whose pattern
+    /// does not change rewrite the values of `out` in place when it already has that
+    /// pattern (`out` is `None` at the first call).
+    fn objective_hessian_into(&self, x: &DVector<f64>, out: &mut Option<CsrMatrix<f64>>) {
+        *out = Some(self.objective_hessian(x));
+    }
+
+    /// [`BarrierProblem::weighted_constraint_hessian`] written into `out`; returns `false`
+    /// (leaving `out` alone) when every constraint is linear.
+    fn weighted_constraint_hessian_into(
+        &self,
+        x: &DVector<f64>,
+        weights: &DVector<f64>,
+        out: &mut Option<CsrMatrix<f64>>,
+    ) -> bool {
+        match self.weighted_constraint_hessian(x, weights) {
+            Some(h) => {
+                *out = Some(h);
+                true
+            }
+            None => false,
+        }
     }
 }
 
@@ -129,6 +183,16 @@ pub fn minimize(
     x0: DVector<f64>,
     options: &BarrierOptions,
 ) -> Result<BarrierReport> {
+    with_workspace(|ws| minimize_in(problem, x0, options, ws))
+}
+
+/// [`minimize`] with the given workspace.
+fn minimize_in(
+    problem: &impl BarrierProblem,
+    x0: DVector<f64>,
+    options: &BarrierOptions,
+    ws: &mut Workspace,
+) -> Result<BarrierReport> {
     let n = problem.dimension();
     let m = problem.num_constraints();
     if x0.len() != n {
@@ -160,7 +224,7 @@ pub fn minimize(
     for outer in 1..=options.max_outer_iterations {
         // A centring step that runs out of Newton iterations (non-convex problems can crawl)
         // still leaves a strictly feasible, improved iterate: go on with a larger t.
-        match centre(problem, &mut x, t, options, None) {
+        match centre_in(problem, &mut x, t, options, None, ws) {
             Ok(steps) => newton_total += steps,
             Err(e) if e.kind() == ErrorKind::NoConvergence => {
                 newton_total += options.max_newton_iterations;
@@ -208,13 +272,15 @@ fn initial_t(problem: &impl BarrierProblem, x: &DVector<f64>) -> f64 {
     }
 }
 
-/// Value of the barrier objective `t f0 − Σ log(−f_i)`, or `None` outside the domain.
+/// Value of the barrier objective `t f0 − Σ log(−f_i)`, or `None` outside the domain; `c`
+/// receives the constraint values.
 pub(super) fn barrier_value(
     problem: &impl BarrierProblem,
     x: &DVector<f64>,
     t: f64,
+    c: &mut DVector<f64>,
 ) -> Option<f64> {
-    let c = problem.constraints(x);
+    problem.constraints_into(x, c);
     if c.iter().any(|&ci| !(ci < 0.0)) {
         return None;
     }
@@ -222,38 +288,42 @@ pub(super) fn barrier_value(
     f.is_finite().then_some(f)
 }
 
-/// At an iterate: the constraints' Jacobian, the weights `1 / (−f_i)` and the gradient of
-/// the barrier objective.
-pub(super) struct Gradient {
-    jac: CsrMatrix<f64>,
-    inv: DVector<f64>,
-    gradient: DVector<f64>,
-}
-
-/// The gradient of the barrier objective, `t ∇f0 + Σ ∇f_i / (−f_i)`.
+/// At an iterate, into the workspace: the constraints' Jacobian, the weights `1 / (−f_i)`
+/// and the gradient of the barrier objective, `t ∇f0 + Σ ∇f_i / (−f_i)`.
 pub(super) fn barrier_gradient(
     problem: &impl BarrierProblem,
     x: &DVector<f64>,
     t: f64,
-) -> Result<Gradient> {
-    let c = problem.constraints(x);
-    let jac = problem.constraint_jacobian(x);
-    let inv = c.map(|ci| 1.0 / -ci);
-    let gradient = problem.objective_gradient(x) * t + jac.transpose() * &inv;
-    if gradient.iter().any(|g| !g.is_finite()) {
+    ws: &mut Workspace,
+) -> Result<()> {
+    problem.constraints_into(x, &mut ws.c);
+    problem.constraint_jacobian_into(x, &mut ws.jac);
+    for (w, &ci) in ws.inv.iter_mut().zip(ws.c.iter()) {
+        *w = 1.0 / -ci;
+    }
+    problem.objective_gradient_into(x, &mut ws.g0);
+    // Jᵀ w summed row after row (as the transposed CSR product did), then t ∇f0 added.
+    ws.gradient.fill(0.0);
+    ws.jac
+        .transpose_mul_add(ws.inv.as_slice(), ws.gradient.as_mut_slice());
+    for (g, &g0) in ws.gradient.iter_mut().zip(ws.g0.iter()) {
+        *g = g0 * t + *g;
+    }
+    if ws.gradient.iter().any(|g| !g.is_finite()) {
         return Err(Error::new(
             ErrorKind::NonFinite,
             "the barrier gradient is not finite",
         ));
     }
-    Ok(Gradient { jac, inv, gradient })
+    Ok(())
 }
 
 /// A condition that ends a centring step early.
 pub(crate) type StopRule<'a> = &'a dyn Fn(&DVector<f64>) -> bool;
 
 /// Newton's method on the barrier objective for fixed `t`; returns the number of steps.
-/// `stop` ends the centring early once an iterate satisfies it.
+/// `stop` ends the centring early once an iterate satisfies it. The memory of the steps is
+/// this thread's solver workspace, reused from one call to the next.
 pub(crate) fn centre(
     problem: &impl BarrierProblem,
     x: &mut DVector<f64>,
@@ -261,49 +331,58 @@ pub(crate) fn centre(
     options: &BarrierOptions,
     stop: Option<StopRule<'_>>,
 ) -> Result<usize> {
+    with_workspace(|ws| centre_in(problem, x, t, options, stop, ws))
+}
+
+/// [`centre`] with the given workspace.
+pub(super) fn centre_in(
+    problem: &impl BarrierProblem,
+    x: &mut DVector<f64>,
+    t: f64,
+    options: &BarrierOptions,
+    stop: Option<StopRule<'_>>,
+    ws: &mut Workspace,
+) -> Result<usize> {
     let n = problem.dimension();
+    ws.prepare(n, problem.num_constraints(), n <= DENSE_LIMIT);
     if n <= DENSE_LIMIT {
-        return centre_trust_region(problem, x, t, options, stop);
+        return centre_trust_region(problem, x, t, options, stop, ws);
     }
     for step in 0..options.max_newton_iterations {
-        let Gradient { jac, inv, gradient } = barrier_gradient(problem, x, t)?;
+        barrier_gradient(problem, x, t, ws)?;
         // Hessian: t ∇²f0 + Σ ∇f_i ∇f_iᵀ / f_i² + Σ ∇²f_i / (−f_i). With the curvature of
         // the constraints when that keeps the Newton matrix positive definite; otherwise the
         // Gauss–Newton matrix t∇²f0 + Σ ∇f_i∇f_iᵀ/f_i² (positive semi-definite) with a small
         // shift — the standard remedy for non-convex constraints.
-        let mut system = NewtonSystem::new(n);
-        for (i, j, v) in problem.objective_hessian(x).triplet_iter() {
-            system.add(i, j, t * v);
-        }
-        for (row, &w) in jac.row_iter().zip(inv.iter()) {
-            system.add_outer(row.col_indices(), row.values(), w * w);
-        }
-        let curvature = problem.weighted_constraint_hessian(x, &inv);
-        let direction = match curvature {
-            Some(h) => {
-                let full = system.with(&h);
-                match full.solve_definite(&gradient) {
-                    Some(d) => d,
-                    None => system.solve_shifted(&gradient)?,
-                }
-            }
-            None => system.solve_shifted(&gradient)?,
+        problem.objective_hessian_into(x, &mut ws.objective_hessian);
+        let curved = problem.weighted_constraint_hessian_into(x, &ws.inv, &mut ws.curvature);
+        fill_newton(ws, t, curved);
+        let newton = ws.newton.as_mut().expect("filled");
+        let solved = if curved {
+            newton.solve_definite(&ws.gradient, &mut ws.direction)
+        } else {
+            false
         };
-        let decrement = -gradient.dot(&direction);
-        let f = barrier_value(problem, x, t)
+        if !solved {
+            newton.solve_shifted(&ws.gradient, &mut ws.direction)?;
+        }
+        let direction = &ws.direction;
+        let decrement = -ws.gradient.dot(direction);
+        let f = barrier_value(problem, x, t, &mut ws.c_trial)
             .ok_or_else(|| Error::new(ErrorKind::NonFinite, "iterate left the barrier domain"))?;
         // Relative to the barrier value: at large t the gradient is a difference of large terms.
         if decrement / 2.0 <= options.newton_tolerance * (1.0 + f.abs()) {
             return Ok(step);
         }
         // Backtracking: stay strictly feasible, then Armijo.
-        let slope = gradient.dot(&direction);
+        let slope = ws.gradient.dot(direction);
         let mut s = 1.0;
         loop {
-            let candidate = &*x + &direction * s;
-            if let Some(fc) = barrier_value(problem, &candidate, t) {
+            ws.candidate.copy_from(x);
+            ws.candidate.axpy(s, &ws.direction, 1.0);
+            if let Some(fc) = barrier_value(problem, &ws.candidate, t, &mut ws.c_trial) {
                 if fc <= f + options.armijo * s * slope {
-                    *x = candidate;
+                    x.copy_from(&ws.candidate);
                     if stop.is_some_and(|stop| stop(x)) {
                         return Ok(step + 1);
                     }
@@ -324,4 +403,55 @@ pub(crate) fn centre(
             options.max_newton_iterations
         ),
     ))
+}
+
+/// Fills the sparse Newton matrix of the workspace: base values `t ∇²f0 + Σ ∇f_i ∇f_iᵀ /
+/// f_i²`, and working values with the curvature added when `curved`. The pattern is made
+/// (again) when an entry falls outside it: at the first step, or when the problem's
+/// patterns change.
+fn fill_newton(ws: &mut Workspace, t: f64, curved: bool) {
+    for attempt in 0..2 {
+        if ws.newton.is_none() || attempt == 1 {
+            let old = ws.newton.take();
+            let mut entries: Vec<(usize, usize)> = old
+                .as_ref()
+                .map(|o| o.entries().collect())
+                .unwrap_or_default();
+            if let Some(h) = &ws.objective_hessian {
+                entries.extend(h.triplet_iter().map(|(i, j, _)| (i, j)));
+            }
+            for (cols, _) in ws.jac.rows() {
+                for &a in cols {
+                    entries.extend(cols.iter().map(|&b| (a, b)));
+                }
+            }
+            if curved {
+                if let Some(h) = &ws.curvature {
+                    entries.extend(h.triplet_iter().map(|(i, j, _)| (i, j)));
+                }
+            }
+            ws.newton = Some(SparseNewton::new(ws.n, entries.into_iter()));
+        }
+        let newton = ws.newton.as_mut().expect("made above");
+        newton.clear();
+        if let Some(h) = &ws.objective_hessian {
+            for (i, j, v) in h.triplet_iter() {
+                newton.add(i, j, t * v);
+            }
+        }
+        for ((cols, vals), &w) in ws.jac.rows().zip(ws.inv.iter()) {
+            newton.add_outer(cols, vals, w * w);
+        }
+        newton.reset_work();
+        if curved {
+            if let Some(h) = &ws.curvature {
+                for (i, j, v) in h.triplet_iter() {
+                    newton.add_work(i, j, *v);
+                }
+            }
+        }
+        if !newton.missed {
+            break;
+        }
+    }
 }

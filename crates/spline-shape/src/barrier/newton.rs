@@ -1,39 +1,113 @@
-//! The Newton matrix of one barrier step, dense or sparse.
+//! The sparse Newton matrix of the barrier method (above [`DENSE_LIMIT`] unknowns): its
+//! pattern — the union of the objective Hessian's, of `Jᵀ D J`'s and of the constraint
+//! curvature's, plus the diagonal — is computed once per problem shape; each step rewrites
+//! the values in place and refactors with nalgebra-sparse's Cholesky factorisation on the
+//! same symbolic analysis.
 
-use nalgebra::{DMatrix, DVector};
-use nalgebra_sparse::factorization::CscCholesky;
-use nalgebra_sparse::{CooMatrix, CscMatrix, CsrMatrix};
+use nalgebra::DVector;
+use nalgebra_sparse::factorization::{CscCholesky, CscSymbolicCholesky};
+use nalgebra_sparse::pattern::SparsityPattern;
+use nalgebra_sparse::{CooMatrix, CscMatrix};
 use spline_core::{Error, ErrorKind, Result};
-
-/// The Newton matrix of one step: dense for small problems (the eraser's curves, the
-/// functions of thesis ch. 5), sparse (COO, then a sparse Cholesky factorisation) above
-/// [`DENSE_LIMIT`] unknowns.
-#[derive(Clone)]
-pub(super) enum NewtonSystem {
-    Dense(DMatrix<f64>),
-    Sparse(CooMatrix<f64>),
-}
 
 /// Problems with at most this many unknowns use dense matrices.
 pub(super) const DENSE_LIMIT: usize = 400;
 
-impl NewtonSystem {
-    pub(super) fn new(n: usize) -> Self {
-        if n <= DENSE_LIMIT {
-            Self::Dense(DMatrix::zeros(n, n))
-        } else {
-            Self::Sparse(CooMatrix::new(n, n))
+/// The Newton matrix on a fixed pattern (CSC, both triangles) and its factorisation.
+pub(crate) struct SparseNewton {
+    n: usize,
+    pattern: SparsityPattern,
+    /// The slot of every diagonal entry.
+    diagonal: Vec<usize>,
+    symbolic: CscSymbolicCholesky,
+    factor: CscCholesky<f64>,
+    /// Whether the last factorisation failed (the factor's work memory is then not clean:
+    /// the next one starts from the symbolic analysis again).
+    failed: bool,
+    /// The values without the constraints' curvature, and the values being factored.
+    pub(super) base: Vec<f64>,
+    pub(super) work: Vec<f64>,
+    /// Whether an entry fell outside the pattern since the last fill.
+    pub(super) missed: bool,
+}
+
+impl SparseNewton {
+    /// The Newton matrix whose pattern holds `entries` and the diagonal.
+    pub(super) fn new(n: usize, entries: impl Iterator<Item = (usize, usize)>) -> Self {
+        let mut coo = CooMatrix::new(n, n);
+        for i in 0..n {
+            coo.push(i, i, 1.0);
+        }
+        for (i, j) in entries {
+            coo.push(i, j, 0.0);
+        }
+        let csc = CscMatrix::from(&coo);
+        // A positive definite matrix on the pattern (the identity) for the first numerical
+        // factorisation: later ones only rewrite the values.
+        let identity: Vec<f64> = csc
+            .triplet_iter()
+            .map(|(i, j, _)| if i == j { 1.0 } else { 0.0 })
+            .collect();
+        let pattern = csc.pattern().clone();
+        let diagonal = (0..n)
+            .map(|j| {
+                let rows = &pattern.minor_indices()
+                    [pattern.major_offsets()[j]..pattern.major_offsets()[j + 1]];
+                pattern.major_offsets()[j] + rows.partition_point(|&r| r < j)
+            })
+            .collect();
+        let symbolic = CscSymbolicCholesky::factor(pattern.clone());
+        let factor = CscCholesky::factor_numerical(symbolic.clone(), &identity)
+            .expect("the identity is positive definite");
+        let nnz = pattern.nnz();
+        Self {
+            n,
+            pattern,
+            diagonal,
+            symbolic,
+            factor,
+            failed: false,
+            base: vec![0.0; nnz],
+            work: vec![0.0; nnz],
+            missed: false,
         }
     }
 
+    /// The entries of the pattern.
+    pub(super) fn entries(&self) -> impl Iterator<Item = (usize, usize)> + '_ {
+        (0..self.n).flat_map(move |j| {
+            let (a, b) = (
+                self.pattern.major_offsets()[j],
+                self.pattern.major_offsets()[j + 1],
+            );
+            self.pattern.minor_indices()[a..b].iter().map(move |&i| (i, j))
+        })
+    }
+
+    fn slot(&self, i: usize, j: usize) -> Option<usize> {
+        let (a, b) = (
+            self.pattern.major_offsets()[j],
+            self.pattern.major_offsets()[j + 1],
+        );
+        let rows = &self.pattern.minor_indices()[a..b];
+        rows.binary_search(&i).ok().map(|k| a + k)
+    }
+
+    /// Clears the base values.
+    pub(super) fn clear(&mut self) {
+        self.base.iter_mut().for_each(|v| *v = 0.0);
+        self.missed = false;
+    }
+
+    /// Adds `v` at `(i, j)` of the base values (records a miss outside the pattern).
     pub(super) fn add(&mut self, i: usize, j: usize, v: f64) {
-        match self {
-            Self::Dense(m) => m[(i, j)] += v,
-            Self::Sparse(m) => m.push(i, j, v),
+        match self.slot(i, j) {
+            Some(s) => self.base[s] += v,
+            None => self.missed = true,
         }
     }
 
-    /// Adds `w · a aᵀ` for a sparse vector `a`.
+    /// Adds `w · a aᵀ` for a sparse vector `a` to the base values.
     pub(super) fn add_outer(&mut self, cols: &[usize], vals: &[f64], w: f64) {
         for (&ca, &va) in cols.iter().zip(vals) {
             let wa = w * va;
@@ -43,51 +117,71 @@ impl NewtonSystem {
         }
     }
 
-    /// This matrix plus `h`.
-    pub(super) fn with(&self, h: &CsrMatrix<f64>) -> Self {
-        let mut out = self.clone();
-        for (i, j, v) in h.triplet_iter() {
-            out.add(i, j, *v);
-        }
-        out
+    /// Sets the working values to the base values.
+    pub(super) fn reset_work(&mut self) {
+        self.work.copy_from_slice(&self.base);
     }
 
-    /// Solves `H d = −g` if `H` is positive definite.
-    pub(super) fn solve_definite(&self, gradient: &DVector<f64>) -> Option<DVector<f64>> {
-        let d = match self {
-            Self::Dense(m) => m.clone().cholesky()?.solve(&(-gradient)),
-            Self::Sparse(m) => {
-                let factor = CscCholesky::factor(&CscMatrix::from(m)).ok()?;
-                let d = factor.solve(&(-gradient));
-                DVector::from_column_slice(d.as_slice())
+    /// Adds `v` at `(i, j)` of the working values (records a miss outside the pattern).
+    pub(super) fn add_work(&mut self, i: usize, j: usize, v: f64) {
+        match self.slot(i, j) {
+            Some(s) => self.work[s] += v,
+            None => self.missed = true,
+        }
+    }
+
+    /// Factors the working values and solves `H d = −g` into `d`, if `H` is positive
+    /// definite.
+    fn solve_work(&mut self, gradient: &DVector<f64>, d: &mut DVector<f64>) -> bool {
+        let ok = if self.failed {
+            match CscCholesky::factor_numerical(self.symbolic.clone(), &self.work) {
+                Ok(f) => {
+                    self.factor = f;
+                    true
+                }
+                Err(_) => false,
             }
+        } else {
+            self.factor.refactor(&self.work).is_ok()
         };
-        d.iter().all(|v| v.is_finite()).then_some(d)
+        self.failed = !ok;
+        if !ok {
+            return false;
+        }
+        d.copy_from(gradient);
+        d.neg_mut();
+        self.factor.solve_mut(&mut *d);
+        d.iter().all(|v| v.is_finite())
     }
 
-    /// Solves `H d = −g`, adding `δ I` with growing `δ` while `H` is not positive definite.
-    pub(super) fn solve_shifted(&self, gradient: &DVector<f64>) -> Result<DVector<f64>> {
-        let n = gradient.len();
-        let scale = match self {
-            Self::Dense(m) => (0..n).map(|i| m[(i, i)].abs()).fold(0.0, f64::max),
-            Self::Sparse(m) => {
-                let csc = CscMatrix::from(m);
-                (0..n)
-                    .map(|i| csc.get_entry(i, i).map_or(0.0, |e| e.into_value().abs()))
-                    .fold(0.0, f64::max)
-            }
-        }
-        .max(1e-300);
+    /// Solves `H d = −g` with the working values, if they are positive definite.
+    pub(super) fn solve_definite(&mut self, gradient: &DVector<f64>, d: &mut DVector<f64>) -> bool {
+        self.solve_work(gradient, d)
+    }
+
+    /// Solves `H d = −g` with the base values, adding `δ I` with growing `δ` while they are
+    /// not positive definite.
+    pub(super) fn solve_shifted(
+        &mut self,
+        gradient: &DVector<f64>,
+        d: &mut DVector<f64>,
+    ) -> Result<()> {
+        let scale = self
+            .diagonal
+            .iter()
+            .map(|&s| self.base[s].abs())
+            .fold(0.0, f64::max)
+            .max(1e-300);
         let mut shift = 0.0;
         for _ in 0..40 {
-            let mut shifted = self.clone();
+            self.reset_work();
             if shift > 0.0 {
-                for i in 0..n {
-                    shifted.add(i, i, shift);
+                for k in 0..self.n {
+                    self.work[self.diagonal[k]] += shift;
                 }
             }
-            if let Some(d) = shifted.solve_definite(gradient) {
-                return Ok(d);
+            if self.solve_work(gradient, d) {
+                return Ok(());
             }
             shift = if shift == 0.0 {
                 1e-10 * scale

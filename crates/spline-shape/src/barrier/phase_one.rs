@@ -1,7 +1,9 @@
 //! Phase I: a strictly feasible start.
 
 use super::{BarrierOptions, BarrierProblem, centre};
-use nalgebra::DVector;
+use super::SparseRows;
+use nalgebra::{DMatrix, DVector};
+use std::cell::RefCell;
 use nalgebra_sparse::{CooMatrix, CsrMatrix};
 use spline_core::{Error, ErrorKind, Result};
 
@@ -47,6 +49,7 @@ pub fn find_feasible_near(
         centre: x0.clone(),
         radius,
         objective_weight,
+        scratch: RefCell::new(PhaseScratch::default()),
     };
     let n = problem.dimension();
     let mut start = DVector::zeros(n + 1);
@@ -57,14 +60,14 @@ pub fn find_feasible_near(
     // initial infeasibility, not where the barrier would push `s` up.
     let m = (problem.num_constraints() + 1) as f64;
     let mut t = (10.0 * m / (worst.abs() + 1.0)).max(1.0);
+    // Phase I needs no accurate centring: a few Newton steps per value of t.
+    let loose = BarrierOptions {
+        max_newton_iterations: 30,
+        ..options.clone()
+    };
     for _ in 0..options.max_outer_iterations {
         // Centre, stopping as soon as the inner point is strictly feasible.
         let stop = |y: &DVector<f64>| y[n] < -margin;
-        // Phase I needs no accurate centring: a few Newton steps per value of t.
-        let loose = BarrierOptions {
-            max_newton_iterations: 30,
-            ..options.clone()
-        };
         match centre(&phase, &mut x, t, &loose, Some(&stop)) {
             Ok(_) => {}
             Err(e) if e.kind() == ErrorKind::NoConvergence => {}
@@ -95,6 +98,29 @@ struct PhaseOne<'a, P> {
     radius: f64,
     /// Weight of `f0` added to the objective `s` ([`find_feasible_near`]).
     objective_weight: f64,
+    scratch: RefCell<PhaseScratch>,
+}
+
+/// The inner problem's arguments and results, reused between calls.
+#[derive(Default)]
+struct PhaseScratch {
+    x: DVector<f64>,
+    weights: DVector<f64>,
+    values: DVector<f64>,
+    rows: SparseRows,
+    dense: DMatrix<f64>,
+    sparse: Option<CsrMatrix<f64>>,
+}
+
+impl<P: BarrierProblem> PhaseOne<'_, P> {
+    /// The inner problem's variables of `x` in the scratch memory.
+    fn inner_x(&self, x: &DVector<f64>, scratch: &mut PhaseScratch) {
+        let n = self.inner.dimension();
+        if scratch.x.len() != n {
+            scratch.x = DVector::zeros(n);
+        }
+        scratch.x.copy_from(&x.rows(0, n));
+    }
 }
 
 impl<P: BarrierProblem> BarrierProblem for PhaseOne<'_, P> {
@@ -186,5 +212,138 @@ impl<P: BarrierProblem> BarrierProblem for PhaseOne<'_, P> {
                 }
                 CsrMatrix::from(&coo)
             })
+    }
+
+    fn objective_gradient_into(&self, x: &DVector<f64>, out: &mut DVector<f64>) {
+        let n = self.inner.dimension();
+        out.fill(0.0);
+        if self.objective_weight > 0.0 {
+            let mut scratch = self.scratch.borrow_mut();
+            let s = &mut *scratch;
+            self.inner_x(x, s);
+            if s.values.len() != n {
+                s.values = DVector::zeros(n);
+            }
+            self.inner.objective_gradient_into(&s.x, &mut s.values);
+            for (o, v) in out.rows_mut(0, n).iter_mut().zip(s.values.iter()) {
+                *o = v * self.objective_weight;
+            }
+        }
+        out[n] = 1.0;
+    }
+
+    fn add_objective_hessian(&self, x: &DVector<f64>, scale: f64, out: &mut DMatrix<f64>) {
+        if self.objective_weight == 0.0 {
+            return;
+        }
+        let n = self.inner.dimension();
+        let mut scratch = self.scratch.borrow_mut();
+        let s = &mut *scratch;
+        self.inner_x(x, s);
+        if s.dense.nrows() != n {
+            s.dense = DMatrix::zeros(n, n);
+        }
+        // The inner Hessian first (as its own matrix), then weighted and scaled entry by
+        // entry: the sums of the owned form.
+        s.dense.fill(0.0);
+        self.inner.add_objective_hessian(&s.x, 1.0, &mut s.dense);
+        for j in 0..n {
+            for i in 0..n {
+                let v = s.dense[(i, j)];
+                if v != 0.0 {
+                    out[(i, j)] += scale * (self.objective_weight * v);
+                }
+            }
+        }
+    }
+
+    fn constraints_into(&self, x: &DVector<f64>, out: &mut DVector<f64>) {
+        let n = self.inner.dimension();
+        let m = self.inner.num_constraints();
+        let s = x[n];
+        let mut scratch = self.scratch.borrow_mut();
+        let sc = &mut *scratch;
+        self.inner_x(x, sc);
+        if sc.values.len() != m {
+            sc.values = DVector::zeros(m);
+        }
+        self.inner.constraints_into(&sc.x, &mut sc.values);
+        for (i, v) in sc.values.iter().enumerate() {
+            out[i] = v - s;
+        }
+        out[m] = -s - 2.0 * self.margin - 1.0;
+        for j in 0..n {
+            let offset = x[j] - self.centre[j];
+            out[m + 1 + 2 * j] = offset - self.radius;
+            out[m + 2 + 2 * j] = -offset - self.radius;
+        }
+    }
+
+    fn constraint_jacobian_into(&self, x: &DVector<f64>, out: &mut SparseRows) {
+        let n = self.inner.dimension();
+        let mut scratch = self.scratch.borrow_mut();
+        let s = &mut *scratch;
+        self.inner_x(x, s);
+        self.inner.constraint_jacobian_into(&s.x, &mut s.rows);
+        out.clear(n + 1);
+        for (cols, vals) in s.rows.rows() {
+            for (&c, &v) in cols.iter().zip(vals) {
+                out.push(c, v);
+            }
+            out.push(n, -1.0);
+            out.end_row();
+        }
+        out.push(n, -1.0);
+        out.end_row();
+        for j in 0..n {
+            out.push(j, 1.0);
+            out.end_row();
+            out.push(j, -1.0);
+            out.end_row();
+        }
+    }
+
+    fn add_weighted_constraint_hessian(
+        &self,
+        x: &DVector<f64>,
+        weights: &DVector<f64>,
+        out: &mut DMatrix<f64>,
+    ) -> bool {
+        let n = self.inner.dimension();
+        let m = self.inner.num_constraints();
+        let mut scratch = self.scratch.borrow_mut();
+        let s = &mut *scratch;
+        self.inner_x(x, s);
+        if s.weights.len() != m {
+            s.weights = DVector::zeros(m);
+        }
+        s.weights.copy_from(&weights.rows(0, m));
+        if s.dense.nrows() != n {
+            s.dense = DMatrix::zeros(n, n);
+        }
+        s.dense.fill(0.0);
+        if self
+            .inner
+            .add_weighted_constraint_hessian(&s.x, &s.weights, &mut s.dense)
+        {
+            for j in 0..n {
+                for i in 0..n {
+                    let v = s.dense[(i, j)];
+                    if v != 0.0 {
+                        out[(i, j)] += v;
+                    }
+                }
+            }
+        } else if self
+            .inner
+            .weighted_constraint_hessian_into(&s.x, &s.weights, &mut s.sparse)
+        {
+            if let Some(h) = &s.sparse {
+                for (i, j, v) in h.triplet_iter() {
+                    out[(i, j)] += v;
+                }
+            }
+        }
+        true
     }
 }

@@ -1,6 +1,8 @@
 //! The dense path: Newton's method with a trust region in the barrier's local metric.
 
-use super::{BarrierOptions, BarrierProblem, Gradient, StopRule, barrier_gradient, barrier_value};
+use super::{
+    BarrierOptions, BarrierProblem, StopRule, Workspace, barrier_gradient, barrier_value,
+};
 use nalgebra::{DMatrix, DVector};
 use spline_core::{Error, ErrorKind, Result};
 
@@ -18,20 +20,18 @@ pub(super) fn centre_trust_region(
     t: f64,
     options: &BarrierOptions,
     stop: Option<StopRule<'_>>,
+    ws: &mut Workspace,
 ) -> Result<usize> {
-    let n = problem.dimension();
     let mut radius = 1.0;
     let mut accepted = 0;
-    let mut f = barrier_value(problem, x, t)
+    let mut f = barrier_value(problem, x, t, &mut ws.c_trial)
         .ok_or_else(|| Error::new(ErrorKind::NonFinite, "iterate left the barrier domain"))?;
     for _ in 0..options.max_newton_iterations {
-        let Gradient { jac, inv, gradient } = barrier_gradient(problem, x, t)?;
-        let mut metric = DMatrix::zeros(n, n);
-        for (i, j, v) in problem.objective_hessian(x).triplet_iter() {
-            metric[(i, j)] += t * v;
-        }
-        for (row, &w) in jac.row_iter().zip(inv.iter()) {
-            let (cols, vals) = (row.col_indices(), row.values());
+        barrier_gradient(problem, x, t, ws)?;
+        let metric = &mut ws.metric;
+        metric.fill(0.0);
+        problem.add_objective_hessian(x, t, metric);
+        for ((cols, vals), &w) in ws.jac.rows().zip(ws.inv.iter()) {
             for (&ca, &va) in cols.iter().zip(vals) {
                 let wa = w * w * va;
                 for (&cb, &vb) in cols.iter().zip(vals) {
@@ -39,45 +39,48 @@ pub(super) fn centre_trust_region(
                 }
             }
         }
-        let mut hessian = metric.clone();
-        if !problem.add_weighted_constraint_hessian(x, &inv, &mut hessian) {
-            if let Some(h) = problem.weighted_constraint_hessian(x, &inv) {
+        ws.hessian.copy_from(&ws.metric);
+        if !problem.add_weighted_constraint_hessian(x, &ws.inv, &mut ws.hessian)
+            && problem.weighted_constraint_hessian_into(x, &ws.inv, &mut ws.curvature)
+        {
+            if let Some(h) = &ws.curvature {
                 for (i, j, v) in h.triplet_iter() {
-                    hessian[(i, j)] += v;
+                    ws.hessian[(i, j)] += v;
                 }
             }
         }
-        let Some(factor) = positive_definite_factor(&metric) else {
+        if !positive_definite_factor(&ws.metric, &mut ws.factor_storage, &mut ws.l) {
             return Err(Error::new(
                 ErrorKind::SingularSystem,
                 "the local metric of the barrier could not be made positive definite",
             ));
-        };
+        }
         // Decrement in the local metric: gᵀ M⁻¹ g.
-        let scaled_gradient = factor
-            .l()
-            .solve_lower_triangular(&gradient)
-            .unwrap_or_else(|| gradient.clone());
-        let decrement = scaled_gradient.norm_squared();
+        ws.scaled_gradient.copy_from(&ws.gradient);
+        if !ws.l.solve_lower_triangular_mut(&mut ws.scaled_gradient) {
+            ws.scaled_gradient.copy_from(&ws.gradient);
+        }
+        let decrement = ws.scaled_gradient.norm_squared();
         if decrement / 2.0 <= options.newton_tolerance * (1.0 + f.abs()) {
             return Ok(accepted);
         }
-        let l = factor.l();
+        ws.l.transpose_to(&mut ws.lt);
         // The Newton step, when H is positive definite and the step fits in the region: no
         // eigendecomposition needed (the common case near the central path).
-        if let Some(h_factor) = hessian.clone().cholesky() {
-            let d = h_factor.solve(&(-&gradient));
-            let y = l.transpose() * &d;
-            if d.iter().all(|v| v.is_finite()) && y.norm() <= radius {
-                let predicted = -0.5 * gradient.dot(&d);
-                let candidate = &*x + &d;
-                let actual = barrier_value(problem, &candidate, t).map(|fc| f - fc);
+        if newton_step(ws) {
+            let d = &ws.direction;
+            ws.y.gemv(1.0, &ws.lt, d, 0.0);
+            if d.iter().all(|v| v.is_finite()) && ws.y.norm() <= radius {
+                let predicted = -0.5 * ws.gradient.dot(d);
+                ws.candidate.copy_from(x);
+                ws.candidate += d;
+                let actual = barrier_value(problem, &ws.candidate, t, &mut ws.c_trial).map(|fc| f - fc);
                 let ratio = actual.map_or(-1.0, |a| a / predicted);
                 if predicted > 0.0 && ratio > 0.25 {
-                    if ratio > 0.75 && y.norm() > 0.99 * radius {
+                    if ratio > 0.75 && ws.y.norm() > 0.99 * radius {
                         radius = (2.0 * radius).min(1e6);
                     }
-                    *x = candidate;
+                    x.copy_from(&ws.candidate);
                     f -= actual.unwrap_or(0.0);
                     accepted += 1;
                     if stop.is_some_and(|stop| stop(x)) {
@@ -87,9 +90,13 @@ pub(super) fn centre_trust_region(
                 }
             }
         }
+        // The step that needs the eigendecomposition (nalgebra's has no in-place form: the
+        // only allocations of an iteration are here, a fixed number per decomposition).
+        let l = &ws.l;
+        let hessian = &ws.hessian;
         // H̃ = L⁻¹ H L⁻ᵀ.
         let left = l
-            .solve_lower_triangular(&hessian)
+            .solve_lower_triangular(hessian)
             .unwrap_or_else(|| hessian.clone());
         let scaled = l
             .solve_lower_triangular(&left.transpose())
@@ -98,7 +105,7 @@ pub(super) fn centre_trust_region(
         let eigen = scaled.symmetric_eigen();
         let mut improved = false;
         for _ in 0..60 {
-            let (y, predicted) = trust_region_step(&eigen, &scaled_gradient, radius);
+            let (y, predicted) = trust_region_step(&eigen, &ws.scaled_gradient, radius);
             if !(predicted > 0.0) {
                 return Ok(accepted);
             }
@@ -107,7 +114,7 @@ pub(super) fn centre_trust_region(
                 .solve_upper_triangular(&y)
                 .unwrap_or(y.clone());
             let candidate = &*x + &d;
-            let actual = barrier_value(problem, &candidate, t).map(|fc| f - fc);
+            let actual = barrier_value(problem, &candidate, t, &mut ws.c_trial).map(|fc| f - fc);
             let ratio = actual.map_or(-1.0, |a| a / predicted);
             let on_boundary = y.norm() > 0.99 * radius;
             if ratio < 0.25 {
@@ -143,9 +150,32 @@ pub(super) fn centre_trust_region(
     ))
 }
 
+/// The Newton direction `H d = −g` into the workspace's direction, if the Hessian is
+/// positive definite (its Cholesky factorisation in the workspace's storage).
+fn newton_step(ws: &mut Workspace) -> bool {
+    let mut storage = ws
+        .hessian_storage
+        .take()
+        .unwrap_or_else(|| DMatrix::zeros(ws.n, ws.n));
+    storage.copy_from(&ws.hessian);
+    let Some(factor) = storage.cholesky() else {
+        return false;
+    };
+    ws.direction.copy_from(&ws.gradient);
+    ws.direction.neg_mut();
+    factor.solve_mut(&mut ws.direction);
+    ws.hessian_storage = Some(factor.unpack_dirty());
+    true
+}
+
 /// The Cholesky factor of `m`, shifted by a small multiple of its largest diagonal entry if
-/// needed.
-fn positive_definite_factor(m: &DMatrix<f64>) -> Option<nalgebra::Cholesky<f64, nalgebra::Dyn>> {
+/// needed, into `l` (lower triangle, zeros above); `storage` is the factorisation's memory.
+/// `false` if no shift makes `m` positive definite.
+fn positive_definite_factor(
+    m: &DMatrix<f64>,
+    storage: &mut Option<DMatrix<f64>>,
+    l: &mut DMatrix<f64>,
+) -> bool {
     let n = m.nrows();
     let scale = (0..n)
         .map(|i| m[(i, i)].abs())
@@ -153,12 +183,16 @@ fn positive_definite_factor(m: &DMatrix<f64>) -> Option<nalgebra::Cholesky<f64, 
         .max(1e-300);
     let mut shift = 0.0;
     for _ in 0..20 {
-        let mut shifted = m.clone();
+        let mut shifted = storage.take().unwrap_or_else(|| DMatrix::zeros(n, n));
+        shifted.copy_from(m);
         for i in 0..n {
             shifted[(i, i)] += shift;
         }
         if let Some(f) = shifted.cholesky() {
-            return Some(f);
+            l.copy_from(f.l_dirty());
+            l.fill_upper_triangle(0.0, 1);
+            *storage = Some(f.unpack_dirty());
+            return true;
         }
         shift = if shift == 0.0 {
             1e-12 * scale
@@ -166,7 +200,7 @@ fn positive_definite_factor(m: &DMatrix<f64>) -> Option<nalgebra::Cholesky<f64, 
             shift * 100.0
         };
     }
-    None
+    false
 }
 
 /// The exact solution of $\min_y \gamma^T y + \tfrac12 y^T \tilde H y$,

@@ -44,6 +44,10 @@ struct Scratch {
     /// Hessian weights per segment coefficient, and one segment's weighted Hessian block.
     omega: Vec<f64>,
     block: Vec<f64>,
+    /// A dense Hessian before it is scaled into the solver's matrix.
+    dense: DMatrix<f64>,
+    /// One row of the Jacobian while its entries are sorted by column.
+    sorted_row: Vec<(usize, f64)>,
 }
 
 /// `min z` (or `min Σ d_j²`) over the control points subject to the distance bounds and the
@@ -119,6 +123,8 @@ impl EraserProblem {
             signed: Vec::new(),
             omega: Vec::new(),
             block: Vec::new(),
+            dense: DMatrix::zeros(0, 0),
+            sorted_row: Vec::new(),
         };
         let mut problem = Self {
             pieces: Vec::new(),

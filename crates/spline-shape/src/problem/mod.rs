@@ -3,11 +3,16 @@
 //! linear sign constraints `G x < 0` and quadratic ones `½ xᵀ H_k x < 0` with constant
 //! Hessians, as a [`BarrierProblem`].
 
+mod in_place;
 mod objective;
 
 pub(crate) use objective::LeastSquaresObjective;
 
-use crate::barrier::{BarrierOptions, BarrierProblem, BarrierReport, find_feasible, minimize};
+use crate::barrier::{
+    BarrierOptions, BarrierProblem, BarrierReport, SparseRows, find_feasible, minimize,
+};
+use in_place::JacobianPattern;
+use nalgebra::DMatrix;
 use nalgebra::DVector;
 use nalgebra_sparse::{CooMatrix, CsrMatrix};
 use spline_algebra::{SparseBilinear, SplineMap};
@@ -128,6 +133,7 @@ pub struct ApproximationProblem {
     linear: CsrMatrix<f64>,
     quadratic: Option<SparseBilinear<f64>>,
     pattern: Option<HessianPattern>,
+    jacobian_pattern: Option<JacobianPattern>,
 }
 
 /// The union of the sparsity patterns of the `H_k` (CSR) and, for every entry of every
@@ -199,11 +205,13 @@ impl ApproximationProblem {
         let pattern = quadratic
             .as_ref()
             .map(|q| HessianPattern::new(lsq.dimension(), q));
+        let jacobian_pattern = quadratic.as_ref().map(JacobianPattern::new);
         Self {
             lsq,
             linear,
             quadratic,
             pattern,
+            jacobian_pattern,
         }
     }
 
@@ -290,6 +298,45 @@ impl BarrierProblem for ApproximationProblem {
         let pattern = self.pattern.as_ref()?;
         Some(pattern.weighted(&weights.as_slice()[self.linear.nrows()..]))
     }
+
+    fn objective_gradient_into(&self, x: &DVector<f64>, out: &mut DVector<f64>) {
+        self.lsq.gradient_into(x, out);
+    }
+
+    fn constraints_into(&self, x: &DVector<f64>, out: &mut DVector<f64>) {
+        self.constraints_in_place(x, out);
+    }
+
+    fn constraint_jacobian_into(&self, x: &DVector<f64>, out: &mut SparseRows) {
+        self.jacobian_in_place(x, out);
+    }
+
+    fn add_objective_hessian(&self, _: &DVector<f64>, scale: f64, out: &mut DMatrix<f64>) {
+        for (i, j, v) in self.lsq.hessian().triplet_iter() {
+            out[(i, j)] += scale * v;
+        }
+    }
+
+    fn objective_hessian_into(&self, _: &DVector<f64>, out: &mut Option<CsrMatrix<f64>>) {
+        let h = self.lsq.hessian();
+        match out {
+            Some(m) if m.pattern() == h.pattern() => m.values_mut().copy_from_slice(h.values()),
+            _ => *out = Some(h.clone()),
+        }
+    }
+
+    fn weighted_constraint_hessian_into(
+        &self,
+        _: &DVector<f64>,
+        weights: &DVector<f64>,
+        out: &mut Option<CsrMatrix<f64>>,
+    ) -> bool {
+        let Some(pattern) = &self.pattern else {
+            return false;
+        };
+        pattern.weighted_into(&weights.as_slice()[self.linear.nrows()..], out);
+        true
+    }
 }
 
 /// The constraints of a problem plus the box `|x_i − c_i| < R`, for the phase-I search only:
@@ -354,6 +401,51 @@ impl BarrierProblem for Boxed<'_> {
     ) -> Option<CsrMatrix<f64>> {
         let w = weights.rows(0, self.inner.num_constraints()).into_owned();
         self.inner.weighted_constraint_hessian(x, &w)
+    }
+    fn objective_gradient_into(&self, x: &DVector<f64>, out: &mut DVector<f64>) {
+        self.inner.objective_gradient_into(x, out);
+    }
+    fn add_objective_hessian(&self, x: &DVector<f64>, scale: f64, out: &mut DMatrix<f64>) {
+        self.inner.add_objective_hessian(x, scale, out);
+    }
+    fn objective_hessian_into(&self, x: &DVector<f64>, out: &mut Option<CsrMatrix<f64>>) {
+        self.inner.objective_hessian_into(x, out);
+    }
+    fn constraints_into(&self, x: &DVector<f64>, out: &mut DVector<f64>) {
+        let m = self.inner.num_constraints();
+        let n = self.dimension();
+        self.inner.constraints_in_place(x, out);
+        for i in 0..n {
+            let d = x[i] - self.centre[i];
+            out[m + i] = d - self.radius;
+            out[m + n + i] = -d - self.radius;
+        }
+    }
+    fn constraint_jacobian_into(&self, x: &DVector<f64>, out: &mut SparseRows) {
+        let n = self.dimension();
+        self.inner.jacobian_in_place(x, out);
+        for i in 0..n {
+            out.push(i, 1.0);
+            out.end_row();
+        }
+        for i in 0..n {
+            out.push(i, -1.0);
+            out.end_row();
+        }
+    }
+    fn weighted_constraint_hessian_into(
+        &self,
+        x: &DVector<f64>,
+        weights: &DVector<f64>,
+        out: &mut Option<CsrMatrix<f64>>,
+    ) -> bool {
+        let Some(pattern) = &self.inner.pattern else {
+            return false;
+        };
+        let _ = x;
+        let m = self.inner.num_constraints();
+        pattern.weighted_into(&weights.as_slice()[self.inner.linear.nrows()..m], out);
+        true
     }
 }
 

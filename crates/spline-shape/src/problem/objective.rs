@@ -4,7 +4,10 @@
 //! the residuals of the evaluated spline (no cancellation), not from the normal equations.
 
 use nalgebra::DVector;
+use nalgebra_sparse::ops::Op;
+use nalgebra_sparse::ops::serial::spmm_csr_dense;
 use nalgebra_sparse::{CooMatrix, CsrMatrix};
+use std::cell::RefCell;
 use spline_algebra::kron;
 use spline_core::{Error, ErrorKind, KnotVector, Result};
 use spline_fit::{GridLeastSquares, LeastSquares, NormalEquations};
@@ -37,6 +40,41 @@ pub(crate) struct LeastSquaresObjective {
     gram: CsrMatrix<f64>,
     rhs: DVector<f64>,
     samples: Samples,
+    /// The spline of the last `x` evaluated and its values at the samples, reused by every
+    /// evaluation of the objective (no allocation inside the solver's iterations).
+    fitted: RefCell<Fitted>,
+}
+
+/// A spline with the samples' knots whose coefficients are overwritten, and its values.
+#[derive(Clone, Debug)]
+struct Fitted {
+    spline: FittedSpline,
+    values: Vec<f64>,
+}
+
+#[derive(Clone, Debug)]
+enum FittedSpline {
+    Function(BSpline<f64, f64>),
+    Grid(Surface<f64, f64>),
+}
+
+impl Fitted {
+    fn new(samples: &Samples, n: usize) -> Self {
+        match samples {
+            Samples::Function { knots, params, .. } => Self {
+                spline: FittedSpline::Function(BSpline::new_unchecked(knots.clone(), vec![0.0; n])),
+                values: vec![0.0; params.len()],
+            },
+            Samples::Grid { knots, us, vs, .. } => Self {
+                spline: FittedSpline::Grid(Surface::new_unchecked(
+                    knots.0.clone(),
+                    knots.1.clone(),
+                    vec![0.0; n],
+                )),
+                values: vec![0.0; us.len() * vs.len()],
+            },
+        }
+    }
 }
 
 /// The banded Gram matrix of normal equations as a sparse matrix.
@@ -70,14 +108,16 @@ impl LeastSquaresObjective {
         let (params, order) = sorted(params, "parameter")?;
         let values: Vec<f64> = order.iter().map(|&i| values[i]).collect();
         let normal = LeastSquares::new(&values, &params, knots.clone()).normal_equations()?;
+        let samples = Samples::Function {
+            knots: knots.clone(),
+            params,
+            values,
+        };
         Ok(Self {
             gram: gram_matrix(&normal),
             rhs: DVector::from_column_slice(normal.rhs()),
-            samples: Samples::Function {
-                knots: knots.clone(),
-                params,
-                values,
-            },
+            fitted: RefCell::new(Fitted::new(&samples, normal.rhs().len())),
+            samples,
         })
     }
 
@@ -102,16 +142,18 @@ impl LeastSquaresObjective {
         };
         let normal = GridLeastSquares::new(&us, &vs, &values, knots.0.clone(), knots.1.clone())
             .normal_equations()?;
+        let samples = Samples::Grid {
+            knots: (knots.0.clone(), knots.1.clone()),
+            us,
+            vs,
+            values,
+            order: (pu, pv),
+        };
         Ok(Self {
             gram: kron(&gram_matrix(normal.gram_u()), &gram_matrix(normal.gram_v())),
             rhs: DVector::from_column_slice(normal.rhs()),
-            samples: Samples::Grid {
-                knots: (knots.0.clone(), knots.1.clone()),
-                us,
-                vs,
-                values,
-                order: (pu, pv),
-            },
+            fitted: RefCell::new(Fitted::new(&samples, normal.rhs().len())),
+            samples,
         })
     }
 
@@ -122,20 +164,24 @@ impl LeastSquaresObjective {
     /// $\tfrac12 \sum_j (s_x(\bar u_j) - z_j)^2$ from the evaluated spline (infinite if it
     /// cannot be evaluated).
     pub(crate) fn value(&self, x: &DVector<f64>) -> f64 {
-        let fitted = match &self.samples {
-            Samples::Function { knots, params, .. } => {
-                BSpline::new_unchecked(knots.clone(), x.as_slice().to_vec()).eval_many(params)
+        let mut fitted = self.fitted.borrow_mut();
+        let Fitted { spline, values: out } = &mut *fitted;
+        let evaluated = match (spline, &self.samples) {
+            (FittedSpline::Function(curve), Samples::Function { params, .. }) => {
+                curve.control_points_mut().copy_from_slice(x.as_slice());
+                curve.eval_many_into(params, out)
             }
-            Samples::Grid { knots, us, vs, .. } => {
-                Surface::new_unchecked(knots.0.clone(), knots.1.clone(), x.as_slice().to_vec())
-                    .eval_grid(us, vs)
+            (FittedSpline::Grid(surface), Samples::Grid { us, vs, .. }) => {
+                surface.control_points_mut().copy_from_slice(x.as_slice());
+                surface.eval_grid_into(us, vs, out)
             }
+            _ => unreachable!("the spline is made from the samples"),
         };
         let values = match &self.samples {
             Samples::Function { values, .. } | Samples::Grid { values, .. } => values,
         };
-        fitted.map_or(f64::INFINITY, |f| {
-            0.5 * f
+        evaluated.map_or(f64::INFINITY, |()| {
+            0.5 * out
                 .iter()
                 .zip(values)
                 .map(|(a, b)| (a - b) * (a - b))
@@ -146,6 +192,13 @@ impl LeastSquaresObjective {
     /// $G x - r$.
     pub(crate) fn gradient(&self, x: &DVector<f64>) -> DVector<f64> {
         &self.gram * x - &self.rhs
+    }
+
+    /// [`LeastSquaresObjective::gradient`] into `out`, with the same sums.
+    pub(crate) fn gradient_into(&self, x: &DVector<f64>, out: &mut DVector<f64>) {
+        out.fill(0.0);
+        spmm_csr_dense(0.0, &mut *out, 1.0, Op::NoOp(&self.gram), Op::NoOp(x));
+        *out -= &self.rhs;
     }
 
     /// `G`.

@@ -2,7 +2,7 @@
 //! their derivatives as [`BarrierProblem`] asks for them.
 
 use super::{EraserProblem, Scratch};
-use crate::barrier::BarrierProblem;
+use crate::barrier::{BarrierProblem, SparseRows};
 use crate::eraser::Objective;
 use nalgebra::{DMatrix, DVector, Vector2};
 use nalgebra_sparse::{CooMatrix, CsrMatrix};
@@ -20,8 +20,10 @@ impl BarrierProblem for EraserProblem {
     }
 
     fn objective(&self, x: &DVector<f64>) -> f64 {
-        let d2 = self.squared_distances(x);
-        let mean = d2.iter().sum::<f64>() / (d2.len() as f64 * self.unit);
+        let feet = self.feet(x, false);
+        let sum = feet.feet.iter().map(|f| f.squared).sum::<f64>();
+        let mean = sum / (feet.feet.len() as f64 * self.unit);
+        drop(feet);
         let fit = match self.objective {
             Objective::MaxDeviation => x[2 * self.n] + self.mean_weight * mean,
             Objective::LeastSquares => mean,
@@ -34,13 +36,19 @@ impl BarrierProblem for EraserProblem {
     }
 
     fn objective_gradient(&self, x: &DVector<f64>) -> DVector<f64> {
+        let mut g = DVector::zeros(self.dimension());
+        self.objective_gradient_into(x, &mut g);
+        g
+    }
+
+    fn objective_gradient_into(&self, x: &DVector<f64>, g: &mut DVector<f64>) {
         let feet = self.feet(x, true);
         let m = self.distances.points.len();
         let weight = match self.objective {
             Objective::MaxDeviation => self.mean_weight,
             Objective::LeastSquares => 1.0,
         } / (m as f64 * self.unit);
-        let mut g = DVector::zeros(self.dimension());
+        g.fill(0.0);
         for foot in &feet.feet {
             for (a, v) in foot.gradient.iter().enumerate() {
                 g[self.column(2 * foot.first + a)] += weight * v;
@@ -50,43 +58,62 @@ impl BarrierProblem for EraserProblem {
             g[2 * self.n] = 1.0;
         }
         if self.relaxed {
-            g *= self.pull;
+            *g *= self.pull;
             g[self.tau_index()] = 1.0;
         }
-        g
     }
 
     fn objective_hessian(&self, x: &DVector<f64>) -> CsrMatrix<f64> {
         let mut dense = DMatrix::zeros(self.dimension(), self.dimension());
         let weight = if self.relaxed { self.pull } else { 1.0 };
         self.add_distance_hessians(x, weight, None, &mut dense);
-        let mut coo = CooMatrix::new(self.dimension(), self.dimension());
-        for j in 0..dense.ncols() {
-            for i in 0..dense.nrows() {
-                if dense[(i, j)] != 0.0 {
-                    coo.push(i, j, dense[(i, j)]);
+        sparse_of(&dense)
+    }
+
+    fn add_objective_hessian(&self, x: &DVector<f64>, scale: f64, out: &mut DMatrix<f64>) {
+        // The Hessian as its own matrix first, then scaled entry by entry: the sums of the
+        // owned form.
+        let n = self.dimension();
+        let mut scratch = self.scratch.borrow_mut();
+        let dense = &mut scratch.dense;
+        if dense.nrows() != n {
+            *dense = DMatrix::zeros(n, n);
+        }
+        dense.fill(0.0);
+        let weight = if self.relaxed { self.pull } else { 1.0 };
+        self.add_distance_hessians(x, weight, None, dense);
+        for j in 0..n {
+            for i in 0..n {
+                let v = dense[(i, j)];
+                if v != 0.0 {
+                    out[(i, j)] += scale * v;
                 }
             }
         }
-        CsrMatrix::from(&coo)
     }
 
     fn constraints(&self, x: &DVector<f64>) -> DVector<f64> {
-        let mut out = Vec::with_capacity(self.num_constraints());
+        let mut out = DVector::zeros(self.num_constraints());
+        self.constraints_into(x, &mut out);
+        out
+    }
+
+    fn constraints_into(&self, x: &DVector<f64>, out: &mut DVector<f64>) {
+        let mut k = 0;
         if self.minimax() {
             let z = x[2 * self.n];
-            out.extend(
-                self.squared_distances(x)
-                    .iter()
-                    .map(|d2| d2 / self.unit - z),
-            );
+            for foot in &self.feet(x, false).feet {
+                out[k] = foot.squared / self.unit - z;
+                k += 1;
+            }
         }
         {
             let mut scratch = self.scratch.borrow_mut();
             self.fill_control(x, &mut scratch.control);
             for e in &self.excursions {
                 let c = self.curve_point(&scratch.control, e.param);
-                out.push((c - e.centre).norm_squared() / e.radius2 - 1.0);
+                out[k] = (c - e.centre).norm_squared() / e.radius2 - 1.0;
+                k += 1;
             }
         }
         let tau = self.tau_at(x);
@@ -94,19 +121,36 @@ impl BarrierProblem for EraserProblem {
         self.with_signed_coefficients(x, |coefficients| {
             for (piece, c) in self.pieces.iter().zip(coefficients.chunks(q1)) {
                 for ((v, s), shift) in c.iter().zip(&piece.scale).zip(&piece.shift) {
-                    out.push(-v / s - tau * shift);
+                    out[k] = -v / s - tau * shift;
+                    k += 1;
                 }
             }
         });
         if self.relaxed {
-            out.push(-tau - 1.0);
+            out[k] = -tau - 1.0;
         }
-        DVector::from_vec(out)
     }
 
     fn constraint_jacobian(&self, x: &DVector<f64>) -> CsrMatrix<f64> {
+        let mut rows = SparseRows::new(self.dimension());
+        self.constraint_jacobian_into(x, &mut rows);
+        rows.to_csr()
+    }
+
+    fn constraint_jacobian_into(&self, x: &DVector<f64>, out: &mut SparseRows) {
         let q1 = self.kernel.coefficients_per_segment();
         let nl = self.kernel.local_variables();
+        out.clear(self.dimension());
+        if self.minimax() {
+            let feet = self.feet(x, true);
+            for foot in &feet.feet {
+                for (a, v) in foot.gradient.iter().enumerate() {
+                    out.push(self.column(2 * foot.first + a), v / self.unit);
+                }
+                out.push(2 * self.n, -1.0);
+                out.end_row();
+            }
+        }
         let mut scratch = self.scratch.borrow_mut();
         let Scratch {
             workspace,
@@ -114,26 +158,10 @@ impl BarrierProblem for EraserProblem {
             jacobian,
             control,
             segment_jacobians,
+            sorted_row,
             ..
         } = &mut *scratch;
         self.fill_control(x, control);
-        let rows = self.num_constraints();
-        let mut offsets = Vec::with_capacity(rows + 1);
-        let mut cols = Vec::with_capacity(rows * (nl + 1));
-        let mut vals = Vec::with_capacity(rows * (nl + 1));
-        offsets.push(0);
-        if self.minimax() {
-            let feet = self.feet(x, true);
-            for foot in &feet.feet {
-                for (a, v) in foot.gradient.iter().enumerate() {
-                    cols.push(self.column(2 * foot.first + a));
-                    vals.push(v / self.unit);
-                }
-                cols.push(2 * self.n);
-                vals.push(-1.0);
-                offsets.push(cols.len());
-            }
-        }
         let p = self.distances.knots.degree();
         let mut basis = [0.0; spline_core::MAX_ORDER];
         for e in &self.excursions {
@@ -144,12 +172,10 @@ impl BarrierProblem for EraserProblem {
             let c: Vector2<f64> = (0..=p).map(|k| control[span - p + k] * basis[k]).sum();
             let r = (c - e.centre) * (2.0 / e.radius2);
             for (k, b) in basis[..=p].iter().enumerate() {
-                cols.push(self.column(2 * (span - p + k)));
-                vals.push(b * r.x);
-                cols.push(self.column(2 * (span - p + k) + 1));
-                vals.push(b * r.y);
+                out.push(self.column(2 * (span - p + k)), b * r.x);
+                out.push(self.column(2 * (span - p + k) + 1), b * r.y);
             }
-            offsets.push(cols.len());
+            out.end_row();
         }
         segment_jacobians.clear();
         for s in 0..self.kernel.num_segments() {
@@ -169,27 +195,22 @@ impl BarrierProblem for EraserProblem {
                     for (k, &s) in sub.iter().enumerate() {
                         acc += s * jac[k * nl + c];
                     }
-                    cols.push(self.column(first + c));
-                    vals.push(factor * acc);
+                    out.push(self.column(first + c), factor * acc);
                 }
                 if self.relaxed {
-                    cols.push(self.tau_index());
-                    vals.push(-piece.shift[r]);
+                    out.push(self.tau_index(), -piece.shift[r]);
                 }
-                offsets.push(cols.len());
+                out.end_row();
             }
         }
         if self.relaxed {
-            cols.push(self.tau_index());
-            vals.push(-1.0);
-            offsets.push(cols.len());
+            out.push(self.tau_index(), -1.0);
+            out.end_row();
         }
         if self.closed {
             // Wrapped control points fold onto the first ones: restore the column order.
-            sort_rows(&offsets, &mut cols, &mut vals);
+            sort_rows(out, sorted_row);
         }
-        CsrMatrix::try_from_csr_data(rows, self.dimension(), offsets, cols, vals)
-            .expect("rows of increasing columns")
     }
 
     fn weighted_constraint_hessian(
@@ -199,15 +220,7 @@ impl BarrierProblem for EraserProblem {
     ) -> Option<CsrMatrix<f64>> {
         let mut dense = DMatrix::zeros(self.dimension(), self.dimension());
         self.add_weighted_constraint_hessian(x, weights, &mut dense);
-        let mut coo = CooMatrix::new(self.dimension(), self.dimension());
-        for j in 0..dense.ncols() {
-            for i in 0..dense.nrows() {
-                if dense[(i, j)] != 0.0 {
-                    coo.push(i, j, dense[(i, j)]);
-                }
-            }
-        }
-        Some(CsrMatrix::from(&coo))
+        Some(sparse_of(&dense))
     }
 
     fn add_weighted_constraint_hessian(
@@ -218,8 +231,8 @@ impl BarrierProblem for EraserProblem {
     ) -> bool {
         let md = self.num_distance_constraints();
         if md > 0 {
-            let w = weights.rows(0, md).into_owned();
-            self.add_distance_hessians(x, 0.0, Some(&w), out);
+            // The first `md` weights are those of the distance constraints.
+            self.add_distance_hessians(x, 0.0, Some(weights), out);
         }
         let p = self.distances.knots.degree();
         let mut basis = [0.0; spline_core::MAX_ORDER];
@@ -281,10 +294,23 @@ impl BarrierProblem for EraserProblem {
     }
 }
 
-/// Sorts the entries of every CSR row by column (the rows of a closed curve's conditions
-/// wrap around the control polygon).
-fn sort_rows(offsets: &[usize], cols: &mut [usize], vals: &mut [f64]) {
-    let mut row: Vec<(usize, f64)> = Vec::new();
+/// The non-zero entries of a dense matrix as a sparse one.
+fn sparse_of(dense: &DMatrix<f64>) -> CsrMatrix<f64> {
+    let mut coo = CooMatrix::new(dense.nrows(), dense.ncols());
+    for j in 0..dense.ncols() {
+        for i in 0..dense.nrows() {
+            if dense[(i, j)] != 0.0 {
+                coo.push(i, j, dense[(i, j)]);
+            }
+        }
+    }
+    CsrMatrix::from(&coo)
+}
+
+/// Sorts the entries of every row by column (the rows of a closed curve's conditions wrap
+/// around the control polygon), through the reused buffer `row`.
+fn sort_rows(rows: &mut SparseRows, row: &mut Vec<(usize, f64)>) {
+    let (offsets, cols, vals) = rows.parts_mut();
     for w in offsets.windows(2) {
         row.clear();
         row.extend(
