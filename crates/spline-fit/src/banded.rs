@@ -325,6 +325,16 @@ impl<T: Scalar> BandCholesky<T> {
         }
     }
 
+    /// Sets every entry to zero (the storage is kept).
+    pub(crate) fn clear(&mut self) {
+        self.data.iter_mut().for_each(|v| *v = T::zero());
+    }
+
+    /// The size `n`.
+    pub(crate) fn len(&self) -> usize {
+        self.n
+    }
+
     /// The lower band, `data[i (bw + 1) + d]` $= A_{i, i-d}$.
     pub(crate) fn data_mut(&mut self) -> &mut [T] {
         &mut self.data

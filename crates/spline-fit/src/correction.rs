@@ -53,15 +53,19 @@ pub struct CorrectionReport<T> {
 /// Evaluates a fitted curve: point and first derivative at a parameter.
 type Evaluator<'a, T, P, C> = &'a dyn Fn(&C, T) -> Result<(P, P)>;
 
-/// Runs the algorithm on an abstract fitter: `fit(params)` returns an evaluator of the
-/// point and first derivative, `(a, b)` is the parameter interval.
+/// Runs the algorithm on an abstract fitter: `fit(params, curve)` fits `curve` (a container
+/// of the right size) to the parameters, `eval` evaluates the point and first
+/// derivative, `(a, b)` is the parameter interval. Nothing is allocated per sweep beyond
+/// what `fit` allocates (the report's vectors are sized for `L` sweeps up front).
+#[allow(clippy::too_many_arguments)]
 fn run<T: Scalar, P: ControlPoint<T>, C>(
     points: &[P],
     params: &mut [T],
     weights: Option<&[T]>,
     (a, b): (T, T),
     options: &CorrectionOptions<T>,
-    fit: &mut dyn FnMut(&[T]) -> Result<C>,
+    mut curve: C,
+    fit: &mut dyn FnMut(&[T], &mut C) -> Result<()>,
     eval: Evaluator<'_, T, P, C>,
 ) -> Result<(C, CorrectionReport<T>)> {
     // 1. μ: length of the polygon {P_k}.
@@ -89,11 +93,11 @@ fn run<T: Scalar, P: ControlPoint<T>, C>(
     let mut report = CorrectionReport {
         iterations: 0,
         converged: false,
-        angles: Vec::new(),
-        errors: Vec::new(),
+        angles: Vec::with_capacity(options.max_iterations),
+        errors: Vec::with_capacity(options.max_iterations + 1),
     };
     // 2. The least-squares curve for the current parameters.
-    let mut curve = fit(params)?;
+    fit(params, &mut curve)?;
     report.errors.push(error_of(&curve, params)?);
     let last = params.len() - 1;
     while report.iterations < options.max_iterations {
@@ -144,7 +148,7 @@ fn run<T: Scalar, P: ControlPoint<T>, C>(
         // 7. α = max α_i, j = j + 1, refit, test |π/2 − α| < ε.
         report.iterations += 1;
         report.angles.push(alpha);
-        curve = fit(params)?;
+        fit(params, &mut curve)?;
         report.errors.push(error_of(&curve, params)?);
         if (half_pi - alpha).abs() < options.angle_tolerance {
             report.converged = true;
@@ -247,10 +251,17 @@ pub fn correct_parameters<T: Scalar, P: ControlPoint<T>>(
     check_inputs(points, &params, options)?;
     let knots: KnotVector<T> = problem.knots_ref().clone();
     let domain = knots.domain();
-    let mut fit = |params: &[T]| -> Result<BSpline<T, P>> {
-        let control = problem.with_params(params).control_points()?;
-        Ok(BSpline::new_unchecked(knots.clone(), control))
+    // Each refit writes the control points of the one curve through a reused workspace
+    // (the plain problem; others refit as a new least-squares problem).
+    let mut workspace = None;
+    let mut fit = |params: &[T], curve: &mut BSpline<T, P>| -> Result<()> {
+        if !problem.control_points_into(params, &mut workspace, curve.control_points_mut())? {
+            let control = problem.with_params(params).control_points()?;
+            curve.control_points_mut().copy_from_slice(&control);
+        }
+        Ok(())
     };
+    let curve = BSpline::new_unchecked(knots.clone(), vec![P::origin(); knots.num_basis()]);
     let eval = |curve: &BSpline<T, P>, t: T| -> Result<(P, P)> {
         let mut out = [P::origin(); 2];
         curve.derivatives_into(t, &mut out)?;
@@ -262,6 +273,7 @@ pub fn correct_parameters<T: Scalar, P: ControlPoint<T>>(
         problem.weights_ref(),
         domain,
         options,
+        curve,
         &mut fit,
         &eval,
     )?;
@@ -283,11 +295,16 @@ pub fn correct_parameters_bezier<T: Scalar, P: ControlPoint<T>>(
 ) -> Result<(BezierFit<T, P>, CorrectionReport<T>)> {
     let mut params = params.to_vec();
     check_inputs(points, &params, options)?;
-    let mut fit = |params: &[T]| -> Result<Bezier<T, P>> {
+    let new = |params: &[T]| -> Result<Bezier<T, P>> {
         let control = bezier_control(points, params, degree, interval, None)?;
         Bezier::with_interval(control, interval.0, interval.1)
     };
-    let eval = |curve: &Bezier<T, P>, t: T| -> Result<(P, P)> {
+    let mut fit = |params: &[T], curve: &mut Option<Bezier<T, P>>| -> Result<()> {
+        *curve = Some(new(params)?);
+        Ok(())
+    };
+    let eval = |curve: &Option<Bezier<T, P>>, t: T| -> Result<(P, P)> {
+        let curve = curve.as_ref().expect("fitted before it is evaluated");
         Ok((curve.eval(t)?, curve.derivative().eval(t)?))
     };
     let (curve, report) = run(
@@ -296,9 +313,11 @@ pub fn correct_parameters_bezier<T: Scalar, P: ControlPoint<T>>(
         None,
         interval,
         options,
+        None,
         &mut fit,
         &eval,
     )?;
+    let curve = curve.expect("fitted by run");
     let distances = params
         .iter()
         .zip(points)

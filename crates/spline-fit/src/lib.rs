@@ -103,6 +103,8 @@ pub use intersect::{
     CurveSurfaceHit, IntersectionCurve, MAX_TRACE_POINTS, Tolerances, intersect_curve_surface,
     intersect_surfaces,
 };
+#[cfg(feature = "parallel")]
+pub use lsq::PARALLEL_MIN_POINTS;
 pub use lsq::{
     GridLeastSquares, GridNormalEquations, LeastSquares, LsqMethod, NormalEquations, approximate,
 };

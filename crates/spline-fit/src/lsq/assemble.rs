@@ -78,15 +78,7 @@ impl<T: Scalar, P: ControlPoint<T>> LeastSquares<'_, T, P> {
             (Sink::Normal(matrix, rhs), true) => {
                 let data = matrix.data_mut();
                 let (params, points, weights) = (self.params, self.points, self.weights);
-                let run = match p {
-                    0 => normal_kernel::<T, P, 1>(knots, params, points, weights, check, data, rhs),
-                    1 => normal_kernel::<T, P, 2>(knots, params, points, weights, check, data, rhs),
-                    2 => normal_kernel::<T, P, 3>(knots, params, points, weights, check, data, rhs),
-                    3 => normal_kernel::<T, P, 4>(knots, params, points, weights, check, data, rhs),
-                    4 => normal_kernel::<T, P, 5>(knots, params, points, weights, check, data, rhs),
-                    5 => normal_kernel::<T, P, 6>(knots, params, points, weights, check, data, rhs),
-                    _ => None,
-                };
+                let run = assemble_normal(knots, params, points, weights, check, data, rhs);
                 match run {
                     Some(Err(i)) => return Err(self.sw_error(i)),
                     Some(Ok(())) => true,
@@ -147,6 +139,11 @@ impl<T: Scalar, P: ControlPoint<T>> LeastSquares<'_, T, P> {
     }
 
     fn sw_error(&self, i: usize) -> Error {
+        self.sw_error_with(self.params, i)
+    }
+
+    /// [`LeastSquares::sw_error`] for other parameters.
+    fn sw_error_with(&self, params: &[T], i: usize) -> Error {
         let k = self.knots.knots();
         let p = self.knots.degree();
         let mut message = format!(
@@ -159,8 +156,7 @@ impl<T: Scalar, P: ControlPoint<T>> LeastSquares<'_, T, P> {
         for s in i.max(p)..=(i + p).min(n - 1) {
             let (a, b) = (k[s], k[s + 1]);
             if a < b
-                && !self
-                    .params
+                && !params
                     .iter()
                     .any(|&u| u >= a && (u < b || (b == end && u <= b)))
             {
@@ -217,8 +213,55 @@ pub(crate) fn penalty_rows<T: Scalar>(
 /// time (loops unrolled), with the streaming Schoenberg–Whitney check when `check`:
 /// `Err(i)` names the basis function left without data. `None` is never returned (the
 /// `Option` lets the caller fall back for other degrees).
+/// The lower band and right-hand side of the normal equations of the data (added to `band`
+/// and `rhs`) by the unrolled kernels (degrees ≤ 5; `None` above), with the streaming
+/// Schoenberg–Whitney check when `check` (`Some(Err(i))` names the first basis function
+/// left without data). With the `parallel` feature and at least [`PARALLEL_MIN_POINTS`]
+/// points the data are split into chunks assembled on every core and summed.
+fn assemble_normal<T: Scalar, P: ControlPoint<T>>(
+    knots: &KnotVector<T>,
+    params: &[T],
+    points: &[P],
+    weights: Option<&[T]>,
+    check: bool,
+    band: &mut [T],
+    rhs: &mut [P],
+) -> Option<std::result::Result<(), usize>> {
+    #[cfg(feature = "parallel")]
+    if params.len() >= PARALLEL_MIN_POINTS && knots.degree() <= 5 {
+        return Some(super::parallel::assemble(knots, params, points, weights, check, band, rhs));
+    }
+    normal_dispatch::<T, P, true>(knots, params, points, weights, check, band, rhs)
+}
+
+/// Data sets at least this large are assembled in parallel (`parallel` feature).
+#[cfg(feature = "parallel")]
+pub const PARALLEL_MIN_POINTS: usize = 1 << 14;
+
+/// [`normal_kernel`] for the degree of `knots` (`None` above degree 5); with `ACC = false`
+/// only the Schoenberg–Whitney check runs.
+pub(super) fn normal_dispatch<T: Scalar, P: ControlPoint<T>, const ACC: bool>(
+    knots: &KnotVector<T>,
+    params: &[T],
+    points: &[P],
+    weights: Option<&[T]>,
+    check: bool,
+    band: &mut [T],
+    rhs: &mut [P],
+) -> Option<std::result::Result<(), usize>> {
+    match knots.degree() {
+        0 => normal_kernel::<T, P, 1, ACC>(knots, params, points, weights, check, band, rhs),
+        1 => normal_kernel::<T, P, 2, ACC>(knots, params, points, weights, check, band, rhs),
+        2 => normal_kernel::<T, P, 3, ACC>(knots, params, points, weights, check, band, rhs),
+        3 => normal_kernel::<T, P, 4, ACC>(knots, params, points, weights, check, band, rhs),
+        4 => normal_kernel::<T, P, 5, ACC>(knots, params, points, weights, check, band, rhs),
+        5 => normal_kernel::<T, P, 6, ACC>(knots, params, points, weights, check, band, rhs),
+        _ => None,
+    }
+}
+
 #[allow(clippy::unnecessary_wraps)]
-fn normal_kernel<T: Scalar, P: ControlPoint<T>, const W: usize>(
+fn normal_kernel<T: Scalar, P: ControlPoint<T>, const W: usize, const ACC: bool>(
     knots: &KnotVector<T>,
     params: &[T],
     points: &[P],
@@ -271,6 +314,9 @@ fn normal_kernel<T: Scalar, P: ControlPoint<T>, const W: usize>(
                 next += 1;
             }
         }
+        if !ACC {
+            continue;
+        }
         let w2 = weights.map_or_else(T::one, |w| w[j] * w[j]);
         for a in 0..W {
             let s = basis[a] * w2;
@@ -285,6 +331,65 @@ fn normal_kernel<T: Scalar, P: ControlPoint<T>, const W: usize>(
         return Some(Err(next));
     }
     Some(Ok(()))
+}
+
+/// The memory of repeated least-squares solves on one knot vector (parameter correction):
+/// the band of the normal equations, factored in place, and the right-hand side.
+#[derive(Clone, Debug)]
+pub(crate) struct LsqWorkspace<T, P> {
+    band: BandCholesky<T>,
+    rhs: Vec<P>,
+}
+
+impl<T: Scalar, P: ControlPoint<T>> LeastSquares<'_, T, P> {
+    /// The control points of the fit to the points at `params` (instead of the problem's
+    /// parameters), written into `out` through `workspace`, which keeps its memory between
+    /// calls: no allocation once it has its size. Only for the plain problem — every control
+    /// point free, no smoothing, normal equations, degree at most 5 (the unrolled kernels);
+    /// returns `Ok(false)` without touching `out` otherwise. The sums and the factorisation
+    /// are those of [`LeastSquares::control_points`].
+    ///
+    /// # Errors
+    /// As [`LeastSquares::control_points`].
+    pub(crate) fn control_points_into(
+        &self,
+        params: &[T],
+        workspace: &mut Option<LsqWorkspace<T, P>>,
+        out: &mut [P],
+    ) -> Result<bool> {
+        let p = self.knots.degree();
+        let n = self.knots.num_basis();
+        if self.pin_ends
+            || !self.fixed_points.is_empty()
+            || !self.fixed_coords.is_empty()
+            || self.smoothing != T::zero()
+            || self.method != LsqMethod::NormalEquations
+            || p > 5
+            || out.len() != n
+        {
+            return Ok(false);
+        }
+        self.validate_with(params)?;
+        let ws = match workspace {
+            Some(ws) if ws.band.len() == n && ws.band.bandwidth() == p => ws,
+            _ => workspace.insert(LsqWorkspace {
+                band: BandCholesky::zeros(n, p),
+                rhs: vec![P::origin(); n],
+            }),
+        };
+        ws.band.clear();
+        ws.rhs.iter_mut().for_each(|r| *r = P::origin());
+        let (knots, points, weights) = (&self.knots, self.points, self.weights);
+        let data = ws.band.data_mut();
+        let run = normal_dispatch::<T, P, true>(knots, params, points, weights, self.check_sw, data, &mut ws.rhs);
+        if let Some(Err(i)) = run {
+            return Err(self.sw_error_with(params, i));
+        }
+        ws.band.factor(&|c| format!("control point {c}"))?;
+        ws.band.solve(&mut ws.rhs);
+        out.copy_from_slice(&ws.rhs);
+        Ok(true)
+    }
 }
 
 pub(super) enum Sink<T, P> {

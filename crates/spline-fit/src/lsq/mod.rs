@@ -2,8 +2,12 @@
 
 mod assemble;
 mod normal;
+#[cfg(feature = "parallel")]
+mod parallel;
 
 pub(crate) use assemble::penalty_rows;
+#[cfg(feature = "parallel")]
+pub use assemble::PARALLEL_MIN_POINTS;
 pub use normal::{GridLeastSquares, GridNormalEquations, NormalEquations};
 
 use crate::params::check_degree;
@@ -244,16 +248,21 @@ impl<'a, T: Scalar, P: ControlPoint<T>> LeastSquares<'a, T, P> {
     }
 
     fn validate(&self) -> Result<()> {
+        self.validate_with(self.params)
+    }
+
+    /// [`LeastSquares::validate`] with other parameters.
+    fn validate_with(&self, params: &[T]) -> Result<()> {
         let m = self.points.len();
-        if self.params.len() != m {
+        if params.len() != m {
             return Err(Error::new(
                 ErrorKind::InvalidLength,
-                format!("{} parameters for {m} points", self.params.len()),
+                format!("{} parameters for {m} points", params.len()),
             ));
         }
         check_points(self.points, 1, "least squares")?;
-        check_params(self.params)?;
-        for (j, &u) in self.params.iter().enumerate() {
+        check_params(params)?;
+        for (j, &u) in params.iter().enumerate() {
             self.knots
                 .check_param(u)
                 .map_err(|e| e.context(format_args!("parameter {j}")))?;
@@ -308,7 +317,7 @@ impl<'a, T: Scalar, P: ControlPoint<T>> LeastSquares<'a, T, P> {
         }
         if self.pin_ends {
             let (a, b) = self.knots.domain();
-            if !(self.knots.is_clamped() && self.params[0] == a && self.params[m - 1] == b) {
+            if !(self.knots.is_clamped() && params[0] == a && params[m - 1] == b) {
                 return Err(Error::new(
                     ErrorKind::InvalidArgument,
                     "pinned ends need a clamped knot vector and the first and last parameters at the ends of its domain",

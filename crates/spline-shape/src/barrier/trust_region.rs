@@ -90,40 +90,51 @@ pub(super) fn centre_trust_region(
                 }
             }
         }
-        // The step that needs the eigendecomposition (nalgebra's has no in-place form: the
-        // only allocations of an iteration are here, a fixed number per decomposition).
-        let l = &ws.l;
-        let hessian = &ws.hessian;
-        // H̃ = L⁻¹ H L⁻ᵀ.
-        let left = l
-            .solve_lower_triangular(hessian)
-            .unwrap_or_else(|| hessian.clone());
-        let scaled = l
-            .solve_lower_triangular(&left.transpose())
-            .unwrap_or_else(|| left.clone());
-        let scaled = (&scaled + scaled.transpose()) * 0.5;
-        let eigen = scaled.symmetric_eigen();
+        // The step that needs the eigendecomposition: H̃ = L⁻¹ H L⁻ᵀ. nalgebra's
+        // decomposition has no in-place form: it allocates its own few vectors, and this
+        // path hands it the storage of the previous eigenvectors.
+        ws.left.copy_from(&ws.hessian);
+        if !ws.l.solve_lower_triangular_mut(&mut ws.left) {
+            ws.left.copy_from(&ws.hessian);
+        }
+        ws.left.transpose_to(&mut ws.scaled);
+        if !ws.l.solve_lower_triangular_mut(&mut ws.scaled) {
+            ws.scaled.copy_from(&ws.left);
+        }
+        let mut symmetric = ws
+            .eigen_storage
+            .take()
+            .unwrap_or_else(|| DMatrix::zeros(ws.n, ws.n));
+        for j in 0..ws.n {
+            for i in 0..ws.n {
+                symmetric[(i, j)] = (ws.scaled[(i, j)] + ws.scaled[(j, i)]) * 0.5;
+            }
+        }
+        let eigen = symmetric.symmetric_eigen();
+        eigen.eigenvectors.transpose_to(&mut ws.qt);
         let mut improved = false;
         for _ in 0..60 {
-            let (y, predicted) = trust_region_step(&eigen, &ws.scaled_gradient, radius);
+            let predicted = trust_region_step(&eigen, radius, ws);
             if !(predicted > 0.0) {
+                ws.eigen_storage = Some(eigen.eigenvectors);
                 return Ok(accepted);
             }
-            let d = l
-                .transpose()
-                .solve_upper_triangular(&y)
-                .unwrap_or(y.clone());
-            let candidate = &*x + &d;
-            let actual = barrier_value(problem, &candidate, t, &mut ws.c_trial).map(|fc| f - fc);
+            ws.direction.copy_from(&ws.y);
+            if !ws.lt.solve_upper_triangular_mut(&mut ws.direction) {
+                ws.direction.copy_from(&ws.y);
+            }
+            ws.candidate.copy_from(x);
+            ws.candidate += &ws.direction;
+            let actual = barrier_value(problem, &ws.candidate, t, &mut ws.c_trial).map(|fc| f - fc);
             let ratio = actual.map_or(-1.0, |a| a / predicted);
-            let on_boundary = y.norm() > 0.99 * radius;
+            let on_boundary = ws.y.norm() > 0.99 * radius;
             if ratio < 0.25 {
                 radius *= 0.25;
             } else if ratio > 0.75 && on_boundary {
                 radius = (2.0 * radius).min(1e6);
             }
             if ratio > 1e-4 {
-                *x = candidate;
+                x.copy_from(&ws.candidate);
                 f -= actual.unwrap_or(0.0);
                 accepted += 1;
                 improved = true;
@@ -131,9 +142,11 @@ pub(super) fn centre_trust_region(
             }
             if radius < 1e-14 {
                 // As central as rounding allows.
+                ws.eigen_storage = Some(eigen.eigenvectors);
                 return Ok(accepted);
             }
         }
+        ws.eigen_storage = Some(eigen.eigenvectors);
         if !improved {
             return Ok(accepted);
         }
@@ -205,15 +218,18 @@ fn positive_definite_factor(
 
 /// The exact solution of $\min_y \gamma^T y + \tfrac12 y^T \tilde H y$,
 /// $\lVert y \rVert \le \Delta$, from the eigendecomposition of `H̃` (Moré–Sorensen by the
-/// secular equation, with the hard case), and the predicted decrease.
+/// secular equation, with the hard case), into `ws.y` (the gradient is `ws.scaled_gradient`,
+/// `ws.qt` the transposed eigenvectors); returns the predicted decrease.
 fn trust_region_step(
     eigen: &nalgebra::SymmetricEigen<f64, nalgebra::Dyn>,
-    gradient: &DVector<f64>,
     radius: f64,
-) -> (DVector<f64>, f64) {
+    ws: &mut Workspace,
+) -> f64 {
+    let gradient = &ws.scaled_gradient;
     let q = &eigen.eigenvectors;
     let lambda = &eigen.eigenvalues;
-    let gamma = q.transpose() * gradient;
+    ws.gamma.gemv(1.0, &ws.qt, gradient, 0.0);
+    let gamma = &ws.gamma;
     let n = lambda.len();
     let lmin = lambda.iter().copied().fold(f64::INFINITY, f64::min);
     let norm_at = |mu: f64| -> f64 {
@@ -252,11 +268,15 @@ fn trust_region_step(
             hi
         }
     };
-    let mut y = DVector::zeros(n);
+    let y = &mut ws.y;
+    y.fill(0.0);
     for k in 0..n {
         let denom = lambda[k] + mu;
         if denom.abs() > 0.0 {
-            y -= q.column(k) * (gamma[k] / denom);
+            let s = gamma[k] / denom;
+            for (yi, qi) in y.iter_mut().zip(q.column(k).iter()) {
+                *yi -= qi * s;
+            }
         }
     }
     if mu > 0.0 && y.norm() < radius * (1.0 - 1e-8) {
@@ -268,9 +288,13 @@ fn trust_region_step(
         let yy = y.norm_squared();
         let yv = y.dot(&v);
         let tau = -yv + (yv * yv + radius * radius - yy).max(0.0).sqrt();
-        y += v * tau;
+        for (yi, vi) in y.iter_mut().zip(v.iter()) {
+            *yi += vi * tau;
+        }
     }
-    let hy = q * DVector::from_iterator(n, (0..n).map(|k| lambda[k] * q.column(k).dot(&y)));
-    let predicted = -(gradient.dot(&y) + 0.5 * y.dot(&hy));
-    (y, predicted)
+    for k in 0..n {
+        ws.weighted[k] = lambda[k] * q.column(k).dot(&*y);
+    }
+    ws.hy.gemv(1.0, q, &ws.weighted, 0.0);
+    -(gradient.dot(&*y) + 0.5 * y.dot(&ws.hy))
 }

@@ -198,6 +198,17 @@ pub(crate) struct Workspace {
     pub(super) hessian_storage: Option<DMatrix<f64>>,
     pub(super) scaled_gradient: DVector<f64>,
     pub(super) y: DVector<f64>,
+    /// The trust-region step: `L⁻¹ H`, `L⁻¹ H L⁻ᵀ` before and after symmetrisation, the
+    /// transposed eigenvectors, the storage handed to the eigendecomposition, `Qᵀ g`, `Λ Qᵀ y`
+    /// and `H̃ y`.
+    pub(super) left: DMatrix<f64>,
+    pub(super) scaled: DMatrix<f64>,
+    pub(super) symmetric: DMatrix<f64>,
+    pub(super) qt: DMatrix<f64>,
+    pub(super) eigen_storage: Option<DMatrix<f64>>,
+    pub(super) gamma: DVector<f64>,
+    pub(super) weighted: DVector<f64>,
+    pub(super) hy: DVector<f64>,
     /// Sparse path: the Newton matrix on a fixed pattern and its factorisation.
     pub(super) newton: Option<SparseNewton>,
 }
@@ -226,6 +237,9 @@ impl Workspace {
             &mut self.direction,
             &mut self.scaled_gradient,
             &mut self.y,
+            &mut self.gamma,
+            &mut self.weighted,
+            &mut self.hy,
         ] {
             fit_vector(v, n);
         }
@@ -233,10 +247,23 @@ impl Workspace {
             fit_vector(v, m);
         }
         if dense {
-            for a in [&mut self.metric, &mut self.hessian, &mut self.l, &mut self.lt] {
+            for a in [
+                &mut self.metric,
+                &mut self.hessian,
+                &mut self.l,
+                &mut self.lt,
+                &mut self.left,
+                &mut self.scaled,
+                &mut self.symmetric,
+                &mut self.qt,
+            ] {
                 fit_matrix(a, n);
             }
-            for a in [&mut self.factor_storage, &mut self.hessian_storage] {
+            for a in [
+                &mut self.factor_storage,
+                &mut self.hessian_storage,
+                &mut self.eigen_storage,
+            ] {
                 if a.as_ref().is_some_and(|a| a.nrows() != n) {
                     *a = None;
                 }

@@ -9,9 +9,8 @@ use nalgebra_sparse::ops::serial::spmm_csr_dense;
 use nalgebra_sparse::{CooMatrix, CsrMatrix};
 use std::cell::RefCell;
 use spline_algebra::kron;
-use spline_core::{Error, ErrorKind, KnotVector, Result};
+use spline_core::{Error, ErrorKind, KnotVector, MAX_ORDER, Result};
 use spline_fit::{GridLeastSquares, LeastSquares, NormalEquations};
-use spline_geom::{BSpline, Surface};
 
 /// The samples of the objective.
 #[derive(Clone, Debug)]
@@ -40,40 +39,104 @@ pub(crate) struct LeastSquaresObjective {
     gram: CsrMatrix<f64>,
     rhs: DVector<f64>,
     samples: Samples,
-    /// The spline of the last `x` evaluated and its values at the samples, reused by every
-    /// evaluation of the objective (no allocation inside the solver's iterations).
-    fitted: RefCell<Fitted>,
+    /// The basis functions at the samples, computed once: the objective evaluates the spline
+    /// of every `x` from them without allocating.
+    design: Design,
 }
 
-/// A spline with the samples' knots whose coefficients are overwritten, and its values.
+/// The non-zero basis functions at sorted parameters: `first[j]` and `order` values each.
 #[derive(Clone, Debug)]
-struct Fitted {
-    spline: FittedSpline,
+struct BasisRows {
+    order: usize,
+    first: Vec<usize>,
     values: Vec<f64>,
 }
 
-#[derive(Clone, Debug)]
-enum FittedSpline {
-    Function(BSpline<f64, f64>),
-    Grid(Surface<f64, f64>),
+impl BasisRows {
+    fn new(knots: &KnotVector<f64>, params: &[f64]) -> Self {
+        let p = knots.degree();
+        let mut first = Vec::with_capacity(params.len());
+        let mut values = Vec::with_capacity(params.len() * (p + 1));
+        let mut span = p;
+        let mut basis = [0.0; MAX_ORDER];
+        for &u in params {
+            span = knots.span_in_domain_from(u, span);
+            knots.basis_values(span, u, &mut basis[..=p]);
+            first.push(span - p);
+            values.extend_from_slice(&basis[..=p]);
+        }
+        Self {
+            order: p + 1,
+            first,
+            values,
+        }
+    }
+
+    /// The rows `(first, values)`.
+    fn rows(&self) -> impl Iterator<Item = (usize, &[f64])> + '_ {
+        self.first
+            .iter()
+            .copied()
+            .zip(self.values.chunks_exact(self.order))
+    }
 }
 
-impl Fitted {
-    fn new(samples: &Samples, n: usize) -> Self {
+/// The basis rows of the samples, and for grids those of `v` and the coefficients of one
+/// iso-curve `v ↦ s(u_a, v)` (reused).
+#[derive(Clone, Debug)]
+struct Design {
+    u: BasisRows,
+    v: Option<(BasisRows, RefCell<Vec<f64>>)>,
+}
+
+impl Design {
+    fn new(samples: &Samples) -> Self {
         match samples {
             Samples::Function { knots, params, .. } => Self {
-                spline: FittedSpline::Function(BSpline::new_unchecked(knots.clone(), vec![0.0; n])),
-                values: vec![0.0; params.len()],
+                u: BasisRows::new(knots, params),
+                v: None,
             },
             Samples::Grid { knots, us, vs, .. } => Self {
-                spline: FittedSpline::Grid(Surface::new_unchecked(
-                    knots.0.clone(),
-                    knots.1.clone(),
-                    vec![0.0; n],
+                u: BasisRows::new(&knots.0, us),
+                v: Some((
+                    BasisRows::new(&knots.1, vs),
+                    RefCell::new(vec![0.0; knots.1.num_basis()]),
                 )),
-                values: vec![0.0; us.len() * vs.len()],
             },
         }
+    }
+
+    /// $\tfrac12 \sum_j (s_x(\bar u_j) - z_j)^2$.
+    fn half_squared_residual(&self, x: &[f64], values: &[f64]) -> f64 {
+        let mut sum = 0.0;
+        match &self.v {
+            None => {
+                for ((first, basis), z) in self.u.rows().zip(values) {
+                    let s: f64 = basis.iter().zip(&x[first..]).map(|(b, c)| b * c).sum();
+                    sum += (s - z) * (s - z);
+                }
+            }
+            Some((v_rows, curve)) => {
+                let mut curve = curve.borrow_mut();
+                let nv = curve.len();
+                let mut z = values.iter();
+                for (first, bu) in self.u.rows() {
+                    curve.iter_mut().for_each(|c| *c = 0.0);
+                    for (r, &b) in bu.iter().enumerate() {
+                        let row = &x[(first + r) * nv..(first + r + 1) * nv];
+                        for (c, &p) in curve.iter_mut().zip(row) {
+                            *c += b * p;
+                        }
+                    }
+                    for (fv, bv) in v_rows.rows() {
+                        let s: f64 = bv.iter().zip(&curve[fv..]).map(|(b, c)| b * c).sum();
+                        let zj = z.next().copied().unwrap_or(f64::NAN);
+                        sum += (s - zj) * (s - zj);
+                    }
+                }
+            }
+        }
+        0.5 * sum
     }
 }
 
@@ -116,7 +179,7 @@ impl LeastSquaresObjective {
         Ok(Self {
             gram: gram_matrix(&normal),
             rhs: DVector::from_column_slice(normal.rhs()),
-            fitted: RefCell::new(Fitted::new(&samples, normal.rhs().len())),
+            design: Design::new(&samples),
             samples,
         })
     }
@@ -152,7 +215,7 @@ impl LeastSquaresObjective {
         Ok(Self {
             gram: kron(&gram_matrix(normal.gram_u()), &gram_matrix(normal.gram_v())),
             rhs: DVector::from_column_slice(normal.rhs()),
-            fitted: RefCell::new(Fitted::new(&samples, normal.rhs().len())),
+            design: Design::new(&samples),
             samples,
         })
     }
@@ -161,32 +224,13 @@ impl LeastSquaresObjective {
         self.rhs.len()
     }
 
-    /// $\tfrac12 \sum_j (s_x(\bar u_j) - z_j)^2$ from the evaluated spline (infinite if it
-    /// cannot be evaluated).
+    /// $\tfrac12 \sum_j (s_x(\bar u_j) - z_j)^2$ from the evaluated spline (the basis
+    /// functions at the samples computed once).
     pub(crate) fn value(&self, x: &DVector<f64>) -> f64 {
-        let mut fitted = self.fitted.borrow_mut();
-        let Fitted { spline, values: out } = &mut *fitted;
-        let evaluated = match (spline, &self.samples) {
-            (FittedSpline::Function(curve), Samples::Function { params, .. }) => {
-                curve.control_points_mut().copy_from_slice(x.as_slice());
-                curve.eval_many_into(params, out)
-            }
-            (FittedSpline::Grid(surface), Samples::Grid { us, vs, .. }) => {
-                surface.control_points_mut().copy_from_slice(x.as_slice());
-                surface.eval_grid_into(us, vs, out)
-            }
-            _ => unreachable!("the spline is made from the samples"),
-        };
         let values = match &self.samples {
             Samples::Function { values, .. } | Samples::Grid { values, .. } => values,
         };
-        evaluated.map_or(f64::INFINITY, |()| {
-            0.5 * out
-                .iter()
-                .zip(values)
-                .map(|(a, b)| (a - b) * (a - b))
-                .sum::<f64>()
-        })
+        self.design.half_squared_residual(x.as_slice(), values)
     }
 
     /// $G x - r$.
