@@ -342,10 +342,15 @@ impl EraserProblem {
 
     /// Moves the anchors of the foot points to the foot points of the curve of `x`.
     pub(crate) fn commit(&self, x: &DVector<f64>) {
-        let params: Vec<f64> = self.feet(x, false).feet.iter().map(|f| f.param).collect();
-        *self.distances.params.borrow_mut() = params;
-        // The anchors moved: evaluations start afresh.
-        *self.feet.borrow_mut() = FeetCache::default();
+        {
+            let feet = self.feet(x, false);
+            let mut params = self.distances.params.borrow_mut();
+            params.clear();
+            params.extend(feet.feet.iter().map(|f| f.param));
+        }
+        // The anchors moved: evaluations start afresh (an empty key never matches; the
+        // cache keeps its buffers, which every evaluation overwrites).
+        self.feet.borrow_mut().control.clear();
     }
 
     /// The feet of the data on the curve of `x`, computed once per set of control points
