@@ -156,3 +156,38 @@ fn eraser_allocates_a_bounded_amount_per_newton_step() {
     assert!(result.newton_steps > 100);
     assert!(count <= 20 * result.newton_steps, "{count} allocations");
 }
+
+/// Above 400 unknowns the Newton matrix is sparse, on a pattern computed once and
+/// refactored in place: a solve of many more steps allocates no more.
+#[test]
+fn sparse_newton_steps_allocate_nothing() {
+    let _guard = SERIAL
+        .lock()
+        .unwrap_or_else(std::sync::PoisonError::into_inner);
+    let approx = FunctionApproximation::uniform(3, 450, 0.0, 1.0)
+        .expect("knots")
+        .sign(1, Sign::NonNegative);
+    let params: Vec<f64> = (0..=2000).map(|j| f64::from(j) / 2000.0).collect();
+    let values: Vec<f64> = params
+        .iter()
+        .map(|u| (40.0 * u).sin() * 0.05 + u)
+        .collect();
+    let problem = approx.problems(&params, &values).expect("problem").remove(0);
+    let start = DVector::from_vec(approx.knots().greville());
+    let x0 = find_feasible(&problem, start, 1e-6, &BarrierOptions::default()).expect("phase I");
+    let run = |gap: f64| {
+        let options = BarrierOptions {
+            gap_tolerance: gap,
+            ..BarrierOptions::default()
+        };
+        allocations(|| minimize(&problem, x0.clone(), &options).expect("solved"))
+    };
+    let (few, short) = run(1e-2);
+    let (many, long) = run(1e-8);
+    eprintln!(
+        "sparse Newton matrix: {few} allocations for {} Newton steps, {many} for {}",
+        short.newton_iterations, long.newton_iterations
+    );
+    assert!(long.newton_iterations >= 2 * short.newton_iterations);
+    assert_eq!(few, many);
+}

@@ -110,6 +110,40 @@ struct PhaseScratch {
     rows: SparseRows,
     dense: DMatrix<f64>,
     sparse: Option<CsrMatrix<f64>>,
+    sparse_objective: Option<CsrMatrix<f64>>,
+}
+
+/// `scale · inner` bordered by an empty last row and column, into `out` (in place when it
+/// has that pattern already).
+fn bordered(inner: &CsrMatrix<f64>, scale: f64, out: &mut Option<CsrMatrix<f64>>) {
+    let (n, nnz) = (inner.nrows(), inner.nnz());
+    match out {
+        Some(m)
+            if m.nrows() == n + 1
+                && m.nnz() == nnz
+                && m.row_offsets()[..=n] == *inner.row_offsets()
+                && m.col_indices() == inner.col_indices() =>
+        {
+            for (o, v) in m.values_mut().iter_mut().zip(inner.values()) {
+                *o = scale * v;
+            }
+        }
+        _ => {
+            let mut offsets = inner.row_offsets().to_vec();
+            offsets.push(nnz);
+            let values = inner.values().iter().map(|v| scale * v).collect();
+            *out = Some(
+                CsrMatrix::try_from_csr_data(
+                    n + 1,
+                    n + 1,
+                    offsets,
+                    inner.col_indices().to_vec(),
+                    values,
+                )
+                .expect("the inner pattern, bordered"),
+            );
+        }
+    }
 }
 
 impl<P: BarrierProblem> PhaseOne<'_, P> {
@@ -255,6 +289,53 @@ impl<P: BarrierProblem> BarrierProblem for PhaseOne<'_, P> {
                 }
             }
         }
+    }
+
+    fn objective_hessian_into(&self, x: &DVector<f64>, out: &mut Option<CsrMatrix<f64>>) {
+        let n = self.inner.dimension();
+        if self.objective_weight == 0.0 {
+            if !out
+                .as_ref()
+                .is_some_and(|m| m.nrows() == n + 1 && m.nnz() == 0)
+            {
+                *out = Some(CsrMatrix::zeros(n + 1, n + 1));
+            }
+            return;
+        }
+        let mut scratch = self.scratch.borrow_mut();
+        let s = &mut *scratch;
+        self.inner_x(x, s);
+        self.inner
+            .objective_hessian_into(&s.x, &mut s.sparse_objective);
+        if let Some(h) = &s.sparse_objective {
+            bordered(h, self.objective_weight, out);
+        }
+    }
+
+    fn weighted_constraint_hessian_into(
+        &self,
+        x: &DVector<f64>,
+        weights: &DVector<f64>,
+        out: &mut Option<CsrMatrix<f64>>,
+    ) -> bool {
+        let m = self.inner.num_constraints();
+        let mut scratch = self.scratch.borrow_mut();
+        let s = &mut *scratch;
+        self.inner_x(x, s);
+        if s.weights.len() != m {
+            s.weights = DVector::zeros(m);
+        }
+        s.weights.copy_from(&weights.rows(0, m));
+        if !self
+            .inner
+            .weighted_constraint_hessian_into(&s.x, &s.weights, &mut s.sparse)
+        {
+            return false;
+        }
+        if let Some(h) = &s.sparse {
+            bordered(h, 1.0, out);
+        }
+        true
     }
 
     fn constraints_into(&self, x: &DVector<f64>, out: &mut DVector<f64>) {
