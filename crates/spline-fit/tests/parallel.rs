@@ -38,17 +38,24 @@ fn chunked_normal_equations_equal_the_direct_sums() {
             for a in 0..=degree {
                 rhs[span - degree + a] += q * (w * w * basis[a]);
                 for b in 0..=degree {
-                    gram[(span - degree + a) * n + span - degree + b] += w * w * basis[a] * basis[b];
+                    gram[(span - degree + a) * n + span - degree + b] +=
+                        w * w * basis[a] * basis[b];
                 }
             }
         }
         let scale = gram.iter().fold(0.0f64, |s, g| s.max(g.abs()));
         let rhs_scale = rhs.iter().fold(0.0f64, |s, r| s.max(r.amax()));
         for i in 0..n {
-            assert!((normal.rhs()[i] - rhs[i]).amax() <= 1e-12 * rhs_scale, "rhs {i}");
+            assert!(
+                (normal.rhs()[i] - rhs[i]).amax() <= 1e-12 * rhs_scale,
+                "rhs {i}"
+            );
             for j in i.saturating_sub(degree)..(i + degree + 1).min(n) {
                 let d = (normal.gram(i, j) - gram[i * n + j]).abs();
-                assert!(d <= 1e-12 * scale, "degree {degree}: G[{i},{j}] off by {d:e}");
+                assert!(
+                    d <= 1e-12 * scale,
+                    "degree {degree}: G[{i},{j}] off by {d:e}"
+                );
             }
         }
         // The solution of the chunked system fits as well as the direct one.

@@ -40,11 +40,11 @@ fn monotone_fit() -> (spline_shape::ApproximationProblem, DVector<f64>) {
         .expect("knots")
         .sign(1, Sign::NonNegative);
     let params: Vec<f64> = (0..=400).map(|j| f64::from(j) / 400.0).collect();
-    let values: Vec<f64> = params
-        .iter()
-        .map(|u| (12.0 * u).sin() * 0.3 + u)
-        .collect();
-    let problem = approx.problems(&params, &values).expect("problem").remove(0);
+    let values: Vec<f64> = params.iter().map(|u| (12.0 * u).sin() * 0.3 + u).collect();
+    let problem = approx
+        .problems(&params, &values)
+        .expect("problem")
+        .remove(0);
     let start = DVector::from_vec(approx.knots().greville());
     let x0 = find_feasible(&problem, start, 1e-6, &BarrierOptions::default()).expect("phase I");
     (problem, x0)
@@ -168,11 +168,11 @@ fn sparse_newton_steps_allocate_nothing() {
         .expect("knots")
         .sign(1, Sign::NonNegative);
     let params: Vec<f64> = (0..=2000).map(|j| f64::from(j) / 2000.0).collect();
-    let values: Vec<f64> = params
-        .iter()
-        .map(|u| (40.0 * u).sin() * 0.05 + u)
-        .collect();
-    let problem = approx.problems(&params, &values).expect("problem").remove(0);
+    let values: Vec<f64> = params.iter().map(|u| (40.0 * u).sin() * 0.05 + u).collect();
+    let problem = approx
+        .problems(&params, &values)
+        .expect("problem")
+        .remove(0);
     let start = DVector::from_vec(approx.knots().greville());
     let x0 = find_feasible(&problem, start, 1e-6, &BarrierOptions::default()).expect("phase I");
     let run = |gap: f64| {

@@ -229,7 +229,9 @@ fn assemble_normal<T: Scalar, P: ControlPoint<T>>(
 ) -> Option<std::result::Result<(), usize>> {
     #[cfg(feature = "parallel")]
     if params.len() >= PARALLEL_MIN_POINTS && knots.degree() <= 5 {
-        return Some(super::parallel::assemble(knots, params, points, weights, check, band, rhs));
+        return Some(super::parallel::assemble(
+            knots, params, points, weights, check, band, rhs,
+        ));
     }
     normal_dispatch::<T, P, true>(knots, params, points, weights, check, band, rhs)
 }
@@ -381,7 +383,15 @@ impl<T: Scalar, P: ControlPoint<T>> LeastSquares<'_, T, P> {
         ws.rhs.iter_mut().for_each(|r| *r = P::origin());
         let (knots, points, weights) = (&self.knots, self.points, self.weights);
         let data = ws.band.data_mut();
-        let run = normal_dispatch::<T, P, true>(knots, params, points, weights, self.check_sw, data, &mut ws.rhs);
+        let run = normal_dispatch::<T, P, true>(
+            knots,
+            params,
+            points,
+            weights,
+            self.check_sw,
+            data,
+            &mut ws.rhs,
+        );
         if let Some(Err(i)) = run {
             return Err(self.sw_error_with(params, i));
         }

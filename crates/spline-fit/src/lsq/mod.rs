@@ -5,9 +5,9 @@ mod normal;
 #[cfg(feature = "parallel")]
 mod parallel;
 
-pub(crate) use assemble::penalty_rows;
 #[cfg(feature = "parallel")]
 pub use assemble::PARALLEL_MIN_POINTS;
+pub(crate) use assemble::penalty_rows;
 pub use normal::{GridLeastSquares, GridNormalEquations, NormalEquations};
 
 use crate::params::check_degree;

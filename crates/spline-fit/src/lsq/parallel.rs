@@ -30,7 +30,15 @@ pub(super) fn assemble<T: Scalar, P: ControlPoint<T>>(
         || {
             if check {
                 // The check alone: no sums, the buffers untouched.
-                normal_dispatch::<T, P, false>(knots, params, points, weights, true, &mut [], &mut [])
+                normal_dispatch::<T, P, false>(
+                    knots,
+                    params,
+                    points,
+                    weights,
+                    true,
+                    &mut [],
+                    &mut [],
+                )
             } else {
                 Some(Ok(()))
             }

@@ -22,8 +22,8 @@ mod workspace;
 use newton::{DENSE_LIMIT, SparseNewton};
 pub use phase_one::{find_feasible, find_feasible_near};
 use trust_region::centre_trust_region;
-pub(crate) use workspace::Workspace;
 pub use workspace::SparseRows;
+pub(crate) use workspace::Workspace;
 use workspace::with_workspace;
 
 /// A smooth problem `min f0(x) s.t. f_i(x) < 0` with first and second derivatives.

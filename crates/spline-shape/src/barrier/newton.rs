@@ -80,7 +80,9 @@ impl SparseNewton {
                 self.pattern.major_offsets()[j],
                 self.pattern.major_offsets()[j + 1],
             );
-            self.pattern.minor_indices()[a..b].iter().map(move |&i| (i, j))
+            self.pattern.minor_indices()[a..b]
+                .iter()
+                .map(move |&i| (i, j))
         })
     }
 

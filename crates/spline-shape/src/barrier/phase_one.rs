@@ -1,11 +1,11 @@
 //! Phase I: a strictly feasible start.
 
-use super::{BarrierOptions, BarrierProblem, centre};
 use super::SparseRows;
+use super::{BarrierOptions, BarrierProblem, centre};
 use nalgebra::{DMatrix, DVector};
-use std::cell::RefCell;
 use nalgebra_sparse::{CooMatrix, CsrMatrix};
 use spline_core::{Error, ErrorKind, Result};
+use std::cell::RefCell;
 
 /// Phase I: a strictly feasible point near `x0`, found by minimising `s` subject to
 /// `f_i(x) < s` from `s = max f_i(x0) + 1` and stopping as soon as `s < −margin`.

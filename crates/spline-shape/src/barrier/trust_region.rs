@@ -1,8 +1,6 @@
 //! The dense path: Newton's method with a trust region in the barrier's local metric.
 
-use super::{
-    BarrierOptions, BarrierProblem, StopRule, Workspace, barrier_gradient, barrier_value,
-};
+use super::{BarrierOptions, BarrierProblem, StopRule, Workspace, barrier_gradient, barrier_value};
 use nalgebra::{DMatrix, DVector};
 use spline_core::{Error, ErrorKind, Result};
 
@@ -74,7 +72,8 @@ pub(super) fn centre_trust_region(
                 let predicted = -0.5 * ws.gradient.dot(d);
                 ws.candidate.copy_from(x);
                 ws.candidate += d;
-                let actual = barrier_value(problem, &ws.candidate, t, &mut ws.c_trial).map(|fc| f - fc);
+                let actual =
+                    barrier_value(problem, &ws.candidate, t, &mut ws.c_trial).map(|fc| f - fc);
                 let ratio = actual.map_or(-1.0, |a| a / predicted);
                 if predicted > 0.0 && ratio > 0.25 {
                     if ratio > 0.75 && ws.y.norm() > 0.99 * radius {

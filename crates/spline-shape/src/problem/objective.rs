@@ -7,10 +7,10 @@ use nalgebra::DVector;
 use nalgebra_sparse::ops::Op;
 use nalgebra_sparse::ops::serial::spmm_csr_dense;
 use nalgebra_sparse::{CooMatrix, CsrMatrix};
-use std::cell::RefCell;
 use spline_algebra::kron;
 use spline_core::{Error, ErrorKind, KnotVector, MAX_ORDER, Result};
 use spline_fit::{GridLeastSquares, LeastSquares, NormalEquations};
+use std::cell::RefCell;
 
 /// The samples of the objective.
 #[derive(Clone, Debug)]
