@@ -158,6 +158,11 @@ fn run<T: Scalar, P: ControlPoint<T>, C>(
     Ok((curve, report))
 }
 
+/// A curve evaluated before its first fit (an internal invariant: [`run`] fits first).
+fn not_fitted() -> Error {
+    Error::new(ErrorKind::InvalidArgument, "the curve was not fitted")
+}
+
 fn check_inputs<T: Scalar, P: ControlPoint<T>>(
     points: &[P],
     params: &[T],
@@ -304,7 +309,7 @@ pub fn correct_parameters_bezier<T: Scalar, P: ControlPoint<T>>(
         Ok(())
     };
     let eval = |curve: &Option<Bezier<T, P>>, t: T| -> Result<(P, P)> {
-        let curve = curve.as_ref().expect("fitted before it is evaluated");
+        let curve = curve.as_ref().ok_or_else(not_fitted)?;
         Ok((curve.eval(t)?, curve.derivative().eval(t)?))
     };
     let (curve, report) = run(
@@ -317,7 +322,7 @@ pub fn correct_parameters_bezier<T: Scalar, P: ControlPoint<T>>(
         &mut fit,
         &eval,
     )?;
-    let curve = curve.expect("fitted by run");
+    let curve = curve.ok_or_else(not_fitted)?;
     let distances = params
         .iter()
         .zip(points)

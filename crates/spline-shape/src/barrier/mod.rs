@@ -307,7 +307,7 @@ pub(super) fn barrier_gradient(
     ws.jac
         .transpose_mul_add(ws.inv.as_slice(), ws.gradient.as_mut_slice());
     for (g, &g0) in ws.gradient.iter_mut().zip(ws.g0.iter()) {
-        *g = g0 * t + *g;
+        *g += g0 * t;
     }
     if ws.gradient.iter().any(|g| !g.is_finite()) {
         return Err(Error::new(
