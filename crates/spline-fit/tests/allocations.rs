@@ -1,6 +1,7 @@
 //! Parameter correction allocates nothing per sweep: the refit writes the control points of
 //! one curve through a reused least-squares workspace (the band of the normal equations and
-//! its Cholesky factor), so a run of `2L` sweeps allocates as much as a run of `L`.
+//! its Cholesky factor), so a run of `2L` sweeps allocates as much as a run of `L` (before
+//! the workspace: 10 allocations per sweep, 58 for 4 sweeps and 98 for 8 here).
 //!
 //! The test binary counts every allocation with `stats_alloc` as its global allocator (a
 //! counting allocator needs `unsafe impl GlobalAlloc`, which the workspace forbids: the crate
@@ -66,3 +67,4 @@ fn parameter_correction_allocates_nothing_per_sweep() {
     eprintln!("parameter correction: {few} allocations for 4 sweeps, {many} for 8");
     assert_eq!(few, many, "{few} allocations for 4 sweeps, {many} for 8");
 }
+

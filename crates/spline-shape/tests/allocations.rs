@@ -98,7 +98,7 @@ fn newton_steps_allocate_nothing() {
 /// From an arbitrary start, some steps solve the trust-region subproblem by an
 /// eigendecomposition; nalgebra's allocates its own few work vectors (5 blocks in nalgebra
 /// 0.35), everything else is reused: the count grows by at most a small constant per step
-/// (it grew by dozens before the workspace).
+/// (before the workspace: 3,582 allocations for 63 steps, 7,551 for 120 — 70 per step).
 #[test]
 fn trust_region_steps_allocate_a_bounded_amount() {
     let _guard = SERIAL
@@ -127,8 +127,8 @@ fn trust_region_steps_allocate_a_bounded_amount() {
 /// The eraser (`spline smooth`'s path) on an airfoil: its Newton steps reuse the solver's
 /// workspace and the problem's buffers; what is left is per centring step and per round
 /// (refinement of the conditions, the continuation's levels, the anchors of the foot points)
-/// and nalgebra's eigendecompositions. Before the workspace the same run allocated about
-/// 130 blocks per Newton step; the bound here is 20.
+/// and nalgebra's eigendecompositions. Before the workspace the same run allocated 188,899
+/// blocks, 99 per Newton step (now about 14); the bound here is 20.
 #[test]
 fn eraser_allocates_a_bounded_amount_per_newton_step() {
     let _guard = SERIAL
