@@ -285,8 +285,8 @@ thread_local! {
     static WORKSPACE: RefCell<Workspace> = RefCell::new(Workspace::default());
 }
 
-/// The largest dense matrix (entries) the thread's workspace keeps after a solve; larger
-/// ones are released.
+/// The largest sparse Newton matrix (entries) the thread's workspace keeps after a solve;
+/// larger ones are released (the dense matrices have at most 400² entries).
 const KEEP_ENTRIES: usize = 1 << 20;
 
 /// Runs `f` with this thread's workspace (a fresh one if it is in use, e.g. when a problem's
@@ -295,7 +295,7 @@ pub(crate) fn with_workspace<R>(f: impl FnOnce(&mut Workspace) -> R) -> R {
     WORKSPACE.with(|cell| match cell.try_borrow_mut() {
         Ok(mut ws) => {
             let out = f(&mut ws);
-            if ws.metric.len() > KEEP_ENTRIES || ws.n * ws.n > 4 * KEEP_ENTRIES {
+            if ws.newton.as_ref().is_some_and(|m| m.base.len() > KEEP_ENTRIES) {
                 *ws = Workspace::default();
             }
             out
