@@ -27,6 +27,11 @@ pub(crate) use workspace::Workspace;
 use workspace::with_workspace;
 
 /// A smooth problem `min f0(x) s.t. f_i(x) < 0` with first and second derivatives.
+///
+/// The solver calls the `_into` forms (and [`BarrierProblem::add_objective_hessian`]),
+/// which write into its reused buffers; their defaults call the owned forms, so an
+/// implementor needs only the owned ones, and overrides the others to keep the solver's
+/// iterations free of allocation.
 pub trait BarrierProblem {
     /// The number of unknowns `n`.
     fn dimension(&self) -> usize;
@@ -50,7 +55,7 @@ pub trait BarrierProblem {
     ) -> Option<CsrMatrix<f64>>;
     /// Adds $\sum_i w_i \nabla^2 f_i(x)$ to the dense matrix `out` and returns `true`, for
     /// problems that assemble their Hessian blocks faster that way; the default returns
-    /// `false` and the solver uses [`BarrierProblem::weighted_constraint_hessian`].
+    /// `false` and the solver uses [`BarrierProblem::weighted_constraint_hessian_into`].
     fn add_weighted_constraint_hessian(
         &self,
         _x: &DVector<f64>,
