@@ -67,4 +67,3 @@ fn parameter_correction_allocates_nothing_per_sweep() {
     eprintln!("parameter correction: {few} allocations for 4 sweeps, {many} for 8");
     assert_eq!(few, many, "{few} allocations for 4 sweeps, {many} for 8");
 }
-

@@ -295,7 +295,11 @@ pub(crate) fn with_workspace<R>(f: impl FnOnce(&mut Workspace) -> R) -> R {
     WORKSPACE.with(|cell| match cell.try_borrow_mut() {
         Ok(mut ws) => {
             let out = f(&mut ws);
-            if ws.newton.as_ref().is_some_and(|m| m.base.len() > KEEP_ENTRIES) {
+            if ws
+                .newton
+                .as_ref()
+                .is_some_and(|m| m.base.len() > KEEP_ENTRIES)
+            {
                 *ws = Workspace::default();
             }
             out
