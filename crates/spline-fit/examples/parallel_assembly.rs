@@ -14,7 +14,7 @@ fn main() {
     let mut args = std::env::args().skip(1);
     let threads: usize = args.next().and_then(|a| a.parse().ok()).unwrap_or(1);
     let reps: usize = args.next().and_then(|a| a.parse().ok()).unwrap_or(20);
-    let n = 1_000_000;
+    let n: usize = 1_000_000;
     #[allow(clippy::cast_precision_loss)]
     let params: Vec<f64> = (0..n).map(|j| j as f64 / (n - 1) as f64).collect();
     let points: Vec<Vector2<f64>> = params
