@@ -30,7 +30,8 @@
 //!   control points, [`rational_planar_hessians`] / [`space_numerator_hessians`].
 //! - Surfaces: [`curvature_numerators`] (`K`, `H`, umbilic conditions as bivariate splines),
 //!   [`zero_set`] and [`common_zeros`] of bivariate splines, [`parabolic_lines`],
-//!   [`umbilics`], [`ridges`] of functions, [`feature_overlays`] for pictures.
+//!   [`umbilics`] (with those at poles), [`ridges`] of functions, [`surface_ridges`] of
+//!   parametric surfaces, [`feature_overlays`] for pictures.
 //! - Roots: [`zeros`] and [`sign_change_params`] of any B-spline function.
 //! - Intersections of planar curves of any kind: [`intersect_curves`] and
 //!   [`self_intersections`] (subdivision of the Bézier pieces, Newton's method, tangential
@@ -73,8 +74,11 @@ mod features;
 mod maps;
 mod numerator;
 mod offset;
+mod parametric_ridges;
+mod pole_umbilics;
 mod product;
 mod revolution;
+mod ridge_function;
 mod ridges;
 mod roots;
 mod segment_curvature;
@@ -99,6 +103,7 @@ pub use features::{
 pub use maps::SplineMap;
 pub use nalgebra_sparse::CsrMatrix;
 pub use offset::{OffsetCusp, offset_cusps};
+pub use parametric_ridges::{SurfaceRidges, surface_ridges};
 pub use product::{
     ProductJacobians, ProductMap, Square, bernstein_product, common_space, difference, dot_product,
     linear_combination, product, product_knots, product_with_jacobians, scale, square, sum,

@@ -10,6 +10,9 @@ use spline_geom::{Direction, NurbsSurface, Surface};
 const BOX_BUDGET: usize = 200_000;
 /// Boxes are halved down to this fraction of their patch in each direction.
 const RESOLUTION: f64 = 1e-7;
+/// Where one function vanishes identically, more boxes than this at the resolution on one
+/// patch mean a curve of zeros of the other.
+const LONE_CANDIDATES: usize = 64;
 
 /// The common zeros of two bivariate functions ([`common_zeros`]).
 #[derive(Clone, Debug, Default, PartialEq)]
@@ -20,6 +23,10 @@ pub struct CommonZeros {
     /// patch, or one of them vanishing on a piece where the other has zeros, or more boxes
     /// than the budget): `points` is then incomplete.
     pub not_isolated: bool,
+    /// Filled by [`umbilics`] only: umbilics on singular parameter lines (a boundary line of
+    /// the domain that the surface collapses to a pole), one `[u, v]` per pole (the middle
+    /// of the line), not in `points`. Empty when `not_isolated`.
+    pub poles: Vec<[f64; 2]>,
 }
 
 /// The isolated common zeros of `a(u, v)` and `b(u, v)` on the same domain: per Bézier patch
@@ -101,6 +108,7 @@ pub fn common_zeros(a: &Surface<f64, f64>, b: &Surface<f64, f64>) -> Result<Comm
     Ok(CommonZeros {
         points,
         not_isolated: search.not_isolated,
+        poles: Vec::new(),
     })
 }
 
@@ -171,15 +179,22 @@ fn divide_common_edges(
     mut b: Surface<f64, f64>,
 ) -> Result<(Surface<f64, f64>, Surface<f64, f64>)> {
     loop {
-        if vanishes(&a) || vanishes(&b) {
+        let (za, zb) = (vanishes(&a), vanishes(&b));
+        if za && zb {
             return Ok((a, b));
         }
-        let (ea, eb) = (zero_edges(&a), zero_edges(&b));
+        // A function vanishing on the whole patch vanishes on every edge (and stays as is).
+        let ea = if za { [true; 4] } else { zero_edges(&a) };
+        let eb = if zb { [true; 4] } else { zero_edges(&b) };
         let Some(edge) = (0..4).find(|&k| ea[k] && eb[k]) else {
             return Ok((a, b));
         };
-        a = divide_edge(&a, edge)?;
-        b = divide_edge(&b, edge)?;
+        if !za {
+            a = divide_edge(&a, edge)?;
+        }
+        if !zb {
+            b = divide_edge(&b, edge)?;
+        }
     }
 }
 
@@ -215,8 +230,14 @@ impl Search {
         if excluded(a) || excluded(b) {
             return Ok(());
         }
-        if vanishes(a) || vanishes(b) {
-            // A curve (or region) of common zeros.
+        if vanishes(a) && vanishes(b) {
+            // A region of common zeros.
+            self.not_isolated = true;
+            return Ok(());
+        }
+        // Where one function vanishes on the whole box the common zeros are the other's:
+        // isolated only if few boxes reach the resolution (else a curve of them).
+        if (vanishes(a) || vanishes(b)) && self.candidates.len() > LONE_CANDIDATES {
             self.not_isolated = true;
             return Ok(());
         }
@@ -279,7 +300,10 @@ fn newton(
 /// zeros ([`common_zeros`]) of its umbilic numerators ([`crate::CurvatureNumerators`]),
 /// except where the parametrisation is singular (`S_u × S_v = 0`, as at a sphere's poles:
 /// the numerators vanish there identically along the net's line, and those factors are
-/// divided out). A sphere (every point umbilic) gives no points and `not_isolated`.
+/// divided out). Umbilics at poles (a boundary line of the domain collapsed to one point,
+/// as on the axis of a spheroid) are decided from the second-order behaviour of the surface
+/// there and listed in [`CommonZeros::poles`]. A sphere (every point umbilic) gives no points
+/// and `not_isolated`.
 ///
 /// ```
 /// use nalgebra::Vector3;
@@ -289,6 +313,12 @@ fn newton(
 /// let ellipsoid = sphere.map_control_points(|p| Vector3::new(1.5 * p.x, 2.0 * p.y, p.z));
 /// let found = spline_algebra::umbilics(&ellipsoid)?;
 /// assert_eq!(found.points.len(), 4);
+/// assert!(found.poles.is_empty()); // its poles (z = ±1) are not umbilics
+/// // The spheroid with semi-axes 1.5, 1.5, 1: its umbilics are its two poles.
+/// let spheroid = sphere.map_control_points(|p| Vector3::new(1.5 * p.x, 1.5 * p.y, p.z));
+/// let found = spline_algebra::umbilics(&spheroid)?;
+/// assert!(found.points.is_empty() && !found.not_isolated);
+/// assert_eq!(found.poles.len(), 2);
 /// for p in &found.points {
 ///     assert!(ellipsoid.eval(p[0], p[1])?.x.abs() < 1e-9);
 /// }
@@ -330,5 +360,8 @@ pub fn umbilics(surface: &NurbsSurface<f64, 3>) -> Result<CommonZeros> {
         }
     }
     zeros.points = points;
+    if !zeros.not_isolated {
+        zeros.poles = crate::pole_umbilics::pole_umbilics(surface)?;
+    }
     Ok(zeros)
 }

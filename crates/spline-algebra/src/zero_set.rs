@@ -338,7 +338,7 @@ fn merge_lines(pieces: Vec<UvPolyline>, width: [f64; 2], samples: usize) -> Vec<
 
 /// Joins pieces whose ends meet (within `tol`) into polylines; a polyline whose ends meet is
 /// closed (its first point repeated at the end).
-fn chain(mut pieces: Vec<UvPolyline>, tol: f64) -> Vec<UvPolyline> {
+pub(crate) fn chain(mut pieces: Vec<UvPolyline>, tol: f64) -> Vec<UvPolyline> {
     let near =
         |a: &[f64; 2], b: &[f64; 2]| (a[0] - b[0]).abs() <= tol && (a[1] - b[1]).abs() <= tol;
     pieces.retain(|p| p.len() >= 2);
