@@ -27,8 +27,9 @@ const MIN_LEVEL: u32 = 4;
 const VANISHING: f64 = 1e-10;
 /// A crossing is kept when the gradient of the curvature is within this cosine of orthogonal
 /// to the principal direction there (from the better-conditioned direction form: a zero of
-/// a direction form is not a ridge).
-const GENUINE: f64 = 1e-6;
+/// a direction form is not a ridge, and there the cosine is of order one). At a root the
+/// cosine is rounding, up to about `10⁻⁵` where the terms of `g` cancel strongly.
+const GENUINE: f64 = 1e-3;
 /// Crossings where `Δ ≤ NEAR_UMBILIC · Ĥ²` (the principal curvatures within about `10⁻³` of
 /// each other, relatively) are not trusted: the direction forms vanish at the umbilics; the
 /// box holding an umbilic joins the other crossings to it.
