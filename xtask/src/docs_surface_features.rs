@@ -3,14 +3,14 @@
 //! revolution before and after the control of its parabolic circles through the meridian.
 
 use nalgebra::Vector3;
-use spline::algebra::{feature_overlays, parabolic_lines};
+use spline::algebra::{PARABOLIC_COLOUR, feature_overlays, parabolic_lines};
 use spline::geom::{Axis, MeshView, NurbsCurve, NurbsSurface};
 use spline::shape::{ParabolicCircles, Sign, control_parabolic_circles, revolution_surface};
 use spline::{Error, Result};
 use std::path::Path;
 
-/// The surface shaded, with its parabolic lines and umbilics drawn over it
-/// ([`feature_overlays`]); the number of each.
+/// The surface shaded, with its parabolic lines, ridges and umbilics drawn over it
+/// ([`feature_overlays`]); the number of parabolic lines and of umbilics.
 fn picture(
     surface: &NurbsSurface<f64, 3>,
     segments: (usize, usize),
@@ -18,12 +18,12 @@ fn picture(
 ) -> Result<(String, usize, usize)> {
     let overlays = feature_overlays(surface, 16)?;
     let umbilics = overlays.iter().filter(|o| o.markers).count();
+    let parabolic = overlays
+        .iter()
+        .filter(|o| !o.markers && o.color == PARABOLIC_COLOUR)
+        .count();
     let mesh = surface.tessellate(segments.0, segments.1)?;
-    Ok((
-        mesh.to_svg_with(view, &overlays),
-        overlays.len() - umbilics,
-        umbilics,
-    ))
+    Ok((mesh.to_svg_with(view, &overlays), parabolic, umbilics))
 }
 
 /// Writes `torus_parabolic.svg`, `ellipsoid_umbilics.svg`, `bell_before.svg` and
@@ -66,7 +66,7 @@ pub(crate) fn render(out_dir: &Path) -> std::result::Result<(), String> {
         azimuth: 35.0,
         wireframe: false,
         color: [120, 170, 110],
-        title: Some("Ellipsoid 1.5 x 2 x 1: its four umbilics (yellow; one behind)".into()),
+        title: Some("Ellipsoid 1.5 x 2 x 1: its four umbilics (yellow; one behind), ridges".into()),
         ..MeshView::default()
     };
     let (svg, _, u) = picture(&ellipsoid, (48, 64), &view).map_err(failed)?;

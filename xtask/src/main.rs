@@ -50,6 +50,7 @@ mod demo;
 mod docs_constructions;
 mod docs_curve_tools;
 mod docs_curves;
+mod docs_ridges;
 mod docs_shape_functions;
 mod docs_studio;
 mod docs_surface_features;
@@ -100,6 +101,7 @@ fn run_docs(root: &Path) -> Result<(), String> {
     docs_surfaces::render(&out)?;
     docs_constructions::render(root, &out)?;
     docs_surface_features::render(&out)?;
+    docs_ridges::render(&out)?;
     docs_shape_functions::render(&out)?;
     demo::render(root, &out)?;
     docs_studio::render(root, &out)?;

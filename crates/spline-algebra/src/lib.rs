@@ -122,8 +122,8 @@ pub use space::{
 };
 pub use sparse::kron;
 pub use surface_numerators::{
-    CurvatureNumerators, NumeratorJacobians, curvature_numerators,
-    curvature_numerators_with_jacobians, feature_overlays, parabolic_lines,
+    BLUE_RIDGE_COLOUR, CurvatureNumerators, NumeratorJacobians, PARABOLIC_COLOUR, RED_RIDGE_COLOUR,
+    curvature_numerators, curvature_numerators_with_jacobians, feature_overlays, parabolic_lines,
 };
 pub use tensor::{
     Partial, QuadraticFunction, TensorMap, TensorProductMap, hessian_determinant, partial,

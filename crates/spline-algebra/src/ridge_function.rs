@@ -133,8 +133,6 @@ pub(crate) struct RidgeValue<N> {
     /// $\Delta$ and $\hat H^2$: `Δ` small against `Ĥ²` means an umbilic.
     pub(crate) delta: N,
     pub(crate) h2: N,
-    /// $\hat A$.
-    pub(crate) area: N,
     /// The gradient vector `G` with `g = G · t` (pointwise: `|G|²`).
     pub(crate) grad2: N,
 }
@@ -188,7 +186,6 @@ pub(crate) fn ridge_value<N: Num>(
         scale: [N::constant(0.0); 2],
         delta: delta[0],
         h2: hh[0],
-        area: a[0],
         grad2: gu * gu + gv * gv,
     };
     for (i, (tu, tv)) in forms.into_iter().enumerate() {

@@ -338,29 +338,41 @@ pub fn parabolic_lines(surface: &NurbsSurface<f64, 3>, samples: usize) -> Result
     Ok(set)
 }
 
-/// The parabolic lines (orange) and umbilics (yellow dots) of a surface as overlays of its
-/// picture ([`spline_geom::TriangleMesh::to_svg_with`]), the lines with `samples` points per
-/// patch width.
+/// The parabolic lines (orange), ridges (red and blue, [`crate::surface_ridges`]) and
+/// umbilics (yellow dots, those at poles included) of a surface as overlays of its picture
+/// ([`spline_geom::TriangleMesh::to_svg_with`]), the lines with `samples` points per patch
+/// width.
 ///
 /// # Errors
-/// As [`parabolic_lines`] and [`crate::umbilics`].
+/// As [`parabolic_lines`], [`crate::surface_ridges`] and [`crate::umbilics`].
 pub fn feature_overlays(
     surface: &NurbsSurface<f64, 3>,
     samples: usize,
 ) -> Result<Vec<spline_geom::SvgOverlay>> {
     let mut overlays = Vec::new();
-    for curve in &parabolic_lines(surface, samples)?.curves {
-        overlays.push(spline_geom::SvgOverlay {
+    let line = |curve: &[[f64; 2]], color: [u8; 3], width: f64| -> Result<_> {
+        Ok(spline_geom::SvgOverlay {
             points: curve
                 .iter()
                 .map(|p| surface.eval(p[0], p[1]))
                 .collect::<Result<_>>()?,
-            color: [235, 110, 20],
-            width: 2.5,
+            color,
+            width,
             markers: false,
-        });
+        })
+    };
+    for curve in &parabolic_lines(surface, samples)?.curves {
+        overlays.push(line(curve, PARABOLIC_COLOUR, 2.5)?);
     }
-    for p in &crate::umbilics(surface)?.points {
+    let ridges = crate::surface_ridges(surface, samples)?;
+    for curve in &ridges.red {
+        overlays.push(line(curve, RED_RIDGE_COLOUR, 2.0)?);
+    }
+    for curve in &ridges.blue {
+        overlays.push(line(curve, BLUE_RIDGE_COLOUR, 2.0)?);
+    }
+    let umbilics = crate::umbilics(surface)?;
+    for p in umbilics.points.iter().chain(&umbilics.poles) {
         overlays.push(spline_geom::SvgOverlay {
             points: vec![surface.eval(p[0], p[1])?],
             color: [250, 220, 0],
@@ -370,3 +382,10 @@ pub fn feature_overlays(
     }
     Ok(overlays)
 }
+
+/// The colour of parabolic lines in [`feature_overlays`].
+pub const PARABOLIC_COLOUR: [u8; 3] = [235, 110, 20];
+/// The colour of red ridges (of `κ₂`) in [`feature_overlays`].
+pub const RED_RIDGE_COLOUR: [u8; 3] = [215, 30, 40];
+/// The colour of blue ridges (of `κ₁`) in [`feature_overlays`].
+pub const BLUE_RIDGE_COLOUR: [u8; 3] = [30, 80, 220];

@@ -70,7 +70,7 @@ fn the_ellipsoid_ridges_are_its_principal_sections() {
     };
     let mut gaps = 0;
     for k in 0..200 {
-        let t = std::f64::consts::TAU * k as f64 / 200.0;
+        let t = std::f64::consts::TAU * f64::from(k) / 200.0;
         let (c, s) = (t.cos(), t.sin());
         // z = 0: red; y = 0: blue; x = 0: red near the poles, blue near y = ±2.
         let equator = Vector3::new(1.5 * c, 2.0 * s, 0.0);
@@ -116,6 +116,13 @@ fn the_torus_has_constant_curvature_along_both_families() {
     assert!(r.red.is_empty() && r.blue.is_empty());
     assert_eq!(r.red_constant.len(), 16);
     assert_eq!(r.blue_constant.len(), 16);
+    // A sphere: umbilic everywhere, no ridge defined.
+    let r = surface_ridges(&NurbsSurface::sphere(Vector3::zeros(), 1.0).unwrap(), 8).unwrap();
+    assert!(r.red.is_empty() && r.blue.is_empty());
+    assert_eq!((r.red_constant.len(), r.blue_constant.len()), (8, 8));
+    // Bad input.
+    let torus = NurbsSurface::torus(Vector3::zeros(), Vector3::z(), 2.0, 1.0).unwrap();
+    assert!(surface_ridges(&torus, 0).is_err() && surface_ridges(&torus, 10_001).is_err());
 }
 
 /// The surface of revolution of `f(z)` about the z axis, with the profile parameter `z`.

@@ -1,7 +1,8 @@
 //! `spline surface-features`: the parabolic lines of a surface of either kind
-//! ([`spline_algebra::parabolic_lines`]), as polylines in `(u, v)` and in space, and its
-//! umbilics ([`spline_algebra::umbilics`]); for functions `s(u, v)` the parabolic lines and
-//! the red and blue ridges of the graph (thesis §5.7, [`spline_algebra::ridges`]).
+//! ([`spline_algebra::parabolic_lines`]), as polylines in `(u, v)` and in space, its
+//! umbilics ([`spline_algebra::umbilics`], those at poles flagged) and its red and blue
+//! ridges ([`spline_algebra::surface_ridges`]); for functions `s(u, v)` the parabolic lines
+//! and the red and blue ridges of the graph (thesis §5.7, [`spline_algebra::ridges`]).
 
 use crate::io;
 use crate::objects::{Object, read_object, surface3};
@@ -39,7 +40,9 @@ pub fn polylines(surface: &NurbsSurface<f64, 3>, set: &ZeroSet) -> Result<Vec<Va
 
 /// `spline surface-features SURFACE [--samples N]`: prints `{"parabolic_lines": [{"uv",
 /// "points"}], "parabolic_regions": [[[u0, v0], [u1, v1]]], "singular_points": [[u, v]],
-/// "umbilics": [{"uv", "point"}], "umbilics_isolated": bool}`.
+/// "umbilics": [{"uv", "point", "singular_line"}], "umbilics_isolated": bool, "ridges":
+/// [{"colour", "uv", "points"}], "ridge_singular_points": [[u, v]],
+/// "ridge_constant_regions": [{"colour", "uv": [[u0, v0], [u1, v1]]}]}`.
 pub fn surface_features(args: &SurfaceFeaturesArgs) -> Result<()> {
     let object = read_object(&args.surface)?;
     if let Object::Surface(f) = &object {
@@ -51,20 +54,46 @@ pub fn surface_features(args: &SurfaceFeaturesArgs) -> Result<()> {
     let set = spline_algebra::parabolic_lines(&surface, args.samples)
         .map_err(|e| e.context(&args.surface))?;
     let umbilics = spline_algebra::umbilics(&surface).map_err(|e| e.context(&args.surface))?;
-    let points = umbilics
-        .points
-        .iter()
-        .map(|p| {
-            let x = surface.eval(p[0], p[1])?;
-            Ok(json!({"uv": p, "point": [x.x, x.y, x.z]}))
-        })
-        .collect::<Result<Vec<_>>>()?;
+    let pole = |p: &[f64; 2], on_line: bool| -> Result<Value> {
+        let x = surface.eval(p[0], p[1])?;
+        Ok(json!({"uv": p, "point": [x.x, x.y, x.z], "singular_line": on_line}))
+    };
+    let mut points = Vec::new();
+    for p in &umbilics.points {
+        points.push(pole(p, false)?);
+    }
+    for p in &umbilics.poles {
+        points.push(pole(p, true)?);
+    }
+    let ridges = spline_algebra::surface_ridges(&surface, args.samples)
+        .map_err(|e| e.context(&args.surface))?;
+    let mut coloured = Vec::new();
+    let mut constant = Vec::new();
+    for (colour, lines, regions) in [
+        ("red", &ridges.red, &ridges.red_constant),
+        ("blue", &ridges.blue, &ridges.blue_constant),
+    ] {
+        let set = ZeroSet {
+            curves: lines.clone(),
+            ..ZeroSet::default()
+        };
+        for mut line in polylines(&surface, &set)? {
+            line["colour"] = json!(colour);
+            coloured.push(line);
+        }
+        for r in regions {
+            constant.push(json!({"colour": colour, "uv": r}));
+        }
+    }
     io::print_json(&json!({
         "parabolic_lines": polylines(&surface, &set)?,
         "parabolic_regions": set.regions,
         "singular_points": set.singular,
         "umbilics": points,
         "umbilics_isolated": !umbilics.not_isolated,
+        "ridges": coloured,
+        "ridge_singular_points": ridges.singular,
+        "ridge_constant_regions": constant,
     }))
 }
 

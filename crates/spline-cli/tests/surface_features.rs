@@ -1,5 +1,6 @@
 //! `spline surface-features` through the binary: the torus's parabolic circles, none on a
-//! sphere, and the error contract.
+//! sphere, the ellipsoid's umbilics and ridges (its principal sections), the spheroid's
+//! umbilics at its poles, and the error contract.
 
 mod common;
 
@@ -24,6 +25,10 @@ fn torus_and_sphere() {
     let out = spline(&["surface-features", &path, "--samples", "4"]).json();
     let lines = out["parabolic_lines"].as_array().unwrap();
     assert_eq!(lines.len(), 2, "{out}");
+    // Both principal curvatures are constant along their lines of curvature (meridians and
+    // parallels): no ridge curves, every patch a constant region of both colours.
+    assert!(out["ridges"].as_array().unwrap().is_empty());
+    assert_eq!(out["ridge_constant_regions"].as_array().unwrap().len(), 32);
     let mut heights = Vec::new();
     for line in lines {
         let points = line["points"].as_array().unwrap();
@@ -109,6 +114,30 @@ fn ellipsoid_umbilics() {
     }
     let path = temp_file("ellipsoid.json", &ellipsoid.to_string());
     let out = spline(&["surface-features", &path]).json();
+    // Ridges: red (κ₂) on the planes z = 0 and x = 0, blue (κ₁) on y = 0 and x = 0.
+    let ridges = out["ridges"].as_array().unwrap();
+    let mut colours = [0, 0];
+    for r in ridges {
+        let (planes, k) = match r["colour"].as_str().unwrap() {
+            "red" => ([2, 0], 0),
+            "blue" => ([1, 0], 1),
+            other => panic!("colour {other}"),
+        };
+        colours[k] += 1;
+        assert_eq!(
+            r["points"].as_array().unwrap().len(),
+            r["uv"].as_array().unwrap().len()
+        );
+        for p in r["points"].as_array().unwrap() {
+            let d = planes
+                .iter()
+                .map(|&c| p[c].as_f64().unwrap().abs())
+                .fold(f64::INFINITY, f64::min);
+            assert!(d < 2e-6, "{r}");
+        }
+    }
+    assert!(colours[0] > 0 && colours[1] > 0, "{out}");
+    assert!(out["ridge_constant_regions"].as_array().unwrap().is_empty());
     assert!(
         out["parabolic_lines"].as_array().unwrap().is_empty(),
         "{out}"
@@ -126,7 +155,52 @@ fn ellipsoid_umbilics() {
         assert!(p[0].abs() < 1e-9);
         assert!((p[1].abs() - 2.0 * (1.75f64 / 3.0).sqrt()).abs() < 1e-9);
         assert!((p[2].abs() - (1.25f64 / 3.0).sqrt()).abs() < 1e-9);
+        assert_eq!(u["singular_line"], false);
     }
+    // `mesh --features` draws the ridges in their colours.
+    let dir = std::env::temp_dir().join(format!("spline-mesh-ridges-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let svg = dir.join("ellipsoid.svg");
+    spline(&["mesh", &path, "-o", svg.to_str().unwrap(), "--features"]).json();
+    let text = std::fs::read_to_string(&svg).unwrap();
+    assert!(text.contains("rgb(215,30,40)") && text.contains("rgb(30,80,220)"));
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// The spheroid with semi-axes 1.5, 1.5, 1: its two umbilics are its poles, on the lines
+/// of the net that the sphere's construction collapses to them.
+#[test]
+fn spheroid_umbilics_at_the_poles() {
+    let sphere = spline(&["make", "sphere", "--center", "[0, 0, 0]", "--radius", "1"]).json();
+    let mut spheroid = sphere.clone();
+    for p in spheroid["control_points"]
+        .as_array_mut()
+        .unwrap()
+        .iter_mut()
+        .flat_map(|row| row.as_array_mut().unwrap())
+    {
+        let q = p.as_array_mut().unwrap();
+        q[0] = (1.5 * q[0].as_f64().unwrap()).into();
+        q[1] = (1.5 * q[1].as_f64().unwrap()).into();
+    }
+    let path = temp_file("spheroid.json", &spheroid.to_string());
+    let out = spline(&["surface-features", &path]).json();
+    let umbilics = out["umbilics"].as_array().unwrap();
+    assert_eq!(umbilics.len(), 2, "{out}");
+    assert_eq!(out["umbilics_isolated"], true);
+    let mut z: Vec<f64> = umbilics
+        .iter()
+        .map(|u| {
+            assert_eq!(u["singular_line"], true);
+            let p = u["point"].as_array().unwrap();
+            assert!(p[0].as_f64().unwrap().abs() < 1e-12 && p[1].as_f64().unwrap().abs() < 1e-12);
+            p[2].as_f64().unwrap()
+        })
+        .collect();
+    z.sort_by(f64::total_cmp);
+    assert!((z[0] + 1.0).abs() < 1e-12 && (z[1] - 1.0).abs() < 1e-12);
+    // A surface of revolution: the parallels' curvature is constant along them.
+    assert!(!out["ridge_constant_regions"].as_array().unwrap().is_empty());
 }
 
 /// `mesh --features` draws the parabolic lines over the shaded surface (SVG only).
