@@ -10,7 +10,10 @@
 //! exact Bernstein patches of moderate degree), as enclosures over boxes from their
 //! Bernstein bounds (to exclude boxes) and pointwise (to locate the ridges in the boxes left).
 
-use crate::ridge_function::{Interval, Jet, Patch, RidgeValue, ridge_value};
+use crate::ridge_function::{
+    Interval, Jet, NEAR_UMBILIC, Patch, RidgeValue, VANISHING, best_form, degenerate,
+    degenerate_umbilic, ridge_value, singular_edges, snapped,
+};
 use crate::surface_numerators::curvature_numerators;
 use crate::zero_set::{UvPolyline, bezier_patches, chain};
 use spline_core::{Error, ErrorKind, Result};
@@ -21,19 +24,11 @@ use std::collections::HashMap;
 const MAX_LEVEL: u32 = 8;
 /// Coarsest: `2^MIN_LEVEL` boxes per patch width, whatever `samples` asks.
 const MIN_LEVEL: u32 = 4;
-/// `|g| ≤ VANISHING · (sum of the magnitudes of its terms)` at every probe of a patch: the
-/// ridge condition of that colour vanishes identically there (rounding of the numerators is
-/// about `1e-15` of the terms).
-const VANISHING: f64 = 1e-10;
 /// A crossing is kept when the gradient of the curvature is within this cosine of orthogonal
 /// to the principal direction there (from the better-conditioned direction form: a zero of
 /// a direction form is not a ridge, and there the cosine is of order one). At a root the
 /// cosine is rounding, up to about `10⁻⁵` where the terms of `g` cancel strongly.
 const GENUINE: f64 = 1e-3;
-/// Crossings where `Δ ≤ NEAR_UMBILIC · Ĥ²` (the principal curvatures within about `10⁻³` of
-/// each other, relatively) are not trusted: the direction forms vanish at the umbilics; the
-/// box holding an umbilic joins the other crossings to it.
-const NEAR_UMBILIC: f64 = 1e-6;
 
 /// The ridges of a parametric surface ([`surface_ridges`]).
 #[derive(Clone, Debug, Default, PartialEq)]
@@ -73,8 +68,11 @@ pub struct SurfaceRidges {
 /// are located by the Illinois method, kept when the ridge condition with the unit principal
 /// direction vanishes there (a zero of the direction form is not a ridge), and joined across
 /// the box (two crossings: a segment; four: paired by the sign at the centre; in a box
-/// holding an umbilic, each joined to the umbilic). Where the parametrisation is singular
-/// (`Â = 0`, a pole) the function is evaluated `10⁻⁷` of the patch inside.
+/// holding an umbilic, each joined to the umbilic). Along patch boundaries where the sign of
+/// the ridge condition jumps (the third derivatives of the surface jump at a simple knot) the
+/// boundary itself is a ridge, as for the meridians of [`crate::revolution_features`]. Where
+/// the parametrisation is singular
+/// (`Â = 0`, a pole) the function is evaluated `10⁻²` of the patch inside.
 ///
 /// What is certain: no ridge in the dropped boxes (up to rounding), every vertex on a ridge
 /// (a root of `g` on a box edge). What is not: a ridge that enters and leaves a finest box
@@ -136,43 +134,51 @@ pub fn surface_ridges(surface: &NurbsSurface<f64, 3>, samples: usize) -> Result<
         ..SurfaceRidges::default()
     };
     let mut pieces: [Vec<UvPolyline>; 2] = [Vec::new(), Vec::new()];
-    for k in 0..columns[0].len() {
-        let first = &columns[0][k];
-        let w = match &weights {
-            Some(w) => Patch::of(&w[k]),
-            None => Patch::one(first.u, first.v),
-        };
-        let factors: [Patch; 7] = std::array::from_fn(|i| {
-            if i < 6 {
-                columns[i][k].clone()
-            } else {
-                w.clone()
-            }
-        });
-        for (colour, sigma) in [(0usize, -1.0), (1, 1.0)] {
-            let mut marcher = Marcher {
-                factors: &factors,
+    let all_factors: Vec<[Patch; 7]> = (0..columns[0].len())
+        .map(|k| {
+            let first = &columns[0][k];
+            let w = match &weights {
+                Some(w) => Patch::of(&w[k]),
+                None => Patch::one(first.u, first.v),
+            };
+            std::array::from_fn(|i| {
+                if i < 6 {
+                    columns[i][k].clone()
+                } else {
+                    w.clone()
+                }
+            })
+        })
+        .collect();
+    for (colour, sigma) in [(0usize, -1.0), (1, 1.0)] {
+        let mut marchers: Vec<Marcher<'_>> = all_factors
+            .iter()
+            .map(|factors| Marcher {
+                factors,
                 sigma,
                 level,
-                singular_edges: singular_edges(&factors, 1e-12 * area_scale),
+                singular_edges: singular_edges(factors, 1e-12 * area_scale),
                 slopes: factors.clone().map(|f| {
                     let b = f.bounds();
                     b.map(|x| x.lo.abs().max(x.hi.abs()))
                 }),
                 corners: HashMap::new(),
                 crossings: HashMap::new(),
-            };
+            })
+            .collect();
+        let constant_list = if colour == 0 {
+            &mut out.red_constant
+        } else {
+            &mut out.blue_constant
+        };
+        for marcher in &mut marchers {
+            let (u, v) = (marcher.factors[0].u, marcher.factors[0].v);
             if marcher.vanishes() {
-                let rect = [[first.u.0, first.v.0], [first.u.1, first.v.1]];
-                if colour == 0 {
-                    out.red_constant.push(rect);
-                } else {
-                    out.blue_constant.push(rect);
-                }
+                constant_list.push([[u.0, v.0], [u.1, v.1]]);
                 continue;
             }
             let mut leaves = Vec::new();
-            marcher.exclude(&factors, 0, (0, 0), &mut leaves);
+            marcher.exclude(marcher.factors, 0, (0, 0), &mut leaves);
             let mut constant = Vec::new();
             for leaf in leaves {
                 marcher.leaf(
@@ -183,13 +189,9 @@ pub fn surface_ridges(surface: &NurbsSurface<f64, 3>, samples: usize) -> Result<
                     &mut constant,
                 );
             }
-            let rects = marcher.merged(constant);
-            if colour == 0 {
-                out.red_constant.extend(rects);
-            } else {
-                out.blue_constant.extend(rects);
-            }
+            constant_list.extend(marcher.merged(constant));
         }
+        jumps(&mut marchers, bv.len() - 1, &mut pieces[colour]);
     }
     let ((u0, u1), (v0, v1)) = surface.domain();
     let tol = 1e-9 * (u1 - u0).max(v1 - v0);
@@ -215,51 +217,57 @@ pub fn surface_ridges(surface: &NurbsSurface<f64, 3>, samples: usize) -> Result<
 /// ridge function is evaluated at this distance.
 const POLE_ZONE: f64 = 1e-2;
 /// Rounding of a jet evaluated from Bernstein coefficients is about `10⁻¹⁶` of their bound;
-/// the scale of the ridge function counts `10⁻⁷` of it, so that rounding alone stays below
+/// the scale of the ridge function counts `10⁻⁵` of it, so that rounding alone stays below
 /// [`VANISHING`] of the scale.
 const ROUNDING_FLOOR: f64 = 1e-5;
 
-/// The edges `[u = u₀, u = u₁, v = v₀, v = v₁]` of a patch along which `Â = ÊĜ − F̂²`
-/// vanishes (below `floor` at five points).
-fn singular_edges(factors: &[Patch; 7], floor: f64) -> [bool; 4] {
-    let (u, v) = (factors[0].u, factors[0].v);
-    let area = |p: [f64; 2]| {
-        let [e, f, g] = [0, 1, 2].map(|i| factors[i].jet(p[0], p[1])[0]);
-        e * g - f * f
-    };
-    let along = |k: usize, t: f64| match k {
-        0 => [u.0, v.0 + t * (v.1 - v.0)],
-        1 => [u.1, v.0 + t * (v.1 - v.0)],
-        2 => [u.0 + t * (u.1 - u.0), v.0],
-        _ => [u.0 + t * (u.1 - u.0), v.1],
-    };
-    std::array::from_fn(|k| {
-        [0.0, 0.25, 0.5, 0.75, 1.0]
-            .iter()
-            .all(|&t| area(along(k, t)).abs() <= floor)
-    })
-}
-
-/// `g` with the chosen direction form, zero where it is below [`VANISHING`] of its terms
-/// (rounding: a ridge along a grid line, or a condition vanishing identically, must not
-/// produce crossings from the signs of rounding errors).
-fn snapped(r: &RidgeValue<f64>, form: usize) -> f64 {
-    if r.g[form].abs() <= VANISHING * r.scale[form] {
-        0.0
-    } else {
-        r.g[form]
+/// Ridges along patch boundaries where the ridge function jumps in sign (the third
+/// derivatives of the surface jump across a simple knot): at the finest grid nodes of each
+/// interior patch edge, the signs of `D_t κ` from the two sides (each with its better
+/// direction form, oriented alike) differ; runs of such nodes are segments of ridge.
+fn jumps(marchers: &mut [Marcher<'_>], patches_v: usize, pieces: &mut Vec<UvPolyline>) {
+    let n = 1usize << marchers.first().map_or(0, |m| m.level);
+    let count = marchers.len();
+    for k in 0..count {
+        // The neighbour across u (next row of patches) and across v (next column).
+        for across_u in [true, false] {
+            let other = if across_u { k + patches_v } else { k + 1 };
+            if other >= count || (!across_u && (k + 1) % patches_v == 0) {
+                continue;
+            }
+            let mut run: Option<[f64; 2]> = None;
+            for j in 0..=n {
+                // Node j on the shared edge, as seen from either patch.
+                let (a, b) = if across_u {
+                    ((n, j), (0, j))
+                } else {
+                    ((j, n), (j, 0))
+                };
+                let p = marchers[k].point(a.0, a.1);
+                let flip = match (
+                    marchers[k].corner(a.0, a.1),
+                    marchers[other].corner(b.0, b.1),
+                ) {
+                    (Some(x), Some(y)) if !degenerate(&x) && !degenerate(&y) => {
+                        let (fx, fy) = (best_form(&x), best_form(&y));
+                        let (tx, ty) = (x.t[fx], y.t[fy]);
+                        let aligned = tx[0] * ty[0] + tx[1] * ty[1] >= 0.0;
+                        let (gx, gy) = (snapped(&x, fx), snapped(&y, fy));
+                        gx != 0.0 && gy != 0.0 && ((gx > 0.0) == (gy > 0.0)) != aligned
+                    }
+                    _ => false,
+                };
+                match (flip, run) {
+                    (true, Some(start)) => {
+                        pieces.push(vec![start, p]);
+                        run = Some(p);
+                    }
+                    (true, None) => run = Some(p),
+                    (false, _) => run = None,
+                }
+            }
+        }
     }
-}
-
-/// Whether the ridge condition of the colour vanishes at the point (or it is an umbilic).
-fn degenerate(r: &RidgeValue<f64>) -> bool {
-    let best = usize::from(r.t2[1] > r.t2[0]);
-    r.delta <= 1e-10 * r.h2 || r.g[best].abs() <= VANISHING * r.scale[best]
-}
-
-/// Whether the point is (nearly) an umbilic.
-fn degenerate_umbilic(r: &RidgeValue<f64>) -> bool {
-    r.delta <= NEAR_UMBILIC * r.h2
 }
 
 /// The marching of one colour over one patch.

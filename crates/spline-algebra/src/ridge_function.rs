@@ -128,6 +128,8 @@ pub(crate) struct RidgeValue<N> {
     pub(crate) g: [N; 2],
     /// The squared lengths of `t₁`, `t₂`.
     pub(crate) t2: [N; 2],
+    /// The direction forms `t₁`, `t₂` themselves.
+    pub(crate) t: [[N; 2]; 2],
     /// Sum of the magnitudes of the terms of `g` (pointwise only meaningful for `f64`).
     pub(crate) scale: [N; 2],
     /// $\Delta$ and $\hat H^2$: `Δ` small against `Ĥ²` means an umbilic.
@@ -183,6 +185,7 @@ pub(crate) fn ridge_value<N: Num>(
     let mut out = RidgeValue {
         g: [N::constant(0.0); 2],
         t2: [N::constant(0.0); 2],
+        t: [[N::constant(0.0); 2]; 2],
         scale: [N::constant(0.0); 2],
         delta: delta[0],
         h2: hh[0],
@@ -191,6 +194,7 @@ pub(crate) fn ridge_value<N: Num>(
     for (i, (tu, tv)) in forms.into_iter().enumerate() {
         out.g[i] = gu * tu - gv * tv;
         out.t2[i] = tu * tu + tv * tv;
+        out.t[i] = [tu, N::constant(0.0) - tv];
         out.scale[i] = su * abs(tu) + sv * abs(tv);
     }
     out
@@ -360,4 +364,62 @@ impl Patch {
         }
         (a, b)
     }
+}
+
+/// `|g| ≤ VANISHING · (sum of the magnitudes of its terms)` at every probe of a patch: the
+/// ridge condition of that colour vanishes identically there (rounding of the numerators is
+/// about `1e-15` of the terms).
+pub(crate) const VANISHING: f64 = 1e-10;
+
+/// Crossings where `Δ ≤ NEAR_UMBILIC · Ĥ²` (the principal curvatures within about `10⁻³` of
+/// each other, relatively) are not trusted: the direction forms vanish at the umbilics; the
+/// box holding an umbilic joins the other crossings to it.
+pub(crate) const NEAR_UMBILIC: f64 = 1e-6;
+
+/// The edges `[u = u₀, u = u₁, v = v₀, v = v₁]` of a patch along which `Â = ÊĜ − F̂²`
+/// vanishes (below `floor` at five points).
+pub(crate) fn singular_edges(factors: &[Patch; 7], floor: f64) -> [bool; 4] {
+    let (u, v) = (factors[0].u, factors[0].v);
+    let area = |p: [f64; 2]| {
+        let [e, f, g] = [0, 1, 2].map(|i| factors[i].jet(p[0], p[1])[0]);
+        e * g - f * f
+    };
+    let along = |k: usize, t: f64| match k {
+        0 => [u.0, v.0 + t * (v.1 - v.0)],
+        1 => [u.1, v.0 + t * (v.1 - v.0)],
+        2 => [u.0 + t * (u.1 - u.0), v.0],
+        _ => [u.0 + t * (u.1 - u.0), v.1],
+    };
+    std::array::from_fn(|k| {
+        [0.0, 0.25, 0.5, 0.75, 1.0]
+            .iter()
+            .all(|&t| area(along(k, t)).abs() <= floor)
+    })
+}
+
+/// `g` with the chosen direction form, zero where it is below [`VANISHING`] of its terms
+/// (rounding: a ridge along a grid line, or a condition vanishing identically, must not
+/// produce crossings from the signs of rounding errors).
+pub(crate) fn snapped(r: &RidgeValue<f64>, form: usize) -> f64 {
+    if r.g[form].abs() <= VANISHING * r.scale[form] {
+        0.0
+    } else {
+        r.g[form]
+    }
+}
+
+/// Whether the ridge condition of the colour vanishes at the point (or it is an umbilic).
+pub(crate) fn degenerate(r: &RidgeValue<f64>) -> bool {
+    let best = usize::from(r.t2[1] > r.t2[0]);
+    r.delta <= 1e-10 * r.h2 || r.g[best].abs() <= VANISHING * r.scale[best]
+}
+
+/// Whether the point is (nearly) an umbilic.
+pub(crate) fn degenerate_umbilic(r: &RidgeValue<f64>) -> bool {
+    r.delta <= NEAR_UMBILIC * r.h2
+}
+
+/// The direction form with the larger length.
+pub(crate) fn best_form(r: &RidgeValue<f64>) -> usize {
+    usize::from(r.t2[1] > r.t2[0])
 }

@@ -262,6 +262,50 @@ fn sampled_condition(s: &NurbsSurface<f64, 3>, u: f64, v: f64) -> Option<Sampled
     Some(out)
 }
 
+/// A meridian whose third derivative jumps at its knots: the ridge circles there (sign
+/// changes of `R` by a jump, which `revolution_features` reports) are found along the patch
+/// boundaries.
+#[test]
+fn ridge_circles_at_knots() {
+    let knots = KnotVector::new(
+        3,
+        vec![-1.0, -1.0, -1.0, -1.0, -0.3, 0.4, 1.0, 1.0, 1.0, 1.0],
+    )
+    .unwrap();
+    let f = BSpline::new(knots, vec![2.0, 2.02, 1.99, 2.015, 1.995, 2.01]).unwrap();
+    let expected = revolution_features(&f, 1e-13).unwrap().ridges;
+    assert_eq!(
+        expected.iter().map(|c| c.z).collect::<Vec<_>>(),
+        vec![-0.3, 0.4]
+    );
+    let s = revolved(&f);
+    let r = surface_ridges(&s, 8).unwrap();
+    let mut lines = r.red.clone();
+    lines.extend(r.blue.iter().cloned());
+    for c in &expected {
+        let on: Vec<&[f64; 2]> = lines
+            .iter()
+            .flatten()
+            .filter(|p| (p[0] - c.z).abs() < 1e-12)
+            .collect();
+        // The whole circle: v covers [0, 1].
+        let (lo, hi) = on
+            .iter()
+            .fold((1.0f64, 0.0f64), |(a, b), p| (a.min(p[1]), b.max(p[1])));
+        assert!(
+            lo == 0.0 && hi == 1.0,
+            "circle z = {} covers v in [{lo}, {hi}]",
+            c.z
+        );
+    }
+    assert!(
+        lines
+            .iter()
+            .flatten()
+            .all(|p| expected.iter().any(|c| (p[0] - c.z).abs() < 1e-12))
+    );
+}
+
 /// A bicubic Bézier patch over `[0, 1]²`: heights `z` over a slightly perturbed grid, both
 /// offset by fixed irregular amounts (shrinking towards zero must not reach the
 /// non-generic planar boundaries where the ridge condition only touches zero).
