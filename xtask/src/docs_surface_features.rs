@@ -9,21 +9,25 @@ use spline::shape::{ParabolicCircles, Sign, control_parabolic_circles, revolutio
 use spline::{Error, Result};
 use std::path::Path;
 
-/// The surface shaded, with its parabolic lines, ridges and umbilics drawn over it
-/// ([`feature_overlays`]); the number of parabolic lines and of umbilics.
+/// The surface shaded, with its parabolic lines and umbilics drawn over it
+/// ([`feature_overlays`] without the ridges); the number of each.
 fn picture(
     surface: &NurbsSurface<f64, 3>,
     segments: (usize, usize),
     view: &MeshView,
 ) -> Result<(String, usize, usize)> {
-    let overlays = feature_overlays(surface, 16)?;
+    // Parabolic lines and umbilics only (the ridges have their own pictures, docs_ridges).
+    let overlays: Vec<_> = feature_overlays(surface, 16)?
+        .into_iter()
+        .filter(|o| o.markers || o.color == PARABOLIC_COLOUR)
+        .collect();
     let umbilics = overlays.iter().filter(|o| o.markers).count();
-    let parabolic = overlays
-        .iter()
-        .filter(|o| !o.markers && o.color == PARABOLIC_COLOUR)
-        .count();
     let mesh = surface.tessellate(segments.0, segments.1)?;
-    Ok((mesh.to_svg_with(view, &overlays), parabolic, umbilics))
+    Ok((
+        mesh.to_svg_with(view, &overlays),
+        overlays.len() - umbilics,
+        umbilics,
+    ))
 }
 
 /// Writes `torus_parabolic.svg`, `ellipsoid_umbilics.svg`, `bell_before.svg` and
@@ -66,7 +70,7 @@ pub(crate) fn render(out_dir: &Path) -> std::result::Result<(), String> {
         azimuth: 35.0,
         wireframe: false,
         color: [120, 170, 110],
-        title: Some("Ellipsoid 1.5 x 2 x 1: its four umbilics (yellow; one behind), ridges".into()),
+        title: Some("Ellipsoid 1.5 x 2 x 1: its four umbilics (yellow; one behind)".into()),
         ..MeshView::default()
     };
     let (svg, _, u) = picture(&ellipsoid, (48, 64), &view).map_err(failed)?;

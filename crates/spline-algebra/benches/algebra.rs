@@ -1,5 +1,7 @@
 //! Linear cost of the algebra: the product of two cubic functions with 10³–10⁵ coefficients
-//! (unshared knots), and `g` with its Jacobian for curves with 10²–10⁴ control points.
+//! (unshared knots), and `g` with its Jacobian for curves with 10²–10⁴ control points; the
+//! curvature features of the ellipsoid 1.5 × 2 × 1 (8 rational biquadratic patches):
+//! parabolic lines, umbilics and ridges side by side.
 
 #![allow(missing_docs)]
 
@@ -95,5 +97,30 @@ fn curvature_numerator(c: &mut Criterion) {
     group.finish();
 }
 
-criterion_group!(benches, products, curvature_numerator);
+fn surface_features(c: &mut Criterion) {
+    let mut group = c.benchmark_group("ellipsoid_features");
+    group.sample_size(10);
+    group.warm_up_time(Duration::from_millis(300));
+    group.measurement_time(Duration::from_secs(2));
+    let sphere = spline_geom::NurbsSurface::sphere(nalgebra::Vector3::zeros(), 1.0).unwrap();
+    let e = sphere.map_control_points(|p| nalgebra::Vector3::new(1.5 * p.x, 2.0 * p.y, p.z));
+    group.bench_function("parabolic_lines_8", |bench| {
+        bench.iter(|| spline_algebra::parabolic_lines(black_box(&e), 8).unwrap());
+    });
+    group.bench_function("umbilics", |bench| {
+        bench.iter(|| spline_algebra::umbilics(black_box(&e)).unwrap());
+    });
+    for samples in [8usize, 32] {
+        group.bench_with_input(
+            BenchmarkId::new("surface_ridges", samples),
+            &samples,
+            |bench, &n| {
+                bench.iter(|| spline_algebra::surface_ridges(black_box(&e), n).unwrap());
+            },
+        );
+    }
+    group.finish();
+}
+
+criterion_group!(benches, products, curvature_numerator, surface_features);
 criterion_main!(benches);

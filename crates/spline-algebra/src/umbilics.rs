@@ -83,12 +83,17 @@ pub fn common_zeros(a: &Surface<f64, f64>, b: &Surface<f64, f64>) -> Result<Comm
         budget: BOX_BUDGET,
         candidates: Vec::new(),
         not_isolated: false,
+        overflow: false,
     };
     let mut points: Vec<[f64; 2]> = Vec::new();
     for (fa, fb) in pa.into_iter().zip(pb) {
         let (fa, fb) = divide_common_edges(fa, fb)?;
         search.candidates.clear();
+        search.overflow = false;
         search.boxes(&fa, &fb)?;
+        if search.overflow {
+            continue;
+        }
         let ((u0, u1), (v0, v1)) = fa.domain();
         for c in std::mem::take(&mut search.candidates) {
             let p = newton(&fa, &fb, c)?.unwrap_or(c);
@@ -202,6 +207,9 @@ struct Search {
     budget: usize,
     candidates: Vec<[f64; 2]>,
     not_isolated: bool,
+    /// The patch being searched holds a curve of zeros of one function where the other
+    /// vanishes identically: its candidates are not isolated points.
+    overflow: bool,
 }
 
 /// Whether the coefficients have one strict sign (no zero in the closed box).
@@ -239,6 +247,7 @@ impl Search {
         // isolated only if few boxes reach the resolution (else a curve of them).
         if (vanishes(a) || vanishes(b)) && self.candidates.len() > LONE_CANDIDATES {
             self.not_isolated = true;
+            self.overflow = true;
             return Ok(());
         }
         if self.budget == 0 {
