@@ -4,6 +4,104 @@
 use crate::knots::KnotVector;
 use crate::scalar::{Scalar, to_f64};
 
+/// A bucket table over the domain that finds the knot span of a parameter in constant time
+/// for any knot vector (uniform or not, clamped or not, repeated knots): the domain is cut
+/// into `4 (n − p)` equal buckets; each bucket stores the span of its left edge and whether
+/// it contains knots. Buckets holding one knot take one more comparison, without a branch;
+/// buckets holding several (clustered knots) walk them.
+///
+/// The bucket of a knot is computed by the same floating-point formula as the bucket of a
+/// parameter, and that formula is monotone, so the table is exact — no rounding can land
+/// a parameter in the wrong span.
+///
+/// ```
+/// use spline_core::{KnotVector, SpanTable};
+/// let knots = KnotVector::new(2, vec![0.0f64, 0.0, 0.0, 0.1, 0.1, 0.15, 1.0, 1.0, 1.0])?;
+/// let table = SpanTable::new(&knots);
+/// for u in [0.0, 0.05, 0.1, 0.12, 0.15, 0.6, 1.0] {
+///     assert_eq!(table.span(&knots, u), knots.find_span(u)?);
+/// }
+/// # Ok::<(), spline_core::Error>(())
+/// ```
+#[derive(Clone, Debug)]
+pub struct SpanTable {
+    degree: usize,
+    start: f64,
+    buckets_per_unit: f64,
+    /// `span << 1 | several`: the span at the bucket's left edge, and whether the bucket
+    /// holds more than one knot.
+    buckets: Vec<usize>,
+    /// The last non-empty span (the span of the domain's end).
+    last: usize,
+}
+
+impl SpanTable {
+    /// Builds the table in `O(n)`.
+    #[must_use]
+    pub fn new<T: Scalar>(knots: &KnotVector<T>) -> Self {
+        let p = knots.degree();
+        let n = knots.num_basis();
+        let k = knots.knots();
+        let (a, b) = knots.domain();
+        let (start, end) = (to_f64(a), to_f64(b));
+        let count = 4 * (n - p);
+        let mut table = Self {
+            degree: p,
+            start,
+            buckets_per_unit: count as f64 / (end - start),
+            buckets: vec![0; count],
+            last: knots.span_in_domain(b),
+        };
+        // Knots u_{p+1} … u_{n−1} per bucket, then prefix sums: the span at a bucket's left
+        // edge is p plus the number of those knots in earlier buckets.
+        let mut inside = vec![0usize; count];
+        for &knot in &k[p + 1..n] {
+            inside[table.bucket(knot)] += 1;
+        }
+        let mut span = p;
+        for (slot, &here) in table.buckets.iter_mut().zip(&inside) {
+            *slot = span << 1 | usize::from(here > 1);
+            span += here;
+        }
+        table
+    }
+
+    #[inline(always)]
+    fn bucket<T: Scalar>(&self, u: T) -> usize {
+        // Saturating conversion: below the domain (and NaN) gives bucket 0.
+        #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]
+        let bucket = ((to_f64(u) - self.start) * self.buckets_per_unit) as usize;
+        bucket.min(self.buckets.len() - 1)
+    }
+
+    /// The span of `u` (right limits inside the domain, the last non-empty span at its end),
+    /// as [`KnotVector::span_in_domain`] finds it; parameters outside the domain get the first
+    /// or last span.
+    ///
+    /// # Panics
+    /// If `knots` is not the knot vector the table was built from, the span is meaningless
+    /// or an index is out of bounds.
+    #[inline(always)]
+    #[must_use]
+    pub fn span<T: Scalar>(&self, knots: &KnotVector<T>, u: T) -> usize {
+        let k = knots.knots();
+        let n = k.len() - self.degree - 1;
+        if u >= k[n] {
+            return self.last;
+        }
+        let entry = self.buckets[self.bucket(u)];
+        let mut span = entry >> 1;
+        // u < u_n, so span + 1 ≤ n.
+        span += usize::from(u >= k[span + 1]);
+        if entry & 1 == 1 {
+            while u >= k[span + 1] {
+                span += 1;
+            }
+        }
+        span
+    }
+}
+
 /// Tables prepared once for a knot vector, so that the basis functions of degree `N − 1` at
 /// any parameter of the domain cost a table lookup, a short walk and `p(p + 1)` multiplications
 /// ([`BatchBasis::eval_fixed`]). Worth it for more parameters than knots.
@@ -26,34 +124,18 @@ use crate::scalar::{Scalar, to_f64};
 #[derive(Clone, Debug)]
 pub struct BatchBasis<T> {
     degree: usize,
-    start: f64,
-    buckets_per_unit: f64,
-    /// For each bucket of the domain, the span at its left edge.
-    bucket_span: Vec<usize>,
+    table: SpanTable,
     /// `p(p + 1)/2` reciprocal knot differences per span (`span − p` major).
     reciprocals: Vec<T>,
 }
 
 impl<T: Scalar> BatchBasis<T> {
-    /// Prepares the tables: `4 (n − p)` buckets and the reciprocals of every span.
+    /// Prepares the tables: a [`SpanTable`] and the reciprocals of every span.
     #[must_use]
     pub fn new(knots: &KnotVector<T>) -> Self {
         let p = knots.degree();
         let n = knots.num_basis();
         let k = knots.knots();
-        let (a, b) = knots.domain();
-        let (start, end) = (to_f64(a), to_f64(b));
-        let count = 4 * (n - p) + 1;
-        let buckets_per_unit = (count - 1) as f64 / (end - start);
-        let mut bucket_span = Vec::with_capacity(count);
-        let mut span = p;
-        for i in 0..count {
-            let edge = start + i as f64 / buckets_per_unit;
-            while span + 1 < n && to_f64(k[span + 1]) <= edge {
-                span += 1;
-            }
-            bucket_span.push(span);
-        }
         let per_span = p * (p + 1) / 2;
         let mut reciprocals = vec![T::zero(); (n - p) * per_span];
         for s in p..n {
@@ -71,9 +153,7 @@ impl<T: Scalar> BatchBasis<T> {
         }
         Self {
             degree: p,
-            start,
-            buckets_per_unit,
-            bucket_span,
+            table: SpanTable::new(knots),
             reciprocals,
         }
     }
@@ -99,24 +179,7 @@ impl<T: Scalar> BatchBasis<T> {
         if hint < n && ((k[hint] <= u) & (u < k[hint + 1])) {
             return hint;
         }
-        let x = (to_f64(u) - self.start) * self.buckets_per_unit;
-        #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]
-        let bucket = (x.max(0.0) as usize).min(self.bucket_span.len() - 1);
-        let mut span = self.bucket_span[bucket];
-        // Rounding in the bucket index can land one bucket off.
-        while span > self.degree && u < k[span] {
-            span -= 1;
-        }
-        while span + 1 < n && u >= k[span + 1] {
-            span += 1;
-        }
-        if u >= k[n] {
-            // The last knot of the domain belongs to the last non-empty span.
-            while span > self.degree && k[span] == k[span + 1] {
-                span -= 1;
-            }
-        }
-        span
+        self.table.span(knots, u)
     }
 
     /// The span of `u` and the `N = p + 1` basis functions non-zero there. Parameters exactly

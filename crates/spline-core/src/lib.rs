@@ -30,7 +30,7 @@ mod scalar;
 pub mod strategies;
 
 pub use basis::{BasisValues, SpanBasis, bernstein, bernstein_all, binomial};
-pub use batch::BatchBasis;
+pub use batch::{BatchBasis, SpanTable};
 pub use error::{Error, ErrorKind, Result, Short, overflow};
 pub use knots::{
     KnotVector, MAX_DEGREE, MAX_DERIVATIVE_ORDER, MAX_ORDER, check_derivative_order,

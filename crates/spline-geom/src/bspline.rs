@@ -1,7 +1,8 @@
 //! The B-spline container and its evaluation.
 
+use crate::pieces::PieceCache;
 use spline_core::{
-    BatchBasis, ControlPoint, Error, ErrorKind, KnotVector, MAX_ORDER, Result, Scalar, from_count,
+    ControlPoint, Error, ErrorKind, KnotVector, MAX_ORDER, Result, Scalar, from_count,
 };
 
 /// A B-spline: a degree, a [`KnotVector`] and `n` control points of any type `P` that forms a
@@ -30,15 +31,28 @@ use spline_core::{
 /// assert_eq!(curve.eval(3.0)?, Vector2::new(1.477, 0.13012));   // and last point
 /// # Ok::<(), spline_core::Error>(())
 /// ```
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone)]
 pub struct BSpline<T, P> {
     knots: KnotVector<T>,
     control_points: Vec<P>,
+    /// The piecewise polynomial form, built on demand (not part of the value).
+    pieces: PieceCache<T, P>,
 }
 
-/// Up to this many knot spans, batches search spans by bisection instead of
-/// [`BatchBasis`]'s tables.
-const FEW_SPANS: usize = 16;
+impl<T: PartialEq, P: PartialEq> PartialEq for BSpline<T, P> {
+    fn eq(&self, other: &Self) -> bool {
+        self.knots == other.knots && self.control_points == other.control_points
+    }
+}
+
+impl<T: std::fmt::Debug, P: std::fmt::Debug> std::fmt::Debug for BSpline<T, P> {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("BSpline")
+            .field("knots", &self.knots)
+            .field("control_points", &self.control_points)
+            .finish()
+    }
+}
 
 /// Accessors, for any point type (control points, [`spline_core::SymbolicPoint`]s, lines of
 /// a surface's net).
@@ -53,6 +67,7 @@ impl<T: Scalar, P> BSpline<T, P> {
         Self {
             knots,
             control_points,
+            pieces: PieceCache::default(),
         }
     }
 
@@ -94,6 +109,7 @@ impl<T: Scalar, P> BSpline<T, P> {
     /// Mutable access to the control points (their number is fixed by the knots).
     #[inline]
     pub fn control_points_mut(&mut self) -> &mut [P] {
+        self.pieces.invalidate();
         &mut self.control_points
     }
 
@@ -104,6 +120,7 @@ impl<T: Scalar, P> BSpline<T, P> {
         T: Scalar,
         P: spline_core::VectorSpace<T>,
     {
+        self.pieces.invalidate();
         crate::transfer::refine_in_place(&mut self.knots, &mut self.control_points, x);
     }
 
@@ -149,6 +166,7 @@ impl<T: Scalar, P: ControlPoint<T>> BSpline<T, P> {
         Ok(Self {
             knots,
             control_points,
+            pieces: PieceCache::default(),
         })
     }
 
@@ -221,10 +239,26 @@ impl<T: Scalar, P: ControlPoint<T>> BSpline<T, P> {
     /// The point $C(u)$: basis functions (The NURBS Book A2.2) combined with the `p + 1`
     /// control points of the span. See [`BSpline::de_boor`] for the classic triangular scheme.
     ///
+    /// A curve of degree 1 to 5 evaluated more times than it has spans caches its piecewise
+    /// polynomial form (the Taylor coefficients of every span and a table finding the span in
+    /// constant time); later calls cost a lookup and `p` multiply-adds. At knots it returns
+    /// exactly the triangular scheme's value, elsewhere the two agree to rounding.
+    ///
     /// # Errors
     /// [`ErrorKind::NonFinite`] or [`ErrorKind::OutOfDomain`].
     #[inline]
     pub fn eval(&self, u: T) -> Result<P> {
+        match self.pieces.get() {
+            Some(Some(pieces)) => {
+                if let Some(point) = pieces.eval(&self.knots, u) {
+                    return Ok(point);
+                }
+            }
+            Some(None) => {}
+            None => self
+                .pieces
+                .count_call(self, self.knots.num_basis() - self.degree()),
+        }
         let span = self.knots.find_span(u)?;
         Ok(self.eval_in_span(span, u))
     }
@@ -345,10 +379,10 @@ impl<T: Scalar, P: ControlPoint<T>> BSpline<T, P> {
         Ok(out)
     }
 
-    /// Evaluates at many parameters into `out` (same length), in any order: for degrees 1 to 5
-    /// the spans come from a bucket table in constant time and the basis functions need no
-    /// division ([`BatchBasis`]). All parameters are checked
-    /// before anything is written.
+    /// Evaluates at many parameters into `out` (same length), in any order. For degrees 1 to 5
+    /// a batch of at least as many parameters as spans builds the cached piecewise polynomial
+    /// form (see [`BSpline::eval`]): the span from a table in constant time, then `p`
+    /// multiply-adds per point. All parameters are checked before anything is written.
     ///
     /// # Errors
     /// [`ErrorKind::InvalidLength`] if the lengths differ; [`ErrorKind::NonFinite`] or
@@ -368,55 +402,25 @@ impl<T: Scalar, P: ControlPoint<T>> BSpline<T, P> {
     ) -> Result<()> {
         check_same_len(params.len(), out.len())?;
         self.check_params_in_domain(params)?;
-        match self.degree() {
-            1 => self.eval_many_fixed::<2, Q>(params, out, map),
-            2 => self.eval_many_fixed::<3, Q>(params, out, map),
-            3 => self.eval_many_fixed::<4, Q>(params, out, map),
-            4 => self.eval_many_fixed::<5, Q>(params, out, map),
-            5 => self.eval_many_fixed::<6, Q>(params, out, map),
-            _ => {
-                let mut span = self.degree();
-                for (slot, &u) in out.iter_mut().zip(params) {
-                    span = self.knots.span_in_domain_from(u, span);
-                    *slot = map(self.combine_general(span, u));
-                }
+        let pieces = match self.pieces.get() {
+            Some(pieces) => pieces,
+            None if params.len() >= self.knots.num_basis() - self.degree() => {
+                self.pieces.get_or_build(self)
+            }
+            None => None,
+        };
+        if let Some(pieces) = pieces {
+            pieces.eval_many_map(&self.knots, params, out, map, |u| {
+                self.eval_in_span(self.knots.span_in_domain(u), u)
+            });
+        } else {
+            let mut span = self.degree();
+            for (slot, &u) in out.iter_mut().zip(params) {
+                span = self.knots.span_in_domain_from(u, span);
+                *slot = map(self.eval_in_span(span, u));
             }
         }
         Ok(())
-    }
-
-    /// Batch evaluation for a fixed degree, parameters in any order: spans from a bucket
-    /// table, division-free basis functions ([`BatchBasis`]).
-    #[inline]
-    fn eval_many_fixed<const N: usize, Q>(
-        &self,
-        params: &[T],
-        out: &mut [Q],
-        map: impl Fn(P) -> Q,
-    ) {
-        if self.knots.num_basis() - self.degree() <= FEW_SPANS {
-            // A few spans (a circle has four): bisection takes at most four branch-free steps
-            // and the plain basis functions are then faster than the tables (measured by
-            // `cargo xtask bench peers`, the NURBS circle).
-            // No hint from the previous span: in random order its test is a coin toss.
-            for (slot, &u) in out.iter_mut().zip(params) {
-                let span = self.knots.span_in_domain(u);
-                *slot = map(self.combine_fixed::<N>(span, u));
-            }
-            return;
-        }
-        let batch = BatchBasis::new(&self.knots);
-        let mut span = usize::MAX;
-        for (slot, &u) in out.iter_mut().zip(params) {
-            let (found, basis) = batch.eval_fixed_from::<N>(&self.knots, u, span);
-            span = found;
-            let points = &self.control_points[span + 1 - N..=span];
-            let mut acc = points[0] * basis[0];
-            for r in 1..N {
-                acc += points[r] * basis[r];
-            }
-            *slot = map(acc);
-        }
     }
 
     /// Evaluates at many parameters.

@@ -48,6 +48,7 @@ mod parallel;
 mod param;
 mod param_impls;
 mod periodic;
+mod pieces;
 mod planar;
 mod point_text;
 mod structural;

@@ -141,14 +141,15 @@ impl<T: Scalar, const D: usize> NurbsCurve<T, D> {
         NurbsCurve::new_unchecked(self.container.map_control_points(|h| mapped(h, &mut f)))
     }
 
-    /// The point $R(u)$: de Boor in homogeneous space, then the projection (6.5).
+    /// The point $R(u)$: the point of the homogeneous B-spline ([`BSpline::eval`], with its
+    /// cached piecewise polynomial form after as many calls as spans), then the projection
+    /// (6.5).
     ///
     /// # Errors
     /// [`ErrorKind::NonFinite`] or [`ErrorKind::OutOfDomain`].
     #[inline]
     pub fn eval(&self, u: T) -> Result<SVector<T, D>> {
-        let span = self.container.knots().find_span(u)?;
-        Ok(self.container.eval_in_span(span, u).project())
+        Ok(self.container.eval(u)?.project())
     }
 
     /// Evaluates at many parameters.
@@ -163,7 +164,7 @@ impl<T: Scalar, const D: usize> NurbsCurve<T, D> {
 
     /// Evaluates at many parameters into `out` (same length), in any order and without
     /// allocating: the batch kernel of [`BSpline::eval_many_into`] in homogeneous space
-    /// (spans from a bucket table, division-free basis functions), then the projection.
+    /// (the cached piecewise polynomial form), then the projection.
     /// All parameters are checked before anything is written.
     ///
     /// ```

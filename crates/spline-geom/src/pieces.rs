@@ -1,0 +1,219 @@
+//! The piecewise polynomial form of a B-spline, cached in the curve: for every non-empty span
+//! the Taylor coefficients about its left knot, and a [`SpanTable`] to find the span.
+//!
+//! $$ C(u) = \sum_{k=0}^{p} c_k\\,(u - u_s)^k, \qquad c_k = \frac{C^{(k)}(u_s^+)}{k!},
+//! \qquad u_s \le u < u_{s+1}, $$
+//!
+//! so that a point costs a table lookup and `p` multiply-adds (Horner) instead of a search and
+//! the triangular scheme with its divisions. The coefficients come from the curve's own
+//! derivatives (derivative control points, The NURBS Book A3.3), `c_0` from its own point at
+//! `u_s`, so at every knot the cached form returns exactly what the triangular scheme returns;
+//! the domain's end, where the form would extrapolate a span to its right end, is left to the
+//! triangular scheme.
+//!
+//! The cache is built on demand: by a batch of at least as many parameters as spans, or by the
+//! one-point evaluation once it has been called as many times as there are spans since the
+//! curve last changed (so building it at most doubles the work of any sequence of calls).
+//! Every mutation of the knots or control points drops it. It is not part of the curve's
+//! value: equality, `Debug` and serialisation ignore it, clones share it until they change.
+
+use crate::BSpline;
+use spline_core::{ControlPoint, KnotVector, Scalar, SpanTable, from_count};
+use std::sync::atomic::{AtomicUsize, Ordering};
+use std::sync::{Arc, OnceLock};
+
+/// Degrees up to this have a cached form (higher degrees keep the triangular scheme: the
+/// power form loses accuracy as the degree grows).
+const MAX_CACHED_DEGREE: usize = 5;
+
+/// The Taylor coefficients of every span and the table finding the span.
+pub(crate) struct Pieces<T, P> {
+    table: SpanTable,
+    order: usize,
+    start: T,
+    end: T,
+    /// `p + 1` coefficients per span, `span − p` major (zero for empty spans).
+    coefficients: Vec<P>,
+}
+
+impl<T: Scalar, P: ControlPoint<T>> Pieces<T, P> {
+    /// The Taylor coefficients of every non-empty span of `curve`, or `None` above
+    /// [`MAX_CACHED_DEGREE`] or for degree 0.
+    fn new(curve: &BSpline<T, P>) -> Option<Self> {
+        let p = curve.degree();
+        if p == 0 || p > MAX_CACHED_DEGREE {
+            return None;
+        }
+        let knots = curve.knots();
+        let k = knots.knots();
+        let n = knots.num_basis();
+        let order = p + 1;
+        let mut coefficients = vec![P::origin(); (n - p) * order];
+        let mut factorial = T::one();
+        let mut inverse_factorials = [T::one(); MAX_CACHED_DEGREE + 1];
+        for (i, slot) in inverse_factorials
+            .iter_mut()
+            .enumerate()
+            .take(order)
+            .skip(1)
+        {
+            factorial *= from_count::<T>(i);
+            *slot = T::one() / factorial;
+        }
+        for (s, row) in (p..n).zip(coefficients.chunks_exact_mut(order)) {
+            if k[s] == k[s + 1] {
+                continue;
+            }
+            curve.derivatives_in_span(s, k[s], row);
+            row[0] = curve.eval_in_span(s, k[s]);
+            for (c, &scale) in row.iter_mut().zip(&inverse_factorials).skip(2) {
+                *c = *c * scale;
+            }
+        }
+        let (start, end) = knots.domain();
+        Some(Self {
+            table: SpanTable::new(knots),
+            order,
+            start,
+            end,
+            coefficients,
+        })
+    }
+
+    /// `C(u)` for `start ≤ u < end`, `None` otherwise (the domain's end, outside, NaN).
+    #[inline(always)]
+    pub(crate) fn eval(&self, knots: &KnotVector<T>, u: T) -> Option<P> {
+        if !(u >= self.start && u < self.end) {
+            return None;
+        }
+        Some(match self.order {
+            2 => self.horner::<2>(knots, u),
+            3 => self.horner::<3>(knots, u),
+            4 => self.horner::<4>(knots, u),
+            5 => self.horner::<5>(knots, u),
+            _ => self.horner::<6>(knots, u),
+        })
+    }
+
+    /// Writes `map(C(u))` for every parameter (all in the domain); the domain's end goes
+    /// through `exact`.
+    #[inline]
+    pub(crate) fn eval_many_map<Q>(
+        &self,
+        knots: &KnotVector<T>,
+        params: &[T],
+        out: &mut [Q],
+        map: impl Fn(P) -> Q,
+        exact: impl Fn(T) -> P,
+    ) {
+        match self.order {
+            2 => self.many::<2, Q>(knots, params, out, map, exact),
+            3 => self.many::<3, Q>(knots, params, out, map, exact),
+            4 => self.many::<4, Q>(knots, params, out, map, exact),
+            5 => self.many::<5, Q>(knots, params, out, map, exact),
+            _ => self.many::<6, Q>(knots, params, out, map, exact),
+        }
+    }
+
+    #[inline(always)]
+    fn many<const N: usize, Q>(
+        &self,
+        knots: &KnotVector<T>,
+        params: &[T],
+        out: &mut [Q],
+        map: impl Fn(P) -> Q,
+        exact: impl Fn(T) -> P,
+    ) {
+        for (slot, &u) in out.iter_mut().zip(params) {
+            let point = if u < self.end {
+                self.horner::<N>(knots, u)
+            } else {
+                exact(u)
+            };
+            *slot = map(point);
+        }
+    }
+
+    /// Horner's scheme in the span of `u` (`N = p + 1`).
+    #[inline(always)]
+    fn horner<const N: usize>(&self, knots: &KnotVector<T>, u: T) -> P {
+        let span = self.table.span(knots, u);
+        let first = (span - (N - 1)) * N;
+        let c: &[P; N] = self.coefficients[first..first + N]
+            .try_into()
+            .expect("N coefficients per span");
+        let t = u - knots.knots()[span];
+        let mut acc = c[N - 1];
+        for k in (0..N - 1).rev() {
+            acc = acc * t + c[k];
+        }
+        acc
+    }
+}
+
+/// The cache slot in a [`BSpline`]: empty, or the pieces (`None` where the degree has no
+/// cached form), and the number of one-point evaluations since the curve last changed.
+pub(crate) struct PieceCache<T, P> {
+    pieces: OnceLock<Option<Arc<Pieces<T, P>>>>,
+    calls: AtomicUsize,
+}
+
+impl<T, P> Default for PieceCache<T, P> {
+    fn default() -> Self {
+        Self {
+            pieces: OnceLock::new(),
+            calls: AtomicUsize::new(0),
+        }
+    }
+}
+
+impl<T, P> Clone for PieceCache<T, P> {
+    /// Clones share the pieces (an `Arc`).
+    fn clone(&self) -> Self {
+        Self {
+            pieces: self.pieces.clone(),
+            calls: AtomicUsize::new(self.calls.load(Ordering::Relaxed)),
+        }
+    }
+}
+
+impl<T, P> PieceCache<T, P> {
+    /// Drops the pieces: the knots or control points change.
+    pub(crate) fn invalidate(&mut self) {
+        self.pieces = OnceLock::new();
+        *self.calls.get_mut() = 0;
+    }
+}
+
+impl<T: Scalar, P: ControlPoint<T>> PieceCache<T, P> {
+    /// The pieces if they are built.
+    #[inline(always)]
+    pub(crate) fn get(&self) -> Option<Option<&Pieces<T, P>>> {
+        self.pieces.get().map(Option::as_deref)
+    }
+
+    /// The pieces, built now if needed.
+    pub(crate) fn get_or_build(&self, curve: &BSpline<T, P>) -> Option<&Pieces<T, P>> {
+        self.pieces
+            .get_or_init(|| Pieces::new(curve).map(Arc::new))
+            .as_deref()
+    }
+
+    /// Counts a one-point evaluation of a curve with `spans` spans; builds the pieces at the
+    /// `spans`-th (a racy count between threads only moves that moment).
+    #[inline(always)]
+    pub(crate) fn count_call(&self, curve: &BSpline<T, P>, spans: usize) {
+        let calls = self.calls.load(Ordering::Relaxed);
+        if calls >= spans {
+            self.build(curve);
+        } else {
+            self.calls.store(calls + 1, Ordering::Relaxed);
+        }
+    }
+
+    #[cold]
+    #[inline(never)]
+    fn build(&self, curve: &BSpline<T, P>) {
+        self.get_or_build(curve);
+    }
+}
