@@ -257,6 +257,7 @@ impl<T: Scalar, const D: usize> NurbsCurve<T, D> {
     pub fn insert_knot_mut(&mut self, u: T, times: usize) -> Result<()> {
         self.container.insert_knot_mut(u, times)?;
         debug_assert!(check_result_weights(self.container.control_points()).is_ok());
+        self.resync();
         Ok(())
     }
 
@@ -267,6 +268,7 @@ impl<T: Scalar, const D: usize> NurbsCurve<T, D> {
     pub fn refine_mut(&mut self, knots: &[T]) -> Result<()> {
         self.container.refine_mut(knots)?;
         debug_assert!(check_result_weights(self.container.control_points()).is_ok());
+        self.resync();
         Ok(())
     }
 

@@ -75,6 +75,16 @@ impl<T: Scalar, const D: usize, C: HomogeneousContainer<T, D>> Rational<C, T, D>
         }
     }
 
+    /// Recomputes the Cartesian points and weights after the container changed in place.
+    pub(crate) fn resync(&mut self) {
+        let homogeneous = self.container.homogeneous_points();
+        self.points.clear();
+        self.points
+            .extend(homogeneous.iter().map(Homogeneous::project));
+        self.weights.clear();
+        self.weights.extend(homogeneous.iter().map(|h| h.weight));
+    }
+
     /// A view of a container whose weights are known to be positive.
     pub(crate) fn new_unchecked(container: C) -> Self {
         debug_assert!(

@@ -1,0 +1,204 @@
+//! The cached piecewise polynomial form behind `BSpline::eval` / `eval_many_into` (and the
+//! NURBS paths built on them), checked against evaluations that never use it: the dense
+//! basis functions of spline-core combined here with the control points, and de Boor's
+//! algorithm. Also: exactness at knots, invalidation by every mutation, and that the cache
+//! is not part of the curve's value (equality, `Debug`, JSON).
+
+use nalgebra::Vector2;
+use proptest::prelude::*;
+use spline_core::KnotVector;
+use spline_core::strategies::knot_vector;
+use spline_geom::{BSpline, NurbsCurve2};
+
+type Curve = BSpline<f64, Vector2<f64>>;
+
+/// `Σ N_i(u) P_i` from the dense basis (no span search, no cache).
+fn dense_point(knots: &KnotVector<f64>, points: &[Vector2<f64>], u: f64) -> Vector2<f64> {
+    let basis = knots.dense_basis(u).unwrap();
+    points.iter().zip(&basis).map(|(p, &n)| p * n).sum()
+}
+
+/// `Σ N_i w_i P_i / Σ N_i w_i` from the dense basis.
+fn dense_rational(curve: &NurbsCurve2, u: f64) -> Vector2<f64> {
+    let basis = curve.knots().dense_basis(u).unwrap();
+    let (mut num, mut den) = (Vector2::zeros(), 0.0);
+    for ((p, &w), &n) in curve
+        .control_points()
+        .iter()
+        .zip(curve.weights())
+        .zip(&basis)
+    {
+        num += p * (n * w);
+        den += n * w;
+    }
+    num / den
+}
+
+fn points_for(knots: &KnotVector<f64>, seed: f64) -> Vec<Vector2<f64>> {
+    (0..knots.num_basis())
+        .map(|i| {
+            let x = i as f64 + seed;
+            Vector2::new((1.7 * x).sin(), (0.9 * x + seed).cos())
+        })
+        .collect()
+}
+
+/// Parameters: `ts` mapped to the domain, every knot in it and both ends.
+fn params(knots: &KnotVector<f64>, ts: &[f64]) -> Vec<f64> {
+    let (a, b) = knots.domain();
+    let mut us: Vec<f64> = ts.iter().map(|t| a + (b - a) * t).collect();
+    us.extend(knots.knots().iter().copied().filter(|&k| k >= a && k <= b));
+    us.extend([a, b]);
+    us
+}
+
+/// Evaluates `curve` at enough parameters to build its cache (one batch call).
+fn warm(curve: &Curve) {
+    let (a, b) = curve.domain();
+    let us: Vec<f64> = (0..=curve.len())
+        .map(|i| a + (b - a) * i as f64 / curve.len() as f64)
+        .collect();
+    curve.eval_many(&us).unwrap();
+}
+
+fn check_against_dense(curve: &Curve, us: &[f64]) -> Result<(), TestCaseError> {
+    let scale = curve
+        .control_points()
+        .iter()
+        .fold(1.0f64, |m, p| m.max(p.amax()));
+    let batch = curve.eval_many(us).unwrap();
+    for (&u, q) in us.iter().zip(&batch) {
+        let exact = dense_point(curve.knots(), curve.control_points(), u);
+        let one = curve.eval(u).unwrap();
+        prop_assert!(
+            (one - exact).amax() <= 1e-13 * scale,
+            "eval at {}: {:?} vs {:?}",
+            u,
+            one,
+            exact
+        );
+        prop_assert!((q - exact).amax() <= 1e-13 * scale, "batch at {}", u);
+        prop_assert!((one - curve.de_boor(u).unwrap()).amax() <= 1e-13 * scale);
+    }
+    Ok(())
+}
+
+proptest! {
+    #[test]
+    fn cached_form_agrees_with_the_dense_basis(
+        knots in knot_vector(5, 25, 1.0, true),
+        seed in 0.0f64..10.0,
+        ts in proptest::collection::vec(0.0f64..=1.0, 1..60),
+    ) {
+        let curve = Curve::new(knots.clone(), points_for(&knots, seed)).unwrap();
+        let us = params(&knots, &ts);
+        // Uncached values first (a fresh curve), then the cached ones.
+        let fresh: Vec<_> = us.iter().map(|&u| Curve::new(knots.clone(), curve.control_points().to_vec()).unwrap().eval(u).unwrap()).collect();
+        warm(&curve);
+        check_against_dense(&curve, &us)?;
+        // At knots the cached form returns exactly the triangular scheme's value.
+        for (&u, f) in us.iter().zip(&fresh) {
+            if knots.knots().contains(&u) {
+                prop_assert_eq!(curve.eval(u).unwrap(), *f, "at knot {}", u);
+            }
+        }
+    }
+
+    #[test]
+    fn mutation_drops_the_cache(
+        knots in knot_vector(5, 15, 1.0, false),
+        seed in 0.0f64..10.0,
+        new_knots in proptest::collection::vec(0.001f64..0.999, 1..6),
+        ts in proptest::collection::vec(0.0f64..=1.0, 1..30),
+    ) {
+        prop_assume!(knots.degree() >= 1);
+        let mut curve = Curve::new(knots.clone(), points_for(&knots, seed)).unwrap();
+        let (a, b) = knots.domain();
+        let inside: Vec<f64> = new_knots.iter().map(|t| a + (b - a) * t).collect();
+        warm(&curve);
+        // Insertion keeps the curve but moves every span index and coefficient.
+        if curve.insert_knot_mut(inside[0], 1).is_ok() {
+            check_against_dense(&curve, &params(curve.knots(), &ts))?;
+            warm(&curve);
+        }
+        if curve.refine_mut(&inside).is_ok() {
+            check_against_dense(&curve, &params(curve.knots(), &ts))?;
+            warm(&curve);
+        }
+        // Moving control points changes the curve.
+        for p in curve.control_points_mut() {
+            *p = Vector2::new(p.y, -2.0 * p.x);
+        }
+        check_against_dense(&curve, &params(curve.knots(), &ts))?;
+    }
+}
+
+#[test]
+fn one_call_per_point_builds_the_cache_and_agrees() {
+    // 97 spans: the first 97 calls use the triangular scheme, then the cache.
+    let knots = KnotVector::clamped_uniform(3, 100, 0.0, 1.0).unwrap();
+    let curve = Curve::new(knots.clone(), points_for(&knots, 0.3)).unwrap();
+    for i in 0..1000 {
+        let u = (f64::from(i) * 0.618_033_988_749_895).fract();
+        let exact = dense_point(&knots, curve.control_points(), u);
+        assert!((curve.eval(u).unwrap() - exact).amax() < 1e-14, "u = {u}");
+    }
+    assert_eq!(curve.eval(1.0).unwrap(), curve.control_points()[99]);
+    assert_eq!(curve.eval(0.0).unwrap(), curve.control_points()[0]);
+    assert!(curve.eval(1.0 + 1e-12).is_err());
+    assert!(curve.eval(f64::NAN).is_err());
+}
+
+#[test]
+fn the_cache_is_not_part_of_the_value() {
+    let knots = KnotVector::clamped_uniform(3, 20, 0.0, 2.0).unwrap();
+    let cold = Curve::new(knots.clone(), points_for(&knots, 1.0)).unwrap();
+    let warmed = cold.clone();
+    warm(&warmed);
+    assert_eq!(cold, warmed);
+    assert_eq!(format!("{cold:?}"), format!("{warmed:?}"));
+    assert!(!format!("{warmed:?}").contains("pieces"));
+    assert_eq!(
+        serde_json::to_string(&cold).unwrap(),
+        serde_json::to_string(&warmed).unwrap()
+    );
+    // A clone of a warm curve, then changed, does not see the other's cache.
+    let mut changed = warmed.clone();
+    changed.control_points_mut()[10] = Vector2::new(5.0, 5.0);
+    let u = 1.0;
+    let exact = dense_point(&knots, changed.control_points(), u);
+    assert!((changed.eval(u).unwrap() - exact).amax() < 1e-14);
+    assert!((warmed.eval(u).unwrap() - cold.eval(u).unwrap()).amax() < 1e-14);
+}
+
+proptest! {
+    #[test]
+    fn nurbs_cached_form_agrees_with_the_dense_rational_formula(
+        knots in knot_vector(4, 12, 1.0, true),
+        seed in 0.0f64..10.0,
+        ts in proptest::collection::vec(0.0f64..=1.0, 1..40),
+        insert in 0.01f64..0.99,
+    ) {
+        prop_assume!(knots.degree() >= 1);
+        let points = points_for(&knots, seed);
+        let weights: Vec<f64> = (0..points.len()).map(|i| 0.5 + ((i as f64 + seed) * 0.77).sin().abs()).collect();
+        let mut curve = NurbsCurve2::new(knots.clone(), points, weights).unwrap();
+        for round in 0..2 {
+            let us = params(curve.knots(), &ts);
+            let mut batch = vec![Vector2::zeros(); us.len().max(curve.len())];
+            let mut all = us.clone();
+            all.resize(batch.len(), us[0]);
+            curve.eval_many_into(&all, &mut batch).unwrap();
+            for (&u, q) in us.iter().zip(&batch) {
+                let exact = dense_rational(&curve, u);
+                let one = curve.eval(u).unwrap();
+                prop_assert!((one - exact).amax() <= 1e-12 * exact.amax().max(1.0), "round {} u {}", round, u);
+                prop_assert!((q - exact).amax() <= 1e-12 * exact.amax().max(1.0));
+            }
+            let (a, b) = curve.domain();
+            if round == 0 && curve.insert_knot_mut(a + (b - a) * insert, 1).is_err() {
+                break;
+            }
+        }
+    }
+}
