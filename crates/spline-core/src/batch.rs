@@ -6,9 +6,10 @@ use crate::scalar::{Scalar, to_f64};
 
 /// A bucket table over the domain that finds the knot span of a parameter in constant time
 /// for any knot vector (uniform or not, clamped or not, repeated knots): the domain is cut
-/// into `4 (n − p)` equal buckets; each bucket stores the span of its left edge and whether
-/// it contains knots. Buckets holding one knot take one more comparison, without a branch;
-/// buckets holding several (clustered knots) walk them.
+/// into `4 (n − p)` equal buckets; each bucket stores the span of its left edge and, when it
+/// holds one distinct knot value (of any multiplicity), the span that starts there — one
+/// more comparison and a select, no branch. Buckets holding several distinct knots
+/// (clustered knots) walk them.
 ///
 /// The bucket of a knot is computed by the same floating-point formula as the bucket of a
 /// parameter, and that formula is monotone, so the table is exact — no rounding can land
@@ -28,12 +29,15 @@ pub struct SpanTable {
     degree: usize,
     start: f64,
     buckets_per_unit: f64,
-    /// `span << 1 | several`: the span at the bucket's left edge, and whether the bucket
-    /// holds more than one knot.
-    buckets: Vec<usize>,
+    /// Per bucket: the span at its left edge, and the span starting at the one distinct knot
+    /// value inside it (the left span again if there is none, [`SEVERAL`] if there are more).
+    buckets: Vec<[usize; 2]>,
     /// The last non-empty span (the span of the domain's end).
     last: usize,
 }
+
+/// Marks a bucket holding several distinct knot values.
+const SEVERAL: usize = usize::MAX;
 
 impl SpanTable {
     /// Builds the table in `O(n)`.
@@ -49,29 +53,34 @@ impl SpanTable {
             degree: p,
             start,
             buckets_per_unit: count as f64 / (end - start),
-            buckets: vec![0; count],
+            buckets: vec![[p, p]; count],
             last: knots.span_in_domain(b),
         };
-        // Knots u_{p+1} … u_{n−1} per bucket, then prefix sums: the span at a bucket's left
-        // edge is p plus the number of those knots in earlier buckets.
-        let mut inside = vec![0usize; count];
-        for &knot in &k[p + 1..n] {
-            inside[table.bucket(knot)] += 1;
-        }
+        // The knots u_{p+1} … u_{n−1} bucket by bucket, in increasing order: the span at a
+        // bucket's left edge is the span of the last knot before it.
         let mut span = p;
-        for (slot, &here) in table.buckets.iter_mut().zip(&inside) {
-            *slot = span << 1 | usize::from(here > 1);
-            span += here;
+        let mut j = p + 1;
+        for (i, slot) in table.buckets.iter_mut().enumerate() {
+            let left = span;
+            let mut distinct = 0;
+            while j < n && Self::bucket_of(start, table.buckets_per_unit, count, k[j]) == i {
+                if k[j] != k[j - 1] || j == p + 1 {
+                    distinct += 1;
+                }
+                span = j;
+                j += 1;
+            }
+            *slot = [left, if distinct > 1 { SEVERAL } else { span }];
         }
         table
     }
 
     #[inline(always)]
-    fn bucket<T: Scalar>(&self, u: T) -> usize {
+    fn bucket_of<T: Scalar>(start: f64, buckets_per_unit: f64, count: usize, u: T) -> usize {
         // Saturating conversion: below the domain (and NaN) gives bucket 0.
         #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]
-        let bucket = ((to_f64(u) - self.start) * self.buckets_per_unit) as usize;
-        bucket.min(self.buckets.len() - 1)
+        let bucket = ((to_f64(u) - start) * buckets_per_unit).max(0.0) as i64 as usize;
+        bucket.min(count - 1)
     }
 
     /// The span of `u` (right limits inside the domain, the last non-empty span at its end),
@@ -89,14 +98,15 @@ impl SpanTable {
         if u >= k[n] {
             return self.last;
         }
-        let entry = self.buckets[self.bucket(u)];
-        let mut span = entry >> 1;
-        // u < u_n, so span + 1 ≤ n.
-        span += usize::from(u >= k[span + 1]);
-        if entry & 1 == 1 {
-            while u >= k[span + 1] {
-                span += 1;
-            }
+        let bucket = Self::bucket_of(self.start, self.buckets_per_unit, self.buckets.len(), u);
+        let [left, next] = self.buckets[bucket];
+        if next != SEVERAL {
+            return if u >= k[next] { next } else { left };
+        }
+        // u < u_n: the walk stops before n.
+        let mut span = left;
+        while u >= k[span + 1] {
+            span += 1;
         }
         span
     }

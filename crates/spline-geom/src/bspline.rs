@@ -466,6 +466,11 @@ impl<T: Scalar, P: ControlPoint<T>> BSpline<T, P> {
     /// names the first bad parameter.
     fn check_params_in_domain(&self, params: &[T]) -> Result<()> {
         let (a, b) = self.domain();
+        // Branch-free over chunks (it vectorises); only a failure looks for the first bad one.
+        let inside = |chunk: &[T]| chunk.iter().fold(true, |ok, &u| ok & (u >= a) & (u <= b));
+        if params.chunks(256).all(inside) {
+            return Ok(());
+        }
         match params.iter().position(|&u| !(u >= a && u <= b)) {
             None => Ok(()),
             Some(i) => Err(self

@@ -115,6 +115,9 @@ impl<T: Scalar, P: ControlPoint<T>> Pieces<T, P> {
         }
     }
 
+    /// The batch for `N = p + 1`: groups of four points, spans first, so that the four
+    /// independent lookups and Horner chains overlap. Points at the domain's end (where the
+    /// last span's form would extrapolate) go through `exact`, out of line.
     #[inline(always)]
     fn many<const N: usize, Q>(
         &self,
@@ -124,20 +127,40 @@ impl<T: Scalar, P: ControlPoint<T>> Pieces<T, P> {
         map: impl Fn(P) -> Q,
         exact: impl Fn(T) -> P,
     ) {
-        for (slot, &u) in out.iter_mut().zip(params) {
-            let point = if u < self.end {
+        const GROUP: usize = 4;
+        let mut groups = out.chunks_exact_mut(GROUP);
+        let mut inputs = params.chunks_exact(GROUP);
+        for (slots, us) in (&mut groups).zip(&mut inputs) {
+            let mut spans = [0; GROUP];
+            for (span, &u) in spans.iter_mut().zip(us) {
+                *span = self.table.span(knots, u);
+            }
+            for ((slot, &u), &span) in slots.iter_mut().zip(us).zip(&spans) {
+                *slot = map(if u < self.end {
+                    self.horner_in::<N>(knots, span, u)
+                } else {
+                    at_end(&exact, u)
+                });
+            }
+        }
+        for (slot, &u) in groups.into_remainder().iter_mut().zip(inputs.remainder()) {
+            *slot = map(if u < self.end {
                 self.horner::<N>(knots, u)
             } else {
-                exact(u)
-            };
-            *slot = map(point);
+                at_end(&exact, u)
+            });
         }
     }
 
     /// Horner's scheme in the span of `u` (`N = p + 1`).
     #[inline(always)]
     fn horner<const N: usize>(&self, knots: &KnotVector<T>, u: T) -> P {
-        let span = self.table.span(knots, u);
+        self.horner_in::<N>(knots, self.table.span(knots, u), u)
+    }
+
+    /// Horner's scheme in a known span.
+    #[inline(always)]
+    fn horner_in<const N: usize>(&self, knots: &KnotVector<T>, span: usize, u: T) -> P {
         let first = (span - (N - 1)) * N;
         let c: &[P; N] = self.coefficients[first..first + N]
             .try_into()
@@ -149,6 +172,13 @@ impl<T: Scalar, P: ControlPoint<T>> Pieces<T, P> {
         }
         acc
     }
+}
+
+/// The exact evaluation at the domain's end, kept out of the batch loop.
+#[cold]
+#[inline(never)]
+fn at_end<T, P>(exact: &impl Fn(T) -> P, u: T) -> P {
+    exact(u)
 }
 
 /// The cache slot in a [`BSpline`]: empty, or the pieces (`None` where the degree has no

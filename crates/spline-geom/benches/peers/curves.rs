@@ -123,6 +123,26 @@ pub(crate) fn evaluation(c: &mut Criterion) {
     group.bench_function("ours_sorted", |b| {
         b.iter(|| ours.eval_many_into(black_box(&sorted), &mut out).unwrap());
     });
+    // The limits on this CPU: the cubic's arithmetic alone (span and Taylor coefficients
+    // known, Horner's scheme, the store), and streaming the parameters in and the points out.
+    let (spans, coefficients) = taylor_form(&ours, &params);
+    let k = ours.knots().knots();
+    group.bench_function("limit_arithmetic", |b| {
+        b.iter(|| {
+            for ((slot, &u), &s) in out.iter_mut().zip(black_box(&params)).zip(&spans) {
+                let c: &[Vector2<f64>; 4] = coefficients[4 * s..4 * s + 4].try_into().unwrap();
+                let t = u - k[s + 3];
+                *slot = ((c[3] * t + c[2]) * t + c[1]) * t + c[0];
+            }
+        });
+    });
+    group.bench_function("limit_memory", |b| {
+        b.iter(|| {
+            for (slot, &u) in out.iter_mut().zip(black_box(&params)) {
+                *slot = Vector2::new(u, u);
+            }
+        });
+    });
     group.bench_function("curvo_evaluator_sorted", |b| {
         b.iter(|| {
             let mut evaluator = curvo.evaluator();
@@ -136,6 +156,36 @@ pub(crate) fn evaluation(c: &mut Criterion) {
     group.finish();
 
     derivatives(c, &ours, &curvo, &truck);
+}
+
+/// For each parameter its span index (from 0), and the Taylor coefficients of the cubic about
+/// every span's left knot (from the public derivatives), for the arithmetic-only limit.
+fn taylor_form(curve: &Curve2, params: &[f64]) -> (Vec<usize>, Vec<Vector2<f64>>) {
+    let k = curve.knots().knots();
+    let spans: Vec<usize> = params
+        .iter()
+        .map(|&u| curve.knots().find_span(u).unwrap() - 3)
+        .collect();
+    let mut coefficients = Vec::new();
+    for &left in &k[3..curve.len()] {
+        let mut d = [Vector2::zeros(); 4];
+        // Right derivatives at the span's left knot (find_span picks this span there).
+        curve.derivatives_into(left, &mut d).unwrap();
+        coefficients.extend([d[0], d[1], d[2] / 2.0, d[3] / 6.0]);
+    }
+    let check = params
+        .iter()
+        .zip(&spans)
+        .step_by(101)
+        .map(|(&u, &s)| {
+            let c = &coefficients[4 * s..4 * s + 4];
+            let t = u - k[s + 3];
+            let p = ((c[3] * t + c[2]) * t + c[1]) * t + c[0];
+            (p - curve.eval(u).unwrap()).amax()
+        })
+        .fold(0.0, f64::max);
+    report_check("eval/limit_arithmetic", check);
+    (spans, coefficients)
 }
 
 fn derivatives(
