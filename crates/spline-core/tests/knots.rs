@@ -188,3 +188,31 @@ fn insertion_merge_elevation_reversal() {
         &[0.0, 0.0, 0.5, 1.0, 1.0]
     );
 }
+
+proptest::proptest! {
+    /// `check_refinement` (with its fast path for distinct knots) against counting the
+    /// multiplicities of the merged knot vector directly.
+    #[test]
+    fn refinement_check_agrees_with_counting(
+        knots in spline_core::strategies::knot_vector(4, 12, 1.0, true),
+        picks in proptest::collection::vec((0usize..40, proptest::bool::ANY, 0.0f64..1.0), 0..12),
+    ) {
+        let (a, b) = knots.domain();
+        let existing: Vec<f64> = knots.knots().iter().copied().filter(|&k| k >= a && k <= b).collect();
+        let mut new: Vec<f64> = picks
+            .iter()
+            .map(|&(i, reuse, t)| if reuse { existing[i % existing.len()] } else { a + (b - a) * t })
+            .collect();
+        new.sort_by(f64::total_cmp);
+        let mut merged: Vec<f64> = knots.knots().iter().chain(&new).copied().collect();
+        merged.sort_by(f64::total_cmp);
+        let too_many = merged
+            .chunk_by(|x, y| x == y)
+            .any(|run| run.len() > knots.degree() + 1);
+        let result = knots.check_refinement(&new);
+        proptest::prop_assert_eq!(result.is_err(), too_many, "new {:?} into {:?}", new, knots.knots());
+        if let Err(e) = result {
+            proptest::prop_assert_eq!(e.kind(), ErrorKind::KnotMultiplicity);
+        }
+    }
+}

@@ -66,15 +66,18 @@ fn refine_vectors<T: Scalar, V: VectorSpace<T>>(
             i -= 1;
         }
         points[k - p - 1] = points[k - p].clone();
-        for l in 1..=p {
-            let ind = k - p + l;
-            let alpha = knots[k + l] - x[j];
-            if alpha == T::zero() {
-                points[ind - 1] = points[ind].clone();
+        // Slices of exactly the lengths the loop reads (no bounds checks inside it):
+        // points k − p … k, knots k + 1 … k + p and i + 1 − p … i.
+        let window = &mut points[k - p..=k];
+        let (right, left) = (&knots[k + 1..=k + p], &knots[i + 1 - p..=i]);
+        for l in 0..p {
+            let alpha = right[l] - x[j];
+            window[l] = if alpha == T::zero() {
+                window[l + 1].clone()
             } else {
-                let alpha = alpha / (knots[k + l] - knots[i + l - p]);
-                points[ind - 1] = points[ind - 1].combine(alpha, &points[ind], T::one() - alpha);
-            }
+                let alpha = alpha / (right[l] - left[l]);
+                window[l].combine(alpha, &window[l + 1], T::one() - alpha)
+            };
         }
         knots[k] = x[j];
         k -= 1;

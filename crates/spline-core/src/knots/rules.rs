@@ -84,7 +84,9 @@ impl<T: Scalar> KnotVector<T> {
     pub fn check_new_knots(&self, new_knots: &[T]) -> Result<()> {
         // One comparison pair per knot (false for NaN); the messages come from the slow path.
         let (a, b) = self.domain();
-        if new_knots.iter().all(|&u| (u >= a) & (u <= b)) {
+        // Branch-free over chunks (it vectorises).
+        let inside = |chunk: &[T]| chunk.iter().fold(true, |ok, &u| ok & (u >= a) & (u <= b));
+        if new_knots.chunks(256).all(inside) {
             return Ok(());
         }
         for (j, &u) in new_knots.iter().enumerate() {
@@ -102,6 +104,19 @@ impl<T: Scalar> KnotVector<T> {
     pub fn check_refinement(&self, sorted: &[T]) -> Result<()> {
         let order = self.order();
         let old = self.knots();
+        // The usual case without a walk: distinct new knots, and no old knot of full
+        // multiplicity p + 1 between the first and the last of them.
+        if let (Some(&first), Some(&last)) = (sorted.first(), sorted.last()) {
+            let distinct = sorted
+                .windows(2)
+                .fold(true, |ok, pair| ok & (pair[0] != pair[1]));
+            let full_inside = old
+                .windows(order)
+                .any(|run| run[0] == run[order - 1] && run[0] >= first && run[0] <= last);
+            if distinct && !full_inside {
+                return Ok(());
+            }
+        }
         // Walks both sorted sequences once: `i` is the first old knot not below `u`.
         let mut i = 0;
         let mut j = 0;
