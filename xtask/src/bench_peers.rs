@@ -199,7 +199,7 @@ pub(crate) fn run(repo_root: &Path, args: &[String]) -> Result<(), String> {
             "--bench",
             "peers",
         ],
-        &["peers-check"],
+        &["peers-check", "peers-cpu"],
     )?;
     let table = table(&target, &scipy, &lines)?;
     println!();
@@ -272,22 +272,56 @@ fn table(target: &Path, scipy: &Value, checks: &BTreeMap<String, f64>) -> Result
             verdict(theirs / ours, goal, &mut missed, label)
         ));
     }
+    let median = |id: &str| bench::criterion_median(target, id).map(|t| t / 1e6);
+    let batch = median("peers_eval_batch/ours")?;
+    let arithmetic = median("peers_eval_batch/limit_arithmetic")?;
+    let memory = median("peers_eval_batch/limit_memory")?;
+    out.push_str(&format!(
+        "| limit on this CPU for the batch: Horner only (span and coefficients known) / \
+         parameters in, points out only | {} / {} | | | batch at {:.1}× / {:.1}× these | — |\n",
+        seconds(arithmetic),
+        seconds(memory),
+        batch / arithmetic,
+        batch / memory
+    ));
     for (label, id) in [("batch of 10⁶", "batch"), ("500² grid", "grid")] {
-        let (one, two) = (
-            bench::criterion_median(target, &format!("peers_parallel/{id}_1"))?,
-            bench::criterion_median(target, &format!("peers_parallel/{id}_2"))?,
-        );
+        let run = |threads: usize| {
+            bench::criterion_median(target, &format!("peers_parallel/{id}_{threads}"))
+        };
+        let (sequential, one, two) = (run(0)?, run(1)?, run(2)?);
+        let cpu = |threads: usize| {
+            checks
+                .get(&format!("peers-cpu parallel/{id}_{threads}/cpu"))
+                .copied()
+        };
+        let cpu = match (cpu(0), cpu(1), cpu(2)) {
+            (Some(a), Some(b), Some(c)) => format!(
+                " (CPU time of all threads {} / {} / {})",
+                seconds(a),
+                seconds(b),
+                seconds(c)
+            ),
+            _ => String::new(),
+        };
         out.push_str(&format!(
-            "| `parallel`, {label}: 1 → 2 threads | {} → {} | | | {:.2}× speed-up | — |\n",
+            "| `parallel`, {label}: sequential / 1 / 2 threads | {} / {} / {}{cpu} | | | \
+             {:.2}× speed-up at 2 threads, 1 thread at {:.2}× sequential | — |\n",
+            seconds(sequential),
             seconds(one),
             seconds(two),
-            one / two
+            one / two,
+            sequential / one
         ));
     }
-    let worst = checks.values().copied().fold(0.0, f64::max);
+    let agreement: Vec<f64> = checks
+        .iter()
+        .filter(|(key, _)| key.starts_with("peers-check "))
+        .map(|(_, &v)| v)
+        .collect();
+    let worst = agreement.iter().copied().fold(0.0, f64::max);
     out.push_str(&format!(
         "\nLargest difference between the libraries' results before timing: {worst:.1e} ({} checks).\n",
-        checks.len()
+        agreement.len()
     ));
     if missed.is_empty() {
         out.push_str("Every target met in this run.\n");
