@@ -8,8 +8,10 @@
 //!    benchmark has checked that the libraries' results agree (`peers-check` lines, at most
 //!    1e-12 apart, or it stops before timing).
 //! 3. Prints the table of medians (per point where the workload is a batch of points), the
-//!    ratio best peer / ours and whether the target holds; with `--readme`, writes
-//!    the same table between the `bench-peers` markers of `README.md`.
+//!    ratio best peer / ours and whether the target holds, the limits on this CPU
+//!    (the batch's arithmetic alone, memory traffic alone) and the `parallel` rows with the
+//!    CPU time of all threads (`peers-cpu` lines); with `--readme`, writes the same table
+//!    between the `bench-peers` markers of `README.md`.
 //!
 //! Wall-clock medians on a shared machine grow with its load; the ratios, measured in one
 //! binary minutes apart, much less. Rerun to see the spread.

@@ -13,7 +13,8 @@
 //!
 //! The cache is built on demand: by a batch of at least as many parameters as spans, or by the
 //! one-point evaluation once it has been called as many times as there are spans since the
-//! curve last changed (so building it at most doubles the work of any sequence of calls).
+//! curve last changed (building costs a few evaluations per span, so it adds at most a small
+//! multiple of the work of the calls already made).
 //! Every mutation of the knots or control points drops it. It is not part of the curve's
 //! value: equality, `Debug` and serialisation ignore it, clones share it until they change.
 
