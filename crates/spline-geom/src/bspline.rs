@@ -239,10 +239,10 @@ impl<T: Scalar, P: ControlPoint<T>> BSpline<T, P> {
     /// The point $C(u)$: basis functions (The NURBS Book A2.2) combined with the `p + 1`
     /// control points of the span. See [`BSpline::de_boor`] for the classic triangular scheme.
     ///
-    /// A curve of degree 1 to 5 evaluated more times than it has spans caches its piecewise
-    /// polynomial form (the Taylor coefficients of every span and a table finding the span in
-    /// constant time); later calls cost a lookup and `p` multiply-adds. At knots it returns
-    /// exactly the triangular scheme's value, elsewhere the two agree to rounding.
+    /// A curve of degree 1 to 5 evaluated more times than it has spans caches a table that
+    /// finds the span in constant time (with its piecewise polynomial form, which the batches
+    /// use); the point itself stays the triangular scheme's, bit for bit (algorithms such as
+    /// curve intersection rely on its rounding matching the derivatives').
     ///
     /// # Errors
     /// [`ErrorKind::NonFinite`] or [`ErrorKind::OutOfDomain`].
@@ -250,8 +250,8 @@ impl<T: Scalar, P: ControlPoint<T>> BSpline<T, P> {
     pub fn eval(&self, u: T) -> Result<P> {
         match self.pieces.get() {
             Some(Some(pieces)) => {
-                if let Some(point) = pieces.eval(&self.knots, u) {
-                    return Ok(point);
+                if let Some(span) = pieces.span_inside(&self.knots, u) {
+                    return Ok(self.eval_in_span(span, u));
                 }
             }
             Some(None) => {}

@@ -11,6 +11,10 @@
 //! the domain's end, where the form would extrapolate a span to its right end, is left to the
 //! triangular scheme.
 //!
+//! Batches use the form; the one-point evaluation uses only the table (its values stay the
+//! triangular scheme's, bit for bit: curve intersection in spline-algebra relies on their
+//! rounding matching the derivatives').
+//!
 //! The cache is built on demand: by a batch of at least as many parameters as spans, or by the
 //! one-point evaluation once it has been called as many times as there are spans since the
 //! curve last changed (building costs a few evaluations per span, so it adds at most a small
@@ -27,6 +31,11 @@ use std::sync::{Arc, OnceLock};
 /// power form loses accuracy as the degree grows).
 const MAX_CACHED_DEGREE: usize = 5;
 
+/// The largest ratio of `Σ |c_k| h^k` to the largest control point of a span for which the
+/// cached form is used: it bounds the loss of accuracy against the triangular scheme. Up to
+/// degree 3 it always holds (the ratio is at most `3^p`).
+const CONDITION: usize = 32;
+
 /// The Taylor coefficients of every span and the table finding the span.
 pub(crate) struct Pieces<T, P> {
     table: SpanTable,
@@ -39,7 +48,8 @@ pub(crate) struct Pieces<T, P> {
 
 impl<T: Scalar, P: ControlPoint<T>> Pieces<T, P> {
     /// The Taylor coefficients of every non-empty span of `curve`, or `None` above
-    /// [`MAX_CACHED_DEGREE`] or for degree 0.
+    /// [`MAX_CACHED_DEGREE`], for degree 0, or when a span's form would lose accuracy
+    /// (see [`CONDITION`]).
     fn new(curve: &BSpline<T, P>) -> Option<Self> {
         let p = curve.degree();
         if p == 0 || p > MAX_CACHED_DEGREE {
@@ -70,6 +80,23 @@ impl<T: Scalar, P: ControlPoint<T>> Pieces<T, P> {
             for (c, &scale) in row.iter_mut().zip(&inverse_factorials).skip(2) {
                 *c = *c * scale;
             }
+            // Horner's rounding grows with Σ |c_k| h^k, the triangular scheme's with the
+            // largest control point of the span: beyond a factor CONDITION (oscillating
+            // control points of degree 4 or 5, where it can reach 3^p) the curve keeps the
+            // triangular scheme.
+            let h = k[s + 1] - k[s];
+            let mut spread = T::zero();
+            let mut power = T::one();
+            for c in row.iter() {
+                spread += c.max_abs() * power;
+                power *= h;
+            }
+            let largest = curve.control_points()[s - p..=s]
+                .iter()
+                .fold(T::zero(), |m, q| m.max(q.max_abs()));
+            if spread > from_count::<T>(CONDITION) * largest {
+                return None;
+            }
         }
         let (start, end) = knots.domain();
         Some(Self {
@@ -81,19 +108,10 @@ impl<T: Scalar, P: ControlPoint<T>> Pieces<T, P> {
         })
     }
 
-    /// `C(u)` for `start ≤ u < end`, `None` otherwise (the domain's end, outside, NaN).
+    /// The span of `u` for `start ≤ u ≤ end`, `None` otherwise (outside, NaN).
     #[inline(always)]
-    pub(crate) fn eval(&self, knots: &KnotVector<T>, u: T) -> Option<P> {
-        if !(u >= self.start && u < self.end) {
-            return None;
-        }
-        Some(match self.order {
-            2 => self.horner::<2>(knots, u),
-            3 => self.horner::<3>(knots, u),
-            4 => self.horner::<4>(knots, u),
-            5 => self.horner::<5>(knots, u),
-            _ => self.horner::<6>(knots, u),
-        })
+    pub(crate) fn span_inside(&self, knots: &KnotVector<T>, u: T) -> Option<usize> {
+        (u >= self.start && u <= self.end).then(|| self.table.span(knots, u))
     }
 
     /// Writes `map(C(u))` for every parameter (all in the domain); the domain's end goes
