@@ -9,29 +9,16 @@
 
 use nalgebra::Vector2;
 use spline_fit::{CorrectionOptions, LeastSquares, correct_parameters, nurbs_book_knots};
-use stats_alloc::{INSTRUMENTED_SYSTEM, Region, StatsAlloc};
+use spline_testing::allocations::SERIAL;
+use stats_alloc::{INSTRUMENTED_SYSTEM, StatsAlloc};
 use std::alloc::System;
-use std::sync::Mutex;
 
 #[global_allocator]
 static GLOBAL: &StatsAlloc<System> = &INSTRUMENTED_SYSTEM;
 
-/// One measurement at a time (the counters are global).
-static SERIAL: Mutex<()> = Mutex::new(());
-
-/// The allocations made while `f` runs: the least of three runs (the counters are global,
-/// and the test harness's own threads may allocate meanwhile; a deterministic computation
-/// allocates the same every time).
+/// The allocations made while `f` runs (see [`spline_testing::allocations`]).
 fn allocations<R>(f: impl Fn() -> R) -> (usize, R) {
-    let mut least = usize::MAX;
-    let mut out = None;
-    for _ in 0..3 {
-        let region = Region::new(GLOBAL);
-        let result = f();
-        least = least.min(region.change().allocations);
-        out = Some(result);
-    }
-    (least, out.expect("ran"))
+    spline_testing::allocations::allocations(GLOBAL, f)
 }
 
 #[test]

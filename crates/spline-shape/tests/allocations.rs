@@ -8,29 +8,16 @@
 
 use nalgebra::DVector;
 use spline_shape::{BarrierOptions, FunctionApproximation, Sign, find_feasible, minimize};
+use spline_testing::allocations::SERIAL;
 use stats_alloc::{INSTRUMENTED_SYSTEM, Region, StatsAlloc};
 use std::alloc::System;
-use std::sync::Mutex;
 
 #[global_allocator]
 static GLOBAL: &StatsAlloc<System> = &INSTRUMENTED_SYSTEM;
 
-/// One measurement at a time (the counters are global).
-static SERIAL: Mutex<()> = Mutex::new(());
-
-/// The allocations made while `f` runs: the least of three runs (the counters are global,
-/// and the test harness's own threads may allocate meanwhile; a deterministic computation
-/// allocates the same every time).
+/// The allocations made while `f` runs (see [`spline_testing::allocations`]).
 fn allocations<R>(f: impl Fn() -> R) -> (usize, R) {
-    let mut least = usize::MAX;
-    let mut out = None;
-    for _ in 0..3 {
-        let region = Region::new(GLOBAL);
-        let result = f();
-        least = least.min(region.change().allocations);
-        out = Some(result);
-    }
-    (least, out.expect("ran"))
+    spline_testing::allocations::allocations(GLOBAL, f)
 }
 
 /// A monotone fit of a wiggly function (the sign of the first derivative), and a strictly

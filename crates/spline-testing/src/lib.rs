@@ -7,6 +7,7 @@
 
 #![allow(clippy::missing_panics_doc)]
 
+pub mod allocations;
 pub mod compare;
 pub mod reference;
 pub mod strategies;

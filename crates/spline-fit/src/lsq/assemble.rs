@@ -209,10 +209,6 @@ pub(crate) fn penalty_rows<T: Scalar>(
     }
 }
 
-/// Accumulates the normal equations of the data rows for degree `W − 1` known at compile
-/// time (loops unrolled), with the streaming Schoenberg–Whitney check when `check`:
-/// `Err(i)` names the basis function left without data. `None` is never returned (the
-/// `Option` lets the caller fall back for other degrees).
 /// The lower band and right-hand side of the normal equations of the data (added to `band`
 /// and `rhs`) by the unrolled kernels (degrees ≤ 5; `None` above), with the streaming
 /// Schoenberg–Whitney check when `check` (`Some(Err(i))` names the first basis function
@@ -262,6 +258,10 @@ pub(super) fn normal_dispatch<T: Scalar, P: ControlPoint<T>, const ACC: bool>(
     }
 }
 
+/// Accumulates the normal equations of the data rows for degree `W − 1` known at compile
+/// time (loops unrolled), with the streaming Schoenberg–Whitney check when `check`:
+/// `Err(i)` names the basis function left without data. `None` is never returned (the
+/// `Option` lets the caller fall back for other degrees).
 #[allow(clippy::unnecessary_wraps)]
 fn normal_kernel<T: Scalar, P: ControlPoint<T>, const W: usize, const ACC: bool>(
     knots: &KnotVector<T>,
