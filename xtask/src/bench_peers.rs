@@ -37,7 +37,15 @@ struct Row {
 
 const ROWS: &[Row] = &[
     Row {
-        label: "cubic, 100 cp, 10⁶ random params, one call per point",
+        label: "cubic, 100 cp, 10⁶ random params, one call per point (`BSpline::evaluator`)",
+        per: 1e6,
+        ours: "peers_eval_point/ours_evaluator",
+        curvo: &["peers_eval_point/curvo", "peers_eval_point/curvo_evaluator"],
+        truck: &["peers_eval_point/truck"],
+        target: Some(3.0),
+    },
+    Row {
+        label: "same, `BSpline::eval` (the triangular scheme's values, bit for bit)",
         per: 1e6,
         ours: "peers_eval_point/ours",
         curvo: &["peers_eval_point/curvo", "peers_eval_point/curvo_evaluator"],
@@ -61,9 +69,17 @@ const ROWS: &[Row] = &[
         target: None,
     },
     Row {
-        label: "C′ and C″, 10⁵ random params",
+        label: "C′ and C″, 10⁵ random params (`derivatives_into`)",
         per: 1e5,
         ours: "peers_derivs/ours",
+        curvo: &["peers_derivs/curvo"],
+        truck: &["peers_derivs/truck"],
+        target: Some(4.0),
+    },
+    Row {
+        label: "same, through the evaluator",
+        per: 1e5,
+        ours: "peers_derivs/ours_evaluator",
         curvo: &["peers_derivs/curvo"],
         truck: &["peers_derivs/truck"],
         target: Some(4.0),
@@ -125,9 +141,17 @@ const ROWS: &[Row] = &[
         target: None,
     },
     Row {
-        label: "NURBS circle, 10⁶ params, one call per point",
+        label: "NURBS circle, 10⁶ params, one call per point (`eval`)",
         per: 1e6,
         ours: "peers_nurbs/ours",
+        curvo: &["peers_nurbs/curvo", "peers_nurbs/curvo_evaluator"],
+        truck: &["peers_nurbs/truck"],
+        target: Some(3.0),
+    },
+    Row {
+        label: "same, through the evaluator",
+        per: 1e6,
+        ours: "peers_nurbs/ours_evaluator",
         curvo: &["peers_nurbs/curvo", "peers_nurbs/curvo_evaluator"],
         truck: &["peers_nurbs/truck"],
         target: Some(3.0),
@@ -246,10 +270,16 @@ fn table(target: &Path, scipy: &Value, checks: &BTreeMap<String, f64>) -> Result
     };
     for (label, ours_id, scipy_id, goal) in [
         (
-            "scipy: one call per point vs `__call__`, random",
-            "peers_eval_point/ours",
+            "scipy: one call per point (evaluator) vs `__call__`, random",
+            "peers_eval_point/ours_evaluator",
             "random_order",
             Some(5.0),
+        ),
+        (
+            "scipy: one call per point (`eval`) vs `__call__`, random",
+            "peers_eval_point/ours",
+            "random_order",
+            None,
         ),
         (
             "scipy: batch vs `__call__`, random",

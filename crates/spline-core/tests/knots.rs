@@ -1,5 +1,6 @@
 //! Knot-vector validation, span search conventions and generators.
 
+use proptest::prelude::*;
 use spline_core::{ErrorKind, KnotVector, MAX_DEGREE};
 
 fn kv(p: usize, knots: &[f64]) -> KnotVector<f64> {
@@ -214,5 +215,31 @@ proptest::proptest! {
         if let Err(e) = result {
             proptest::prop_assert_eq!(e.kind(), ErrorKind::KnotMultiplicity);
         }
+    }
+}
+
+proptest! {
+    /// `insertion_span` (one search, multiplicity counted next to the span) against the
+    /// definitions: the multiplicity by two binary searches over the whole vector, the span
+    /// by `span_in_domain`.
+    #[test]
+    fn insertion_span_agrees_with_multiplicity_and_span(
+        knots in spline_core::strategies::knot_vector(4, 12, 1.0, true),
+        pick in 0usize..64,
+        t in 0.0f64..=1.0,
+        times in 1usize..=5,
+    ) {
+        let (a, b) = knots.domain();
+        let candidates: Vec<f64> = knots.knots().iter().copied().chain([a + (b - a) * t, a - 1.0, b + 1.0]).collect();
+        let u = candidates[pick % candidates.len()];
+        let allowed = u >= a && u <= b && knots.multiplicity(u) + times <= knots.degree() + 1;
+        match knots.insertion_span(u, times) {
+            Ok(span) => {
+                prop_assert!(allowed, "u {} times {} accepted", u, times);
+                prop_assert_eq!(span, knots.span_in_domain(u));
+            }
+            Err(_) => prop_assert!(!allowed, "u {} times {} refused", u, times),
+        }
+        prop_assert_eq!(knots.check_insertion(u, times).is_ok(), allowed);
     }
 }

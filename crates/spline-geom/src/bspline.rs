@@ -124,6 +124,16 @@ impl<T: Scalar, P> BSpline<T, P> {
         crate::transfer::refine_in_place(&mut self.knots, &mut self.control_points, x);
     }
 
+    /// Inserts copies of one knot (`x` all equal, checked) whose span is `span`.
+    pub(crate) fn insert_unchecked(&mut self, span: usize, x: &[T])
+    where
+        T: Scalar,
+        P: spline_core::VectorSpace<T>,
+    {
+        self.pieces.invalidate();
+        crate::transfer::refine_in_spans(&mut self.knots, &mut self.control_points, x, span, span);
+    }
+
     /// Splits the spline into its knot vector and control points.
     #[must_use]
     pub fn into_parts(self) -> (KnotVector<T>, Vec<P>) {
@@ -242,24 +252,14 @@ impl<T: Scalar, P: ControlPoint<T>> BSpline<T, P> {
     /// A curve of degree 1 to 5 evaluated more times than it has spans caches a table that
     /// finds the span in constant time (with its piecewise polynomial form, which the batches
     /// use); the point itself stays the triangular scheme's, bit for bit (algorithms such as
-    /// curve intersection rely on its rounding matching the derivatives').
+    /// curve intersection rely on its rounding matching the derivatives'). For many
+    /// one-point calls at the cached form's speed, use [`BSpline::evaluator`].
     ///
     /// # Errors
     /// [`ErrorKind::NonFinite`] or [`ErrorKind::OutOfDomain`].
     #[inline]
     pub fn eval(&self, u: T) -> Result<P> {
-        match self.pieces.get() {
-            Some(Some(pieces)) => {
-                if let Some(span) = pieces.span_inside(&self.knots, u) {
-                    return Ok(self.eval_in_span(span, u));
-                }
-            }
-            Some(None) => {}
-            None => self
-                .pieces
-                .count_call(self, self.knots.num_basis() - self.degree()),
-        }
-        let span = self.knots.find_span(u)?;
+        let span = self.span_of(u)?;
         Ok(self.eval_in_span(span, u))
     }
 
@@ -291,9 +291,33 @@ impl<T: Scalar, P: ControlPoint<T>> BSpline<T, P> {
     /// [`ErrorKind::NonFinite`] or [`ErrorKind::OutOfDomain`] for `u`;
     /// [`ErrorKind::NonFinite`] when a derivative is too large for the scalar type.
     pub fn derivatives_into(&self, u: T, out: &mut [P]) -> Result<()> {
-        let span = self.knots.find_span(u)?;
+        let span = self.span_of(u)?;
         self.derivatives_in_span(span, u, out);
         check_finite_derivatives(out, u)
+    }
+
+    /// The span of `u` for the one-point methods: from the cached table when it is built
+    /// (counting the call otherwise, see [`BSpline::eval`]), else by bisection.
+    #[inline(always)]
+    pub(crate) fn span_of(&self, u: T) -> Result<usize> {
+        match self.pieces.get() {
+            Some(Some(pieces)) => {
+                if let Some(span) = pieces.span_inside(&self.knots, u) {
+                    return Ok(span);
+                }
+            }
+            Some(None) => {}
+            None => self
+                .pieces
+                .count_call(self, self.knots.num_basis() - self.degree()),
+        }
+        self.knots.find_span(u)
+    }
+
+    /// The cached piecewise polynomial form, built now if needed (`None` where the degree
+    /// or the conditioning has none).
+    pub(crate) fn cached_pieces(&self) -> Option<&crate::pieces::Pieces<T, P>> {
+        self.pieces.get_or_build(self)
     }
 
     pub(crate) fn derivatives_in_span(&self, span: usize, u: T, out: &mut [P]) {

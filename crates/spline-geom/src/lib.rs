@@ -36,6 +36,7 @@ mod bezier;
 mod bspline;
 mod construct;
 mod curve_tools;
+mod evaluator;
 #[cfg(feature = "serde")]
 pub mod exchange;
 pub mod export;
@@ -68,6 +69,7 @@ pub use curve_tools::{
     ArcLengthTable, BoundingBox, MAX_TESSELLATION_SEGMENTS, hull_box, param_at_length, pieces_box,
     tessellate,
 };
+pub use evaluator::{CurveEvaluator, NurbsEvaluator};
 pub use homogeneous::Homogeneous;
 pub use mesh::{MAX_MESH_SEGMENTS, MeshView, SvgOverlay, TriangleMesh};
 pub use nurbs::{

@@ -44,6 +44,9 @@ pub(crate) struct Pieces<T, P> {
     end: T,
     /// `p + 1` coefficients per span, `span − p` major (zero for empty spans).
     coefficients: Vec<P>,
+    /// `falling[j][k]` $= k!/(k-j)!$ for `j ≤ k ≤ p`: the factor of `c_k` in the `j`-th
+    /// derivative.
+    falling: [[T; MAX_CACHED_DEGREE + 1]; MAX_CACHED_DEGREE + 1],
 }
 
 impl<T: Scalar, P: ControlPoint<T>> Pieces<T, P> {
@@ -94,8 +97,16 @@ impl<T: Scalar, P: ControlPoint<T>> Pieces<T, P> {
             let largest = curve.control_points()[s - p..=s]
                 .iter()
                 .fold(T::zero(), |m, q| m.max(q.max_abs()));
-            if spread > from_count::<T>(CONDITION) * largest {
+            if !row.iter().all(ControlPoint::all_finite)
+                || !(spread <= from_count::<T>(CONDITION) * largest)
+            {
                 return None;
+            }
+        }
+        let mut falling = [[T::zero(); MAX_CACHED_DEGREE + 1]; MAX_CACHED_DEGREE + 1];
+        for (j, row) in falling.iter_mut().enumerate().take(order) {
+            for (k, slot) in row.iter_mut().enumerate().take(order).skip(j) {
+                *slot = from_count::<T>(((k - j + 1)..=k).product::<usize>());
             }
         }
         let (start, end) = knots.domain();
@@ -105,7 +116,72 @@ impl<T: Scalar, P: ControlPoint<T>> Pieces<T, P> {
             start,
             end,
             coefficients,
+            falling,
         })
+    }
+
+    /// $C(u)$ from the cached form for `start ≤ u < end`; `None` otherwise (the domain's
+    /// end, outside, NaN), where the caller uses the triangular scheme.
+    #[inline(always)]
+    pub(crate) fn eval_inside(&self, knots: &KnotVector<T>, u: T) -> Option<P> {
+        if !(u >= self.start && u < self.end) {
+            return None;
+        }
+        let span = self.table.span(knots, u);
+        Some(match self.order {
+            2 => self.horner_in::<2>(knots, span, u),
+            3 => self.horner_in::<3>(knots, span, u),
+            4 => self.horner_in::<4>(knots, span, u),
+            5 => self.horner_in::<5>(knots, span, u),
+            _ => self.horner_in::<6>(knots, span, u),
+        })
+    }
+
+    /// $C^{(j)}(u)$, `j = 0 … out.len() − 1`, from the cached form for `start ≤ u < end`
+    /// (orders above the degree are zero); `false` otherwise, with `out` untouched.
+    #[inline(always)]
+    pub(crate) fn derivatives_inside(&self, knots: &KnotVector<T>, u: T, out: &mut [P]) -> bool {
+        if !(u >= self.start && u < self.end) {
+            return false;
+        }
+        let span = self.table.span(knots, u);
+        match self.order {
+            2 => self.derivatives_in::<2>(knots, span, u, out),
+            3 => self.derivatives_in::<3>(knots, span, u, out),
+            4 => self.derivatives_in::<4>(knots, span, u, out),
+            5 => self.derivatives_in::<5>(knots, span, u, out),
+            _ => self.derivatives_in::<6>(knots, span, u, out),
+        }
+        true
+    }
+
+    /// The derivatives of the Taylor form in a known span:
+    /// $C^{(j)} = \sum_{k \ge j} \frac{k!}{(k-j)!} c_k t^{k-j}$, each by Horner's scheme.
+    #[inline(always)]
+    fn derivatives_in<const N: usize>(
+        &self,
+        knots: &KnotVector<T>,
+        span: usize,
+        u: T,
+        out: &mut [P],
+    ) {
+        let first = (span - (N - 1)) * N;
+        let c: &[P; N] = self.coefficients[first..first + N]
+            .try_into()
+            .expect("N coefficients per span");
+        let t = u - knots.knots()[span];
+        for (j, slot) in out.iter_mut().enumerate() {
+            if j >= N {
+                *slot = P::origin();
+                continue;
+            }
+            let factors = &self.falling[j];
+            let mut acc = c[N - 1] * factors[N - 1];
+            for k in (j..N - 1).rev() {
+                acc = acc * t + c[k] * factors[k];
+            }
+            *slot = acc;
+        }
     }
 
     /// The span of `u` for `start ≤ u ≤ end`, `None` otherwise (outside, NaN).

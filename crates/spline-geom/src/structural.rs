@@ -181,9 +181,9 @@ impl<T: Scalar, V: VectorSpace<T>> BSpline<T, V> {
     /// # Errors
     /// As [`BSpline::insert_knot`]; the curve is unchanged on error.
     pub fn insert_knot_mut(&mut self, u: T, times: usize) -> Result<()> {
-        self.knots().check_insertion(u, times)?;
+        let span = self.knots().insertion_span(u, times)?;
         let x = [u; spline_core::MAX_ORDER];
-        self.refine_sorted_unchecked(&x[..times]);
+        self.insert_unchecked(span, &x[..times]);
         Ok(())
     }
 

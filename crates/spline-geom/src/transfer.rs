@@ -33,10 +33,24 @@ pub(crate) fn refine_in_place<T: Scalar, V: VectorSpace<T>>(
     if x.is_empty() {
         return;
     }
+    let first = knot_vector.span_in_domain(x[0]);
+    let last = knot_vector.span_in_domain(x[x.len() - 1]);
+    refine_in_spans(knot_vector, points, x, first, last);
+}
+
+/// [`refine_in_place`] with the spans of the first and last new knot known.
+pub(crate) fn refine_in_spans<T: Scalar, V: VectorSpace<T>>(
+    knot_vector: &mut KnotVector<T>,
+    points: &mut Vec<V>,
+    x: &[T],
+    first: usize,
+    last: usize,
+) {
+    if x.is_empty() {
+        return;
+    }
     let p = knot_vector.degree();
-    let a = knot_vector.span_in_domain(x[0]);
-    let b = knot_vector.span_in_domain(x[x.len() - 1]) + 1;
-    knot_vector.update_unchecked(|knots| refine_vectors(p, (a, b), knots, points, x));
+    knot_vector.update_unchecked(|knots| refine_vectors(p, (first, last + 1), knots, points, x));
 }
 
 #[allow(clippy::many_single_char_names)]

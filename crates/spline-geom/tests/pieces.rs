@@ -202,3 +202,116 @@ proptest! {
         }
     }
 }
+
+/// The largest coordinate of the control points of the `k`-th derivative curve (which bounds
+/// the `k`-th derivative, by the convex hull property).
+fn derivative_scale(curve: &Curve, k: usize) -> f64 {
+    curve.derivative(k).map_or(1.0, |d| {
+        d.control_points()
+            .iter()
+            .fold(1.0f64, |m, p| m.max(p.amax()))
+    })
+}
+
+proptest! {
+    #[test]
+    fn evaluator_agrees_with_the_dense_basis_and_the_derivatives(
+        knots in knot_vector(7, 25, 1.0, true),
+        seed in 0.0f64..10.0,
+        ts in proptest::collection::vec(0.0f64..=1.0, 1..60),
+    ) {
+        let curve = Curve::new(knots.clone(), points_for(&knots, seed)).unwrap();
+        let p = knots.degree();
+        let scales: Vec<f64> = (0..=p).map(|k| derivative_scale(&curve, k)).collect();
+        let evaluator = curve.evaluator();
+        let mut fast = vec![Vector2::zeros(); p + 2];
+        let mut exact = vec![Vector2::zeros(); p + 2];
+        for u in params(&knots, &ts) {
+            let dense = dense_point(&knots, curve.control_points(), u);
+            let one = evaluator.eval(u).unwrap();
+            prop_assert!((one - dense).amax() <= 1e-13 * scales[0], "eval at {}: {:?} vs {:?}", u, one, dense);
+            evaluator.derivatives_into(u, &mut fast).unwrap();
+            curve.derivatives_into(u, &mut exact).unwrap();
+            for k in 0..=p {
+                prop_assert!(
+                    (fast[k] - exact[k]).amax() <= 1e-11 * scales[k],
+                    "order {} at {}: {:?} vs {:?}", k, u, fast[k], exact[k]
+                );
+            }
+            prop_assert_eq!(fast[p + 1], Vector2::zeros());
+        }
+        // The domain's end goes through the triangular scheme: bit for bit.
+        let (_, b) = curve.domain();
+        prop_assert_eq!(evaluator.eval(b).unwrap(), curve.eval(b).unwrap());
+    }
+}
+
+#[test]
+fn evaluator_rejects_what_eval_rejects() {
+    let knots = KnotVector::clamped_uniform(3, 8, 0.0, 1.0).unwrap();
+    let curve = Curve::new(knots.clone(), points_for(&knots, 0.3)).unwrap();
+    let evaluator = curve.evaluator();
+    let mut d = [Vector2::zeros(); 3];
+    for u in [f64::NAN, f64::INFINITY, -0.5, 1.0 + 1e-9] {
+        let expected = curve.eval(u).unwrap_err().kind();
+        assert_eq!(
+            evaluator.eval(u).unwrap_err().kind(),
+            expected,
+            "eval at {u}"
+        );
+        assert_eq!(
+            evaluator.derivatives_into(u, &mut d).unwrap_err().kind(),
+            expected,
+            "derivatives at {u}"
+        );
+    }
+    assert_eq!(evaluator.curve(), &curve);
+}
+
+#[test]
+fn ill_conditioned_forms_fall_back_to_the_triangular_scheme() {
+    // Degree 5 with alternating control points: Σ |c_k| h^k reaches far beyond 32 times the
+    // largest control point, so the cached form is refused and the evaluator returns the
+    // triangular scheme's values, bit for bit.
+    let knots = KnotVector::clamped_uniform(5, 12, 0.0, 1.0).unwrap();
+    let points = (0..12)
+        .map(|i| Vector2::new(if i % 2 == 0 { 1.0 } else { -1.0 }, 0.0))
+        .collect();
+    let curve = Curve::new(knots, points).unwrap();
+    let evaluator = curve.evaluator();
+    let mut fast = [Vector2::zeros(); 4];
+    let mut exact = [Vector2::zeros(); 4];
+    for i in 0..=997 {
+        let u = f64::from(i) / 997.0;
+        assert_eq!(evaluator.eval(u).unwrap(), curve.eval(u).unwrap(), "at {u}");
+        evaluator.derivatives_into(u, &mut fast).unwrap();
+        curve.derivatives_into(u, &mut exact).unwrap();
+        assert_eq!(fast, exact, "derivatives at {u}");
+    }
+}
+
+proptest! {
+    #[test]
+    fn nurbs_evaluator_agrees_with_the_rational_formula(
+        knots in knot_vector(4, 12, 1.0, true),
+        seed in 0.0f64..10.0,
+        ts in proptest::collection::vec(0.0f64..=1.0, 1..40),
+    ) {
+        prop_assume!(knots.degree() >= 1);
+        let points = points_for(&knots, seed);
+        let weights: Vec<f64> = (0..points.len()).map(|i| 0.5 + ((i as f64 + seed) * 0.77).sin().abs()).collect();
+        let curve = NurbsCurve2::new(knots.clone(), points, weights).unwrap();
+        let evaluator = curve.evaluator();
+        let (mut fast, mut exact) = ([Vector2::zeros(); 3], [Vector2::zeros(); 3]);
+        for u in params(&knots, &ts) {
+            let dense = dense_rational(&curve, u);
+            prop_assert!((evaluator.eval(u).unwrap() - dense).amax() <= 1e-12 * dense.amax().max(1.0), "u {}", u);
+            evaluator.derivatives_into(u, &mut fast).unwrap();
+            curve.derivatives_into(u, &mut exact).unwrap();
+            for k in 0..3 {
+                let scale = exact[k].amax().max(exact[0].amax()).max(1.0);
+                prop_assert!((fast[k] - exact[k]).amax() <= 1e-9 * scale, "order {} at {}: {:?} vs {:?}", k, u, fast[k], exact[k]);
+            }
+        }
+    }
+}

@@ -33,14 +33,39 @@ impl<T: Scalar> KnotVector<T> {
     }
 
     /// Checks that `u` can be inserted `times` times (the errors of
-    /// [`KnotVector::with_inserted`]) without building the new knot vector: two binary
-    /// searches, no allocation.
+    /// [`KnotVector::with_inserted`]) without building the new knot vector: one binary
+    /// search, no allocation.
     ///
     /// # Errors
     /// As [`KnotVector::with_inserted`].
     pub fn check_insertion(&self, u: T, times: usize) -> Result<()> {
+        self.insertion_span(u, times).map(|_| ())
+    }
+
+    /// [`KnotVector::check_insertion`], returning the span of `u`
+    /// ([`KnotVector::span_in_domain`]) that the insertion changes: one binary search, the
+    /// multiplicity of `u` counted next to it.
+    ///
+    /// ```
+    /// let k = spline_core::KnotVector::new(2, vec![0.0, 0.0, 0.0, 0.5, 0.5, 1.0, 1.0, 1.0])?;
+    /// assert_eq!(k.insertion_span(0.25, 1)?, 2);
+    /// assert_eq!(k.insertion_span(0.5, 1)?, 4);
+    /// assert!(k.insertion_span(0.5, 2).is_err()); // multiplicity 4 > p + 1
+    /// assert!(k.insertion_span(1.5, 1).is_err());
+    /// # Ok::<(), spline_core::Error>(())
+    /// ```
+    ///
+    /// # Errors
+    /// As [`KnotVector::with_inserted`].
+    pub fn insertion_span(&self, u: T, times: usize) -> Result<usize> {
         self.check_param(u)?;
-        let present = self.multiplicity(u);
+        let span = self.span_in_domain(u);
+        let knots = self.knots();
+        // Copies of u end at the span's left knot (u inside the domain) or start right
+        // after the span (u at the domain's end).
+        let below = knots[..=span].iter().rev().take_while(|&&k| k == u).count();
+        let above = knots[span + 1..].iter().take_while(|&&k| k == u).count();
+        let present = below + above;
         let room = self.order() - present.min(self.order());
         if times > room {
             return Err(Error::new(
@@ -55,7 +80,7 @@ impl<T: Scalar> KnotVector<T> {
             .with_value(to_f64(u))
             .with_counts(room, times));
         }
-        Ok(())
+        Ok(span)
     }
 
     /// The knot vector with all of `new_knots` inserted (knot refinement; any order,

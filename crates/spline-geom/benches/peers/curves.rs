@@ -59,8 +59,11 @@ pub(crate) fn evaluation(c: &mut Criterion) {
     let mut out = vec![Vector2::zeros(); POINTS];
     ours.eval_many_into(&params, &mut out).unwrap();
     let (mut d_curvo, mut d_eval, mut d_truck, mut d_one) = (0.0f64, 0.0f64, 0.0f64, 0.0f64);
+    let mut d_ours_evaluator = 0.0f64;
     let mut evaluator = curvo.evaluator();
+    let ours_evaluator = ours.evaluator();
     for (&u, p) in params.iter().zip(&out).step_by(97) {
+        d_ours_evaluator = d_ours_evaluator.max((ours_evaluator.eval(u).unwrap() - p).amax());
         let q: Point2<f64> = curvo.point_at(u);
         d_curvo = d_curvo.max(dist2(*p, q.x, q.y));
         let q = evaluator.point_at(u);
@@ -73,6 +76,7 @@ pub(crate) fn evaluation(c: &mut Criterion) {
     report_check("eval/curvo_evaluator", d_eval);
     report_check("eval/truck", d_truck);
     report_check("eval/ours_batch", d_one.abs());
+    report_check("eval/ours_evaluator", d_ours_evaluator);
 
     let mut group = c.benchmark_group("peers_eval_point");
     group.throughput(Throughput::Elements(POINTS as u64));
@@ -81,6 +85,16 @@ pub(crate) fn evaluation(c: &mut Criterion) {
             let mut acc = Vector2::zeros();
             for &u in &params {
                 acc += ours.eval(black_box(u)).unwrap();
+            }
+            acc
+        });
+    });
+    group.bench_function("ours_evaluator", |b| {
+        b.iter(|| {
+            let evaluator = ours.evaluator();
+            let mut acc = Vector2::zeros();
+            for &u in &params {
+                acc += evaluator.eval(black_box(u)).unwrap();
             }
             acc
         });
@@ -195,10 +209,15 @@ fn derivatives(
     truck: &BSplineCurve<TPoint2>,
 ) {
     let params = uniform_samples(DERIV_POINTS, 43);
-    let (mut d_curvo, mut d_truck) = (0.0f64, 0.0f64);
+    let (mut d_curvo, mut d_truck, mut d_evaluator) = (0.0f64, 0.0f64, 0.0f64);
+    let evaluator = ours.evaluator();
     for &u in params.iter().step_by(7) {
         let mut d = [Vector2::zeros(); 3];
         ours.derivatives_into(u, &mut d).unwrap();
+        let mut e = [Vector2::zeros(); 3];
+        evaluator.derivatives_into(u, &mut e).unwrap();
+        d_evaluator =
+            d_evaluator.max((d[1] - e[1]).amax().max((d[2] - e[2]).amax()) / d[2].norm().max(1.0));
         let theirs = curvo.rational_derivatives(u, 2);
         let scale = d[2].norm().max(1.0);
         d_curvo = d_curvo.max(
@@ -210,6 +229,7 @@ fn derivatives(
     }
     report_check("derivs/curvo", d_curvo);
     report_check("derivs/truck", d_truck);
+    report_check("derivs/ours_evaluator", d_evaluator);
     let mut group = c.benchmark_group("peers_derivs");
     group.throughput(Throughput::Elements(DERIV_POINTS as u64));
     group.bench_function("ours", |b| {
@@ -218,6 +238,18 @@ fn derivatives(
             let mut d = [Vector2::zeros(); 3];
             for &u in &params {
                 ours.derivatives_into(black_box(u), &mut d).unwrap();
+                acc += d[1] + d[2];
+            }
+            acc
+        });
+    });
+    group.bench_function("ours_evaluator", |b| {
+        b.iter(|| {
+            let evaluator = ours.evaluator();
+            let mut acc = Vector2::zeros();
+            let mut d = [Vector2::zeros(); 3];
+            for &u in &params {
+                evaluator.derivatives_into(black_box(u), &mut d).unwrap();
                 acc += d[1] + d[2];
             }
             acc
@@ -432,6 +464,7 @@ pub(crate) fn nurbs(c: &mut Criterion) {
         let q = truck.subs(u);
         d_truck = d_truck.max(dist2(*p, q.x, q.y));
         d_one = d_one.max((ours.eval(u).unwrap() - p).amax());
+        d_one = d_one.max((ours.evaluator().eval(u).unwrap() - p).amax());
         radius = radius.max((p.norm() - 1.0).abs());
     }
     report_check("nurbs/curvo", d_curvo);
@@ -446,6 +479,16 @@ pub(crate) fn nurbs(c: &mut Criterion) {
             let mut acc = Vector2::zeros();
             for &u in &params {
                 acc += ours.eval(black_box(u)).unwrap();
+            }
+            acc
+        });
+    });
+    group.bench_function("ours_evaluator", |b| {
+        b.iter(|| {
+            let evaluator = ours.evaluator();
+            let mut acc = Vector2::zeros();
+            for &u in &params {
+                acc += evaluator.eval(black_box(u)).unwrap();
             }
             acc
         });

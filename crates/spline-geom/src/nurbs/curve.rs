@@ -200,7 +200,7 @@ impl<T: Scalar, const D: usize> NurbsCurve<T, D> {
     /// [`ErrorKind::NonFinite`] when a derivative is too large for the scalar type (rational
     /// derivatives of order `k` grow like `k!`; `f64` overflows near order 170).
     pub fn derivatives_into(&self, u: T, out: &mut [SVector<T, D>]) -> Result<()> {
-        let span = self.container.knots().find_span(u)?;
+        let span = self.container.span_of(u)?;
         if out.is_empty() {
             return Ok(());
         }

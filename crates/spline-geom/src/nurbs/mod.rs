@@ -210,7 +210,7 @@ pub(super) fn cartesian_scale<T: Scalar, const D: usize>(points: &[Homogeneous<T
 /// # Errors
 /// [`ErrorKind::NonFinite`] when a derivative leaves the range of the scalar type (rational
 /// derivatives of order `k` grow like `k!`).
-pub(super) fn rational_curve_derivatives<T: Scalar, const D: usize>(
+pub(crate) fn rational_curve_derivatives<T: Scalar, const D: usize>(
     hom: &[Homogeneous<T, D>],
     out: &mut [SVector<T, D>],
 ) -> Result<()> {
