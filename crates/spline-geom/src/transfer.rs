@@ -248,7 +248,16 @@ pub(crate) fn reduce_points<T: Scalar, V: VectorSpace<T>>(
             // Every basis function of the span exists: no checks in the inner loop; a
             // Bézier piece (both ends of multiplicity p + 1) needs no division at all.
             if t[mu - p] == t[mu] && t[mu + 1] == t[mu + p + 1] {
-                blossom_bernstein(t[mu], t[mu + 1], p, args, &mut beta);
+                // Arguments all at the piece's ends: the blossom is the Bézier point with
+                // as many arguments at the right end (the triangular scheme would compute
+                // exactly that, with weights 0 and 1).
+                let (a, b) = (t[mu], t[mu + 1]);
+                if args.iter().all(|&x| x == a || x == b) {
+                    let right = args.iter().filter(|&&x| x == b).count();
+                    out.push(points[mu - p + right].clone());
+                    continue;
+                }
+                blossom_bernstein(a, b, p, args, &mut beta);
             } else {
                 blossom_basis_inside(t, p, mu, args, &mut beta);
             }

@@ -383,7 +383,8 @@ impl<T: Scalar> KnotVector<T> {
         for (k, m) in clamped.breakpoints() {
             knots.extend(std::iter::repeat_n(k, m + times));
         }
-        Self::new(degree, knots)
+        // Valid by construction: sorted, finite, every multiplicity m + times ≤ degree + 1.
+        Ok(Self::new_unchecked(degree, knots))
     }
 
     /// Whether basis function `i` has an empty support `[u_i, u_{i+p+1}]` (a knot of
