@@ -33,14 +33,22 @@ pub(crate) fn run(repo_root: &Path) -> Result<(), String> {
     let scipy = bench::run_python_json(&python, &repo_root.join("xtask/bench/fit_scipy.py"))?;
     eprintln!("bench fit: running cargo bench -p spline-fit --bench fit…");
     let residuals = bench::run_criterion(repo_root, "fit", &["fit-residual"])?;
+    print_table(&scipy, &rust_medians(&target)?, &residuals)
+}
+
+/// The criterion medians of the fitting benchmark, by workload.
+///
+/// # Errors
+/// A message when a median cannot be read.
+pub(crate) fn rust_medians(target: &Path) -> Result<BTreeMap<String, f64>, String> {
     let mut rust = BTreeMap::new();
     for id in RUST_IDS {
         rust.insert(
             id.to_string(),
-            bench::criterion_median(&target, &format!("fit/{id}"))?,
+            bench::criterion_median(target, &format!("fit/{id}"))?,
         );
     }
-    print_table(&scipy, &rust, &residuals)
+    Ok(rust)
 }
 
 const RUST_IDS: [&str; 5] = [
@@ -51,11 +59,42 @@ const RUST_IDS: [&str; 5] = [
     "lsq_qr/100000",
 ];
 
-fn print_table(
+/// One compared workload: medians, speed-up scipy / ours, residuals, and the target.
+pub(crate) struct FitRow {
+    pub(crate) label: &'static str,
+    pub(crate) scipy: f64,
+    pub(crate) rust: f64,
+    pub(crate) scipy_residual: f64,
+    pub(crate) rust_residual: f64,
+    /// The speed-up asked for (0 where there is none).
+    pub(crate) target: f64,
+}
+
+impl FitRow {
+    pub(crate) fn ratio(&self) -> f64 {
+        self.scipy / self.rust
+    }
+
+    /// The residual "as small" as scipy's: within a relative 1e-9 (least squares) or 1e-9
+    /// absolute (interpolation).
+    pub(crate) fn as_small(&self) -> bool {
+        self.rust_residual <= self.scipy_residual * (1.0 + 1e-9) + 1e-9
+    }
+
+    pub(crate) fn met(&self) -> bool {
+        self.ratio() >= self.target && self.as_small()
+    }
+}
+
+/// The compared workloads from scipy's JSON and the criterion medians and residuals.
+///
+/// # Errors
+/// A message when a result is missing.
+pub(crate) fn fit_rows(
     scipy: &Value,
     rust: &BTreeMap<String, f64>,
     residuals: &BTreeMap<String, f64>,
-) -> Result<(), String> {
+) -> Result<Vec<FitRow>, String> {
     let results = scipy
         .get("results")
         .ok_or("scipy output has no \"results\"")?;
@@ -66,8 +105,6 @@ fn print_table(
             .and_then(Value::as_f64)
             .ok_or_else(|| format!("scipy output lacks {id}.{key}"))
     };
-    let version = scipy.get("scipy").and_then(Value::as_str).unwrap_or("?");
-    let numpy = scipy.get("numpy").and_then(Value::as_str).unwrap_or("?");
     // (label, scipy id, rust id, target speed-up)
     let rows: [(&str, &str, &str, f64); 6] = [
         ("interp 10^4", "interp/10000", "interp/10000", 0.0),
@@ -92,6 +129,32 @@ fn print_table(
             0.0,
         ),
     ];
+    rows.into_iter()
+        .map(|(label, sid, rid, target)| {
+            Ok(FitRow {
+                label,
+                scipy: field(sid, "median_s")?,
+                rust: *rust
+                    .get(rid)
+                    .ok_or_else(|| format!("no criterion median for {rid}"))?,
+                scipy_residual: field(sid, "residual")?,
+                rust_residual: residuals
+                    .get(&format!("fit-residual {rid}"))
+                    .copied()
+                    .unwrap_or(f64::NAN),
+                target,
+            })
+        })
+        .collect()
+}
+
+fn print_table(
+    scipy: &Value,
+    rust: &BTreeMap<String, f64>,
+    residuals: &BTreeMap<String, f64>,
+) -> Result<(), String> {
+    let version = scipy.get("scipy").and_then(Value::as_str).unwrap_or("?");
+    let numpy = scipy.get("numpy").and_then(Value::as_str).unwrap_or("?");
     println!();
     println!("spline-fit vs scipy {version} (numpy {numpy}): medians, speed-up = scipy / rust");
     println!(
@@ -99,31 +162,25 @@ fn print_table(
         "workload", "scipy", "rust", "speed-up", "scipy resid.", "rust resid."
     );
     let mut all_met = true;
-    for (label, sid, rid, target) in rows {
-        let s = field(sid, "median_s")?;
-        let r = *rust
-            .get(rid)
-            .ok_or_else(|| format!("no criterion median for {rid}"))?;
-        let sres = field(sid, "residual")?;
-        let rres = residuals
-            .get(&format!("fit-residual {rid}"))
-            .copied()
-            .unwrap_or(f64::NAN);
-        let ratio = s / r;
-        // "As small": within a relative 1e-9 (least squares) or 1e-9 absolute (interpolation).
-        let small = rres <= sres * (1.0 + 1e-9) + 1e-9;
-        let verdict = if target > 0.0 {
-            let met = ratio >= target && small;
-            all_met &= met;
-            format!("≥ {target}×: {}", if met { "met" } else { "MISSED" })
+    for row in fit_rows(scipy, rust, residuals)? {
+        let verdict = if row.target > 0.0 {
+            all_met &= row.met();
+            format!(
+                "≥ {}×: {}",
+                row.target,
+                if row.met() { "met" } else { "MISSED" }
+            )
         } else {
             String::new()
         };
         println!(
-            "{label:<34} {:>12} {:>12} {:>8.2}× {sres:>18.10e} {rres:>18.10e}  {verdict}",
-            seconds(s),
-            seconds(r),
-            ratio
+            "{:<34} {:>12} {:>12} {:>8.2}× {:>18.10e} {:>18.10e}  {verdict}",
+            row.label,
+            seconds(row.scipy),
+            seconds(row.rust),
+            row.ratio(),
+            row.scipy_residual,
+            row.rust_residual
         );
     }
     println!(

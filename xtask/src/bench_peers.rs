@@ -2,11 +2,13 @@
 //! (bench-only dev-dependencies of spline-geom) and scipy, in one run.
 //!
 //! 1. Times scipy's `BSpline.__call__` with `xtask/bench/eval_scipy.py` (the venv of
-//!    `bench eval`; the same cubic, 10⁶ parameters, random order and sorted).
+//!    `bench eval`; the same cubic, 10⁶ parameters, random order and sorted), and scipy's
+//!    fitting with `xtask/bench/fit_scipy.py` (the workloads of `bench fit`).
 //! 2. Runs `cargo bench -p spline-geom --features parallel --bench peers`: every workload
 //!    with every library in one binary, one criterion group per workload, after the
 //!    benchmark has checked that the libraries' results agree (`peers-check` lines, at most
-//!    1e-12 apart, or it stops before timing).
+//!    1e-12 apart, or it stops before timing); then spline-fit's `peers_fit` (interpolation
+//!    against curvo, checked the same way) and `fit` (the scipy workloads, with residuals).
 //! 3. Prints the table of medians (per point where the workload is a batch of points), the
 //!    ratio best peer / ours and whether the target holds, the limits on this CPU
 //!    (the batch's arithmetic alone, memory traffic alone) and the `parallel` rows with the
@@ -17,6 +19,7 @@
 //! binary minutes apart, much less. Rerun to see the spread.
 
 use crate::bench::{self, seconds};
+use crate::bench_fit::{self, FitRow};
 use serde_json::Value;
 use std::collections::BTreeMap;
 use std::path::Path;
@@ -214,8 +217,10 @@ pub(crate) fn run(repo_root: &Path, args: &[String]) -> Result<(), String> {
     let python = bench::ensure_venv(&target)?;
     eprintln!("bench peers: timing scipy…");
     let scipy = bench::run_python_json(&python, &repo_root.join("xtask/bench/eval_scipy.py"))?;
+    eprintln!("bench peers: timing scipy's fitting…");
+    let scipy_fit = bench::run_python_json(&python, &repo_root.join("xtask/bench/fit_scipy.py"))?;
     eprintln!("bench peers: running cargo bench -p spline-geom --bench peers…");
-    let lines = bench::run_criterion_args(
+    let mut lines = bench::run_criterion_args(
         repo_root,
         &[
             "-p",
@@ -227,7 +232,15 @@ pub(crate) fn run(repo_root: &Path, args: &[String]) -> Result<(), String> {
         ],
         &["peers-check", "peers-cpu"],
     )?;
-    let table = table(&target, &scipy, &lines)?;
+    eprintln!("bench peers: running cargo bench -p spline-fit --bench peers_fit and --bench fit…");
+    lines.extend(bench::run_criterion(
+        repo_root,
+        "peers_fit",
+        &["peers-check"],
+    )?);
+    let residuals = bench::run_criterion(repo_root, "fit", &["fit-residual"])?;
+    let fits = bench_fit::fit_rows(&scipy_fit, &bench_fit::rust_medians(&target)?, &residuals)?;
+    let table = table(&target, &scipy, &fits, &lines)?;
     println!();
     print!("{table}");
     if readme {
@@ -237,7 +250,12 @@ pub(crate) fn run(repo_root: &Path, args: &[String]) -> Result<(), String> {
     Ok(())
 }
 
-fn table(target: &Path, scipy: &Value, checks: &BTreeMap<String, f64>) -> Result<String, String> {
+fn table(
+    target: &Path,
+    scipy: &Value,
+    fits: &[FitRow],
+    checks: &BTreeMap<String, f64>,
+) -> Result<String, String> {
     let mut missed = Vec::new();
     let mut out = String::from(
         "| workload | ours | curvo | truck | best peer / ours | target |\n|---|---|---|---|---|---|\n",
@@ -260,7 +278,7 @@ fn table(target: &Path, scipy: &Value, checks: &BTreeMap<String, f64>) -> Result
             verdict(ratio, row.target, &mut missed, row.label)
         ));
     }
-    let version = scipy.get("scipy").and_then(Value::as_str).unwrap_or("?");
+    let version = scipy_version(scipy);
     let scipy_at = |id: &str| -> Result<f64, String> {
         scipy
             .pointer(&format!("/results/{id}/median_s"))
@@ -302,6 +320,42 @@ fn table(target: &Path, scipy: &Value, checks: &BTreeMap<String, f64>) -> Result
             seconds(ours),
             theirs / ours,
             verdict(theirs / ours, goal, &mut missed, label)
+        ));
+    }
+    for points in [100, 1000] {
+        let ours = bench::criterion_median(target, &format!("peers_interp_{points}/ours"))?;
+        let curvo = bench::criterion_median(target, &format!("peers_interp_{points}/curvo"))?;
+        out.push_str(&format!(
+            "| interpolation, cubic through {points} planar points (chord length, averaged knots) | {} | {} | — | {:.2}× | — |\n",
+            seconds(ours),
+            seconds(curvo),
+            curvo / ours
+        ));
+    }
+    let fit_version = scipy_version(scipy);
+    for row in fits.iter().filter(|row| row.target > 0.0) {
+        let label = format!(
+            "scipy fitting: {} (scipy {fit_version}: {}; residual {:.3e} vs scipy's {:.3e})",
+            row.label,
+            seconds(row.scipy),
+            row.rust_residual,
+            row.scipy_residual
+        );
+        let verdict = if row.met() {
+            format!("≥ {}× and residual as small: met", row.target)
+        } else {
+            missed.push(format!(
+                "{} ({:.2}× vs {}×)",
+                row.label,
+                row.ratio(),
+                row.target
+            ));
+            format!("≥ {}× and residual as small: **missed**", row.target)
+        };
+        out.push_str(&format!(
+            "| {label} | {} | | | {:.2}× | {verdict} |\n",
+            seconds(row.rust),
+            row.ratio()
         ));
     }
     let median = |id: &str| bench::criterion_median(target, id).map(|t| t / 1e6);
@@ -361,6 +415,10 @@ fn table(target: &Path, scipy: &Value, checks: &BTreeMap<String, f64>) -> Result
         out.push_str(&format!("Missed in this run: {}.\n", missed.join("; ")));
     }
     Ok(out)
+}
+
+fn scipy_version(scipy: &Value) -> &str {
+    scipy.get("scipy").and_then(Value::as_str).unwrap_or("?")
 }
 
 fn write_readme(repo_root: &Path, table: &str) -> Result<(), String> {
