@@ -207,7 +207,7 @@ impl<T: Scalar, P: ControlPoint<T>> Bezier<T, P> {
             .degree()
             .checked_add(times)
             .expect("the elevated degree of a Bézier curve overflows usize");
-        let mut points = Vec::with_capacity(nh + 1);
+        let mut points = vec![P::origin(); nh + 1];
         BernsteinElevation::new(self.degree(), times).apply(&self.control_points, &mut points);
         Self::new_unchecked(points, self.start, self.end)
     }

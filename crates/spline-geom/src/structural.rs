@@ -21,33 +21,46 @@ pub const DEFAULT_REMOVAL_TOLERANCE: f64 = 1e-9;
 /// $Q_i = \sum_j \binom{p}{j}\binom{t}{i-j} / \binom{p+t}{i}\ P_j$, weights computed once.
 pub(crate) struct BernsteinElevation<T> {
     times: usize,
-    /// Row `i` holds the weights of `P_j` for `j = max(0, i − t) … min(p, i)`.
-    rows: Vec<Vec<T>>,
+    /// The weights of row `i` (those of `P_j` for `j = max(0, i − t) … min(p, i)`) are
+    /// `weights[starts[i]..starts[i + 1]]`.
+    weights: Vec<T>,
+    starts: Vec<usize>,
 }
 
 impl<T: Scalar> BernsteinElevation<T> {
     pub(crate) fn new(p: usize, times: usize) -> Self {
         let ph = p + times;
-        let rows = (0..=ph)
-            .map(|i| {
-                let inv = T::one() / binomial::<T>(ph, i);
+        let mut weights = Vec::new();
+        let mut starts = Vec::with_capacity(ph + 2);
+        for i in 0..=ph {
+            starts.push(weights.len());
+            let inv = T::one() / binomial::<T>(ph, i);
+            weights.extend(
                 (i.saturating_sub(times)..=p.min(i))
-                    .map(|j| inv * binomial::<T>(p, j) * binomial::<T>(times, i - j))
-                    .collect()
-            })
-            .collect();
-        Self { times, rows }
+                    .map(|j| inv * binomial::<T>(p, j) * binomial::<T>(times, i - j)),
+            );
+        }
+        starts.push(weights.len());
+        Self {
+            times,
+            weights,
+            starts,
+        }
     }
 
-    /// Appends the `p + t + 1` elevated control points of one segment to `out`.
-    pub(crate) fn apply<V: VectorSpace<T>>(&self, points: &[V], out: &mut Vec<V>) {
-        for (i, row) in self.rows.iter().enumerate() {
+    /// Writes the `p + t + 1` elevated control points of one segment into `out` (of that
+    /// length).
+    pub(crate) fn apply<V: VectorSpace<T>>(&self, points: &[V], out: &mut [V]) {
+        for ((i, slot), range) in out.iter_mut().enumerate().zip(self.starts.windows(2)) {
             let first = i.saturating_sub(self.times);
             let mut acc = V::zero_vector();
-            for (point, &w) in points[first..].iter().zip(row) {
+            for (point, &w) in points[first..]
+                .iter()
+                .zip(&self.weights[range[0]..range[1]])
+            {
                 acc.add_scaled(point, w);
             }
-            out.push(acc);
+            *slot = acc;
         }
     }
 }
@@ -70,7 +83,14 @@ fn differences<T: Scalar, V: VectorSpace<T>>(knots: &KnotVector<T>, points: &[V]
 impl<T: Scalar, V: VectorSpace<T>> BSpline<T, V> {
     /// The spline with the sorted knots `x` inserted (A5.4), no checks.
     fn refined_unchecked(&self, x: &[T]) -> Self {
-        let mut curve = self.clone();
+        // Room for the new knots and points from the start (no reallocation in the
+        // refinement).
+        let mut knots = Vec::with_capacity(self.knots().len() + x.len());
+        knots.extend_from_slice(self.knots().knots());
+        let mut points = Vec::with_capacity(self.len() + x.len());
+        points.extend_from_slice(self.control_points());
+        let mut curve =
+            Self::new_unchecked(KnotVector::new_unchecked(self.degree(), knots), points);
         curve.refine_sorted_unchecked(x);
         curve
     }
@@ -252,7 +272,7 @@ impl<T: Scalar, V: VectorSpace<T>> BSpline<T, V> {
         let p = self.degree();
         let (a, b) = self.domain();
         let breaks = self.knots().domain_breaks();
-        let mut x = Vec::new();
+        let mut x = Vec::with_capacity(breaks.len() * (p + 1));
         for (u, m) in self.knots().breakpoints() {
             // Ends up to p + 1 copies, interior breaks up to p: neighbours share a point.
             let wanted = if u == a || u == b {
@@ -306,9 +326,13 @@ impl<T: Scalar, V: VectorSpace<T>> BSpline<T, V> {
         let p = self.degree();
         let pieces = self.to_bernstein();
         let weights = BernsteinElevation::new(p, times);
-        let mut elevated = Vec::with_capacity(pieces.len() / (p + 1) * (p + times + 1));
-        for segment in pieces.control_points().chunks_exact(p + 1) {
-            weights.apply(segment, &mut elevated);
+        let mut elevated = vec![V::zero_vector(); pieces.len() / (p + 1) * (p + times + 1)];
+        for (segment, out) in pieces
+            .control_points()
+            .chunks_exact(p + 1)
+            .zip(elevated.chunks_exact_mut(p + times + 1))
+        {
+            weights.apply(segment, out);
         }
         let elevated_pieces = pieces.knots().with_degree_of_pieces(p + times);
         Ok(Self::new_unchecked(

@@ -236,7 +236,12 @@ pub(crate) fn reduce_points<T: Scalar, V: VectorSpace<T>>(
         }
         // The source B-spline with the same knots, aligned on the ends of the runs.
         if let Some(j) = (run_t + i).checked_sub(run_w) {
-            if j + p + 1 < t.len() && t[j..=j + p + 1] == w[i..=i + p + 1] {
+            // (The ends first: most rows differ there, and the slice comparison is slower.)
+            if j + p + 1 < t.len()
+                && t[j + p + 1] == w[i + p + 1]
+                && t[j] == w[i]
+                && t[j..=j + p + 1] == w[i..=i + p + 1]
+            {
                 out.push(points[j].clone());
                 continue;
             }
@@ -255,6 +260,19 @@ pub(crate) fn reduce_points<T: Scalar, V: VectorSpace<T>>(
                 if args.iter().all(|&x| x == a || x == b) {
                     let right = args.iter().filter(|&&x| x == b).count();
                     out.push(points[mu - p + right].clone());
+                    continue;
+                }
+                let piece = &points[mu - p..=mu];
+                let fixed = match p {
+                    1 => Some(bezier_blossom::<T, V, 2>(a, b, args, piece)),
+                    2 => Some(bezier_blossom::<T, V, 3>(a, b, args, piece)),
+                    3 => Some(bezier_blossom::<T, V, 4>(a, b, args, piece)),
+                    4 => Some(bezier_blossom::<T, V, 5>(a, b, args, piece)),
+                    5 => Some(bezier_blossom::<T, V, 6>(a, b, args, piece)),
+                    _ => None,
+                };
+                if let Some(point) = fixed {
+                    out.push(point);
                     continue;
                 }
                 blossom_bernstein(a, b, p, args, &mut beta);
@@ -293,6 +311,37 @@ fn blossom_basis_inside<T: Scalar>(t: &[T], p: usize, mu: usize, args: &[T], out
         }
         out[p] = saved;
     }
+}
+
+/// The blossom at `args` of the Bézier piece on `[a, b]` with control points `points`, for
+/// `N = p + 1` (arrays of exactly `N` entries; the arithmetic of [`blossom_bernstein`]).
+#[inline(always)]
+fn bezier_blossom<T: Scalar, V: VectorSpace<T>, const N: usize>(
+    a: T,
+    b: T,
+    args: &[T],
+    points: &[V],
+) -> V {
+    let p = N - 1;
+    let inv = T::one() / (b - a);
+    let mut beta = [T::zero(); N];
+    beta[p] = T::one();
+    for k in 1..=p {
+        let lambda = (args[k - 1] - a) * inv;
+        let mu = T::one() - lambda;
+        let mut saved = T::zero();
+        for r in p + 1 - k..=p {
+            let old = beta[r];
+            beta[r - 1] = saved + mu * old;
+            saved = lambda * old;
+        }
+        beta[p] = saved;
+    }
+    let mut acc = V::zero_vector();
+    for (point, &weight) in points[..N].iter().zip(&beta) {
+        acc.add_scaled(point, weight);
+    }
+    acc
 }
 
 /// [`blossom_basis`] for a Bézier piece on `[a, b]` (both ends of multiplicity `p + 1`):

@@ -467,7 +467,7 @@ impl<T: Scalar> KnotVector<T> {
     /// The distinct knots with their multiplicities, in increasing order.
     #[must_use]
     pub fn breakpoints(&self) -> Vec<(T, usize)> {
-        let mut out: Vec<(T, usize)> = Vec::new();
+        let mut out: Vec<(T, usize)> = Vec::with_capacity(self.knots.len());
         for &k in &self.knots {
             match out.last_mut() {
                 Some((last, m)) if *last == k => *m += 1,
@@ -500,7 +500,8 @@ impl<T: Scalar> KnotVector<T> {
     /// ```
     #[must_use]
     pub fn breaks_between(&self, a: T, b: T) -> Vec<T> {
-        let mut breaks = vec![a];
+        let mut breaks = Vec::with_capacity(self.knots.len() + 2);
+        breaks.push(a);
         breaks.extend(self.knots.iter().copied().filter(|&k| k > a && k < b));
         breaks.push(b);
         breaks.dedup();

@@ -208,17 +208,26 @@ impl<T: Scalar, P: ControlPoint<T>> Surface<T, P> {
                     *acc += pt * c;
                 }
             }
-            for ((slot, &sv), basis) in row_out
-                .iter_mut()
-                .zip(&v_spans)
-                .zip(v_basis.chunks_exact(q + 1))
-            {
-                let pts = &curve[sv - q..=sv];
-                let mut acc = pts[0] * basis[0];
-                for s in 1..=q {
-                    acc += pts[s] * basis[s];
+            match q {
+                1 => grid_row::<T, P, 2>(&curve, &v_spans, &v_basis, row_out),
+                2 => grid_row::<T, P, 3>(&curve, &v_spans, &v_basis, row_out),
+                3 => grid_row::<T, P, 4>(&curve, &v_spans, &v_basis, row_out),
+                4 => grid_row::<T, P, 5>(&curve, &v_spans, &v_basis, row_out),
+                5 => grid_row::<T, P, 6>(&curve, &v_spans, &v_basis, row_out),
+                _ => {
+                    for ((slot, &sv), basis) in row_out
+                        .iter_mut()
+                        .zip(&v_spans)
+                        .zip(v_basis.chunks_exact(q + 1))
+                    {
+                        let pts = &curve[sv - q..=sv];
+                        let mut acc = pts[0] * basis[0];
+                        for s in 1..=q {
+                            acc += pts[s] * basis[s];
+                        }
+                        *slot = acc;
+                    }
                 }
-                *slot = acc;
             }
         }
         Ok(())
@@ -233,5 +242,26 @@ impl<T: Scalar, P: ControlPoint<T>> Surface<T, P> {
         let mut out = vec![P::origin(); us.len() * vs.len()];
         self.eval_grid_into(us, vs, &mut out)?;
         Ok(out)
+    }
+}
+
+/// One row of a grid for `N = q + 1`: the iso-curve's `N` control points of each `v`'s span
+/// combined with its basis values, in arrays of exactly `N` entries (same sums, same order,
+/// as the general loop).
+#[inline(always)]
+fn grid_row<T: Scalar, P: ControlPoint<T>, const N: usize>(
+    curve: &[P],
+    v_spans: &[usize],
+    v_basis: &[T],
+    row_out: &mut [P],
+) {
+    for ((slot, &sv), basis) in row_out.iter_mut().zip(v_spans).zip(v_basis.chunks_exact(N)) {
+        let pts: &[P; N] = curve[sv + 1 - N..=sv].try_into().expect("N points");
+        let basis: &[T; N] = basis.try_into().expect("N basis values");
+        let mut acc = pts[0] * basis[0];
+        for s in 1..N {
+            acc += pts[s] * basis[s];
+        }
+        *slot = acc;
     }
 }
