@@ -65,6 +65,13 @@ impl<T: Scalar> BernsteinElevation<T> {
     }
 }
 
+/// The knots in increasing order (checked finite before: no NaN to order).
+fn sorted_copy<T: Scalar>(knots: &[T]) -> Vec<T> {
+    let mut x = knots.to_vec();
+    x.sort_by(|a, b| a.partial_cmp(b).unwrap_or(std::cmp::Ordering::Equal));
+    x
+}
+
 /// The differences $Q_i = \frac{p}{u_{i+p+1} - u_{i+1}} (P_{i+1} - P_i)$ of the first
 /// derivative, for the rows that [`KnotVector::derivative_row_kept`] keeps.
 fn differences<T: Scalar, V: VectorSpace<T>>(knots: &KnotVector<T>, points: &[V]) -> Vec<V> {
@@ -213,9 +220,15 @@ impl<T: Scalar, V: VectorSpace<T>> BSpline<T, V> {
     /// # Errors
     /// As [`BSpline::insert_knot`] for each knot, checked before anything is computed.
     pub fn refine(&self, new_knots: &[T]) -> Result<Self> {
-        let mut curve = self.clone();
-        curve.refine_mut(new_knots)?;
-        Ok(curve)
+        self.knots().check_new_knots(new_knots)?;
+        if new_knots.is_sorted_by(|a, b| a <= b) {
+            self.knots().check_refinement(new_knots)?;
+            Ok(self.refined_unchecked(new_knots))
+        } else {
+            let x = sorted_copy(new_knots);
+            self.knots().check_refinement(&x)?;
+            Ok(self.refined_unchecked(&x))
+        }
     }
 
     /// [`BSpline::refine`] in place (sorted knots need no copy of them).
@@ -228,8 +241,7 @@ impl<T: Scalar, V: VectorSpace<T>> BSpline<T, V> {
             self.knots().check_refinement(new_knots)?;
             self.refine_sorted_unchecked(new_knots);
         } else {
-            let mut x = new_knots.to_vec();
-            x.sort_by(|a, b| a.partial_cmp(b).unwrap_or(std::cmp::Ordering::Equal));
+            let x = sorted_copy(new_knots);
             self.knots().check_refinement(&x)?;
             self.refine_sorted_unchecked(&x);
         }
