@@ -71,10 +71,10 @@ pub use spline_core::{
     ControlPoint, Error, ErrorKind, KnotVector, Result, Scalar, SymbolicPoint, VectorSpace,
 };
 pub use spline_geom::{
-    BSpline, BSplineFunction, Bezier, Curve2, Curve3, Direction, Homogeneous, NurbsCurve,
-    NurbsCurve2, NurbsCurve3, NurbsSurface, NurbsSurface3, Operation, Outcome, ParamCurve,
-    ParamSurface, PlanarCurve, SpatialSurface, StructuralCurve, StructuralSurface, Surface,
-    Surface3, TriangleMesh,
+    BSpline, BSplineFunction, Bezier, Curve2, Curve3, CurveEvaluator, Direction, Homogeneous,
+    NurbsCurve, NurbsCurve2, NurbsCurve3, NurbsEvaluator, NurbsSurface, NurbsSurface3, Operation,
+    Outcome, ParamCurve, ParamSurface, PlanarCurve, SpatialSurface, StructuralCurve,
+    StructuralSurface, Surface, Surface3, TriangleMesh,
 };
 
 /// The containers, the traits and the nalgebra vectors: `use spline::prelude::*;`.
