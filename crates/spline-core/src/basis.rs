@@ -158,7 +158,29 @@ impl<T: Scalar> KnotVector<T> {
     /// If `out.len() < (order + 1)(p + 1)` (a buffer of that size cannot exist when the
     /// product overflows) or `span` is invalid.
     pub fn basis_derivatives(&self, span: usize, u: T, order: usize, out: &mut [T]) {
-        let p = self.degree();
+        // Small degrees as constants (the loops unroll; the same operations in the same
+        // order, so the same values).
+        match self.degree() {
+            1 => self.basis_derivatives_of_degree::<2>(1, span, u, order, out),
+            2 => self.basis_derivatives_of_degree::<3>(2, span, u, order, out),
+            3 => self.basis_derivatives_of_degree::<4>(3, span, u, order, out),
+            4 => self.basis_derivatives_of_degree::<5>(4, span, u, order, out),
+            5 => self.basis_derivatives_of_degree::<6>(5, span, u, order, out),
+            p => self.basis_derivatives_of_degree::<MAX_ORDER>(p, span, u, order, out),
+        }
+    }
+
+    /// [`KnotVector::basis_derivatives`] for `p = self.degree()`, passed in so that a
+    /// constant degree specialises the code, with working arrays of `L ≥ p + 1` entries.
+    #[inline(always)]
+    fn basis_derivatives_of_degree<const L: usize>(
+        &self,
+        p: usize,
+        span: usize,
+        u: T,
+        order: usize,
+        out: &mut [T],
+    ) {
         let knots = self.knots();
         let width = p + 1;
         assert!(span >= p && span < self.num_basis(), "invalid span {span}");
@@ -174,9 +196,9 @@ impl<T: Scalar> KnotVector<T> {
             *v = T::zero();
         }
         // Triangular scheme, capturing the degree p − k values in row k.
-        let mut left = [T::zero(); MAX_ORDER];
-        let mut right = [T::zero(); MAX_ORDER];
-        let mut n = [T::zero(); MAX_ORDER];
+        let mut left = [T::zero(); L];
+        let mut right = [T::zero(); L];
+        let mut n = [T::zero(); L];
         n[0] = T::one();
         if p <= top {
             out[p * width] = T::one();
@@ -195,7 +217,7 @@ impl<T: Scalar> KnotVector<T> {
         }
         // ndu[pk + 1][x] of A2.3: the knot difference u_{span+x+1} − u_{span+x−pk}.
         let diff = |pk: usize, x: usize| knots[span + x + 1] - knots[span + x - pk];
-        let mut a = [[T::zero(); MAX_ORDER]; 2];
+        let mut a = [[T::zero(); L]; 2];
         // Right to left: computing column r reads columns ≤ r of the degree-(p − k) rows.
         for r in (0..=p).rev() {
             let (mut s1, mut s2) = (0usize, 1usize);

@@ -62,13 +62,35 @@ impl<T: Scalar, P: ControlPoint<T>> Surface<T, P> {
     #[inline]
     fn combine_derivatives(
         &self,
+        spans: (usize, usize),
+        tables: (&[T], &[T]),
+        order: usize,
+        temp: &mut [P],
+        out: &mut [P],
+    ) {
+        // Equal small degrees as constants (the loops unroll; the same sums in the same
+        // order, so the same values).
+        match self.degrees() {
+            (1, 1) => self.combine_derivatives_of((1, 1), spans, tables, order, temp, out),
+            (2, 2) => self.combine_derivatives_of((2, 2), spans, tables, order, temp, out),
+            (3, 3) => self.combine_derivatives_of((3, 3), spans, tables, order, temp, out),
+            (4, 4) => self.combine_derivatives_of((4, 4), spans, tables, order, temp, out),
+            (5, 5) => self.combine_derivatives_of((5, 5), spans, tables, order, temp, out),
+            degrees => self.combine_derivatives_of(degrees, spans, tables, order, temp, out),
+        }
+    }
+
+    /// [`Surface::combine_derivatives`] for the degrees `(p, q)` passed in.
+    #[inline(always)]
+    fn combine_derivatives_of(
+        &self,
+        (p, q): (usize, usize),
         (su, sv): (usize, usize),
         (du, dv): (&[T], &[T]),
         order: usize,
         temp: &mut [P],
         out: &mut [P],
     ) {
-        let (p, q) = self.degrees();
         let nv = self.knots_v.num_basis();
         let width = order + 1;
         out.iter_mut().for_each(|o| *o = P::origin());
