@@ -43,27 +43,41 @@ impl SpanTable {
     /// Builds the table in `O(n)`.
     #[must_use]
     pub fn new<T: Scalar>(knots: &KnotVector<T>) -> Self {
+        let mut table = Self {
+            degree: 0,
+            start: 0.0,
+            buckets_per_unit: 0.0,
+            buckets: Vec::new(),
+            last: 0,
+        };
+        table.rebuild(knots);
+        table
+    }
+
+    /// Rebuilds the table for `knots` in `O(n)`, reusing its storage (no allocation when
+    /// the new table is no larger).
+    pub fn rebuild<T: Scalar>(&mut self, knots: &KnotVector<T>) {
         let p = knots.degree();
         let n = knots.num_basis();
         let k = knots.knots();
         let (a, b) = knots.domain();
         let (start, end) = (to_f64(a), to_f64(b));
         let count = 4 * (n - p);
-        let mut table = Self {
-            degree: p,
-            start,
-            buckets_per_unit: count as f64 / (end - start),
-            buckets: vec![[p, p]; count],
-            last: knots.span_in_domain(b),
-        };
+        self.buckets.clear();
+        self.buckets.resize(count, [p, p]);
+        let per_unit = count as f64 / (end - start);
+        self.degree = p;
+        self.start = start;
+        self.buckets_per_unit = per_unit;
+        self.last = knots.span_in_domain(b);
         // The knots u_{p+1} … u_{n−1} bucket by bucket, in increasing order: the span at a
         // bucket's left edge is the span of the last knot before it.
         let mut span = p;
         let mut j = p + 1;
-        for (i, slot) in table.buckets.iter_mut().enumerate() {
+        for (i, slot) in self.buckets.iter_mut().enumerate() {
             let left = span;
             let mut distinct = 0;
-            while j < n && Self::bucket_of(start, table.buckets_per_unit, count, k[j]) == i {
+            while j < n && Self::bucket_of(start, per_unit, count, k[j]) == i {
                 if k[j] != k[j - 1] || j == p + 1 {
                     distinct += 1;
                 }
@@ -72,7 +86,6 @@ impl SpanTable {
             }
             *slot = [left, if distinct > 1 { SEVERAL } else { span }];
         }
-        table
     }
 
     #[inline(always)]

@@ -25,7 +25,7 @@
 use crate::BSpline;
 use spline_core::{ControlPoint, KnotVector, Scalar, SpanTable, from_count};
 use std::sync::atomic::{AtomicUsize, Ordering};
-use std::sync::{Arc, OnceLock};
+use std::sync::{Arc, Mutex, OnceLock, PoisonError};
 
 /// Degrees up to this have a cached form (higher degrees keep the triangular scheme: the
 /// power form loses accuracy as the degree grows).
@@ -54,15 +54,32 @@ impl<T: Scalar, P: ControlPoint<T>> Pieces<T, P> {
     /// [`MAX_CACHED_DEGREE`], for degree 0, or when a span's form would lose accuracy
     /// (see [`CONDITION`]).
     fn new(curve: &BSpline<T, P>) -> Option<Self> {
+        let (start, end) = curve.domain();
+        let mut pieces = Self {
+            table: SpanTable::new(curve.knots()),
+            order: 0,
+            start,
+            end,
+            coefficients: Vec::new(),
+            falling: [[T::zero(); MAX_CACHED_DEGREE + 1]; MAX_CACHED_DEGREE + 1],
+        };
+        pieces.refill(curve).then_some(pieces)
+    }
+
+    /// Makes these the pieces of `curve`, reusing the storage (no allocation when the curve
+    /// has no more spans than the one they were built for); `false` where
+    /// [`Pieces::new`] gives `None`.
+    fn refill(&mut self, curve: &BSpline<T, P>) -> bool {
         let p = curve.degree();
         if p == 0 || p > MAX_CACHED_DEGREE {
-            return None;
+            return false;
         }
         let knots = curve.knots();
         let k = knots.knots();
         let n = knots.num_basis();
         let order = p + 1;
-        let mut coefficients = vec![P::origin(); (n - p) * order];
+        self.coefficients.clear();
+        self.coefficients.resize((n - p) * order, P::origin());
         let mut factorial = T::one();
         let mut inverse_factorials = [T::one(); MAX_CACHED_DEGREE + 1];
         for (i, slot) in inverse_factorials
@@ -74,7 +91,7 @@ impl<T: Scalar, P: ControlPoint<T>> Pieces<T, P> {
             factorial *= from_count::<T>(i);
             *slot = T::one() / factorial;
         }
-        for (s, row) in (p..n).zip(coefficients.chunks_exact_mut(order)) {
+        for (s, row) in (p..n).zip(self.coefficients.chunks_exact_mut(order)) {
             if k[s] == k[s + 1] {
                 continue;
             }
@@ -100,24 +117,24 @@ impl<T: Scalar, P: ControlPoint<T>> Pieces<T, P> {
             if !row.iter().all(ControlPoint::all_finite)
                 || !(spread <= from_count::<T>(CONDITION) * largest)
             {
-                return None;
+                return false;
             }
         }
-        let mut falling = [[T::zero(); MAX_CACHED_DEGREE + 1]; MAX_CACHED_DEGREE + 1];
-        for (j, row) in falling.iter_mut().enumerate().take(order) {
-            for (k, slot) in row.iter_mut().enumerate().take(order).skip(j) {
-                *slot = from_count::<T>(((k - j + 1)..=k).product::<usize>());
+        for (j, row) in self.falling.iter_mut().enumerate() {
+            for (k, slot) in row.iter_mut().enumerate() {
+                *slot = if j < order && k >= j && k < order {
+                    from_count::<T>(((k - j + 1)..=k).product::<usize>())
+                } else {
+                    T::zero()
+                };
             }
         }
         let (start, end) = knots.domain();
-        Some(Self {
-            table: SpanTable::new(knots),
-            order,
-            start,
-            end,
-            coefficients,
-            falling,
-        })
+        self.table.rebuild(knots);
+        self.order = order;
+        self.start = start;
+        self.end = end;
+        true
     }
 
     /// $C(u)$ from the cached form for `start ≤ u < end`; `None` otherwise (the domain's
@@ -277,10 +294,13 @@ fn at_end<T, P>(exact: &impl Fn(T) -> P, u: T) -> P {
 }
 
 /// The cache slot in a [`BSpline`]: empty, or the pieces (`None` where the degree has no
-/// cached form), and the number of one-point evaluations since the curve last changed.
+/// cached form), the number of one-point evaluations since the curve last changed, and the
+/// pieces dropped by the last change (their storage is reused by the next build, so that a
+/// curve changed and evaluated in a loop — parameter correction — allocates nothing).
 pub(crate) struct PieceCache<T, P> {
     pieces: OnceLock<Option<Arc<Pieces<T, P>>>>,
     calls: AtomicUsize,
+    spare: Mutex<Option<Arc<Pieces<T, P>>>>,
 }
 
 impl<T, P> Default for PieceCache<T, P> {
@@ -288,24 +308,31 @@ impl<T, P> Default for PieceCache<T, P> {
         Self {
             pieces: OnceLock::new(),
             calls: AtomicUsize::new(0),
+            spare: Mutex::new(None),
         }
     }
 }
 
 impl<T, P> Clone for PieceCache<T, P> {
-    /// Clones share the pieces (an `Arc`).
+    /// Clones share the pieces (an `Arc`), not the spare storage.
     fn clone(&self) -> Self {
         Self {
             pieces: self.pieces.clone(),
             calls: AtomicUsize::new(self.calls.load(Ordering::Relaxed)),
+            spare: Mutex::new(None),
         }
     }
 }
 
 impl<T, P> PieceCache<T, P> {
-    /// Drops the pieces: the knots or control points change.
+    /// Drops the pieces: the knots or control points change. Pieces no clone shares are
+    /// kept as storage for the next build.
     pub(crate) fn invalidate(&mut self) {
-        self.pieces = OnceLock::new();
+        if let Some(Some(pieces)) = self.pieces.take()
+            && Arc::strong_count(&pieces) == 1
+        {
+            *self.spare.get_mut().unwrap_or_else(PoisonError::into_inner) = Some(pieces);
+        }
         *self.calls.get_mut() = 0;
     }
 }
@@ -320,7 +347,19 @@ impl<T: Scalar, P: ControlPoint<T>> PieceCache<T, P> {
     /// The pieces, built now if needed.
     pub(crate) fn get_or_build(&self, curve: &BSpline<T, P>) -> Option<&Pieces<T, P>> {
         self.pieces
-            .get_or_init(|| Pieces::new(curve).map(Arc::new))
+            .get_or_init(|| {
+                let spare = self
+                    .spare
+                    .lock()
+                    .unwrap_or_else(PoisonError::into_inner)
+                    .take();
+                match spare {
+                    Some(mut pieces) => Arc::get_mut(&mut pieces)
+                        .is_some_and(|storage| storage.refill(curve))
+                        .then_some(pieces),
+                    None => Pieces::new(curve).map(Arc::new),
+                }
+            })
             .as_deref()
     }
 

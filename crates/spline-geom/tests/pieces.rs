@@ -169,6 +169,50 @@ fn the_cache_is_not_part_of_the_value() {
     let exact = dense_point(&knots, changed.control_points(), u);
     assert!((changed.eval(u).unwrap() - exact).amax() < 1e-14);
     assert!((warmed.eval(u).unwrap() - cold.eval(u).unwrap()).amax() < 1e-14);
+    // The changed clone rebuilds its own form (the shared one is not reused as storage):
+    // both evaluators agree with their own control points everywhere.
+    let (fresh, kept) = (changed.evaluator(), warmed.evaluator());
+    for i in 0..=200 {
+        let u = 2.0 * f64::from(i) / 200.0;
+        let exact = dense_point(&knots, changed.control_points(), u);
+        assert!(
+            (fresh.eval(u).unwrap() - exact).amax() < 1e-13,
+            "changed at {u}"
+        );
+        let exact = dense_point(&knots, warmed.control_points(), u);
+        assert!(
+            (kept.eval(u).unwrap() - exact).amax() < 1e-13,
+            "warmed at {u}"
+        );
+    }
+}
+
+#[test]
+fn a_changed_curve_rebuilds_its_form_in_the_old_storage() {
+    // Changed and evaluated in a loop (as parameter correction does): each round's form is
+    // the new curve's, whether the knot vector grows, shrinks back or stays.
+    let knots = KnotVector::clamped_uniform(3, 30, 0.0, 1.0).unwrap();
+    let mut curve = Curve::new(knots.clone(), points_for(&knots, 0.7)).unwrap();
+    for round in 0..6 {
+        let evaluator = curve.evaluator();
+        for i in 0..=300 {
+            let u = f64::from(i) / 300.0;
+            let exact = dense_point(curve.knots(), curve.control_points(), u);
+            assert!(
+                (evaluator.eval(u).unwrap() - exact).amax() < 1e-13,
+                "round {round} at {u}"
+            );
+        }
+        if round == 2 {
+            curve.refine_mut(&[0.11, 0.52, 0.93]).unwrap();
+        } else if round == 4 {
+            curve = Curve::new(knots.clone(), curve.control_points()[..30].to_vec()).unwrap();
+        } else {
+            for p in curve.control_points_mut() {
+                *p = Vector2::new(p.y + 0.1, -p.x);
+            }
+        }
+    }
 }
 
 proptest! {
