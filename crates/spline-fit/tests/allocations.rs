@@ -9,7 +9,8 @@
 
 use nalgebra::Vector2;
 use spline_fit::{
-    CorrectionOptions, LeastSquares, correct_parameters, correct_parameters_bezier, nurbs_book_knots,
+    CorrectionOptions, LeastSquares, correct_parameters, correct_parameters_bezier,
+    nurbs_book_knots,
 };
 use spline_testing::allocations::SERIAL;
 use stats_alloc::{INSTRUMENTED_SYSTEM, StatsAlloc};
@@ -90,5 +91,8 @@ fn bezier_parameter_correction_allocates_two_vectors_per_sweep() {
     assert_eq!((short.iterations, long.iterations), (4, 8));
     assert!(long.errors[8] < long.errors[4] && long.errors[4] < long.errors[0]);
     eprintln!("Bézier parameter correction: {few} allocations for 4 sweeps, {many} for 8");
-    assert!(many - few <= 2 * 4, "{few} allocations for 4 sweeps, {many} for 8");
+    assert!(
+        many - few <= 2 * 4,
+        "{few} allocations for 4 sweeps, {many} for 8"
+    );
 }
