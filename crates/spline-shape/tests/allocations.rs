@@ -126,6 +126,43 @@ fn trust_region_steps_allocate_a_bounded_amount() {
     assert!(many - few <= 6 * (long.newton_iterations - short.newton_iterations));
 }
 
+/// The same trust-region solves, with nalgebra's eigendecompositions taken off (5 blocks
+/// each, counted by [`spline_shape::barrier::trust_region_eigendecompositions`]): a solve of
+/// twice the Newton steps allocates exactly as much — the rest of a trust-region step (the
+/// metric's and the Hessian's Cholesky factorisations, failed ones included, the scaled
+/// matrices, the secular equation) reuses the workspace.
+#[test]
+fn trust_region_steps_allocate_only_eigendecompositions() {
+    let _guard = SERIAL
+        .lock()
+        .unwrap_or_else(std::sync::PoisonError::into_inner);
+    let (problem, x0) = monotone_fit();
+    let run = |gap: f64| {
+        let options = BarrierOptions {
+            gap_tolerance: gap,
+            t_growth: 2.0,
+            ..BarrierOptions::default()
+        };
+        let eigen = trust_region_eigendecompositions();
+        let (count, report) =
+            allocations(|| minimize(&problem, x0.clone(), &options).expect("solved"));
+        // `allocations` runs the solve three times.
+        let eigen = (trust_region_eigendecompositions() - eigen) / 3;
+        (count - 5 * eigen, eigen, report.newton_iterations)
+    };
+    let _ = run(1e-3);
+    let (few, few_eigen, few_steps) = run(1e-3);
+    let (many, many_eigen, many_steps) = run(1e-12);
+    eprintln!(
+        "constrained approximation, t × 2, eigendecompositions taken off: {few} allocations \
+         for {few_steps} Newton steps ({few_eigen} eigendecompositions), {many} for \
+         {many_steps} ({many_eigen})"
+    );
+    assert!(many_steps >= 2 * few_steps, "{few_steps} / {many_steps}");
+    assert!(many_eigen > few_eigen);
+    assert_eq!(few, many);
+}
+
 /// The eraser (`spline smooth`'s path) on an airfoil: its Newton steps reuse the solver's
 /// workspace and the problem's buffers; what is left is per centring step and per round
 /// (refinement of the conditions, the continuation's levels, the anchors of the foot points)
