@@ -68,11 +68,10 @@ fn parallel_surfaces(c: &mut Criterion) {
         .sample_size(10)
         .warm_up_time(Duration::from_millis(500))
         .measurement_time(Duration::from_secs(4));
-    let m = 200_000;
-    #[allow(clippy::cast_precision_loss)]
+    let m = 200_000_u32;
     let params: Vec<(f64, f64)> = (0..m)
         .map(|k| {
-            let k = k as f64;
+            let k = f64::from(k);
             (
                 (k * 0.618_033_988_749_895).fract(),
                 (k * 0.754_877_666_246_693).fract(),

@@ -285,6 +285,9 @@ pub fn correct_parameters<T: Scalar, P: ControlPoint<T>>(
     Ok((CurveFit::new(curve, params, points)?, report))
 }
 
+/// A Bézier curve and its hodograph.
+type WithHodograph<T, P> = (Bezier<T, P>, Bezier<T, P>);
+
 /// Parameter correction for the Bézier least squares of seed 003 TD3: as
 /// [`correct_parameters`], each refit by [`crate::bezier_least_squares`] of degree `degree`
 /// on `[a, b]` from the starting `params` (non-decreasing, in `[a, b]`).
@@ -308,7 +311,7 @@ pub fn correct_parameters_bezier<T: Scalar, P: ControlPoint<T>>(
     let problem = LeastSquares::new(points, start, knots);
     let mut workspace = None;
     let mut control = vec![P::origin(); degree + 1];
-    let mut fit = |params: &[T], curve: &mut Option<(Bezier<T, P>, Bezier<T, P>)>| -> Result<()> {
+    let mut fit = |params: &[T], curve: &mut Option<WithHodograph<T, P>>| -> Result<()> {
         if !problem.control_points_into(params, &mut workspace, &mut control)? {
             control = bezier_control(points, params, degree, interval, None)?;
         }
@@ -317,7 +320,7 @@ pub fn correct_parameters_bezier<T: Scalar, P: ControlPoint<T>>(
         *curve = Some((bezier, hodograph));
         Ok(())
     };
-    let eval = |curve: &Option<(Bezier<T, P>, Bezier<T, P>)>, t: T| -> Result<(P, P)> {
+    let eval = |curve: &Option<WithHodograph<T, P>>, t: T| -> Result<(P, P)> {
         let (curve, hodograph) = curve.as_ref().ok_or_else(not_fitted)?;
         Ok((curve.eval(t)?, hodograph.eval(t)?))
     };
