@@ -285,6 +285,9 @@ pub fn correct_parameters<T: Scalar, P: ControlPoint<T>>(
     Ok((CurveFit::new(curve, params, points)?, report))
 }
 
+/// A Bézier curve and its hodograph.
+type WithHodograph<T, P> = (Bezier<T, P>, Bezier<T, P>);
+
 /// Parameter correction for the Bézier least squares of seed 003 TD3: as
 /// [`correct_parameters`], each refit by [`crate::bezier_least_squares`] of degree `degree`
 /// on `[a, b]` from the starting `params` (non-decreasing, in `[a, b]`).
@@ -298,19 +301,28 @@ pub fn correct_parameters_bezier<T: Scalar, P: ControlPoint<T>>(
     interval: (T, T),
     options: &CorrectionOptions<T>,
 ) -> Result<(BezierFit<T, P>, CorrectionReport<T>)> {
-    let mut params = params.to_vec();
+    let start = params;
+    let mut params = start.to_vec();
     check_inputs(points, &params, options)?;
-    let new = |params: &[T]| -> Result<Bezier<T, P>> {
-        let control = bezier_control(points, params, degree, interval, None)?;
-        Bezier::with_interval(control, interval.0, interval.1)
-    };
-    let mut fit = |params: &[T], curve: &mut Option<Bezier<T, P>>| -> Result<()> {
-        *curve = Some(new(params)?);
+    // Each refit writes the control points through a reused least-squares workspace; the
+    // curve and its hodograph are then made again (two vectors per sweep: `Bezier` has no
+    // in-place form), and evaluated exactly as before.
+    let knots = KnotVector::bezier(degree, interval.0, interval.1)?;
+    let problem = LeastSquares::new(points, start, knots);
+    let mut workspace = None;
+    let mut control = vec![P::origin(); degree + 1];
+    let mut fit = |params: &[T], curve: &mut Option<WithHodograph<T, P>>| -> Result<()> {
+        if !problem.control_points_into(params, &mut workspace, &mut control)? {
+            control = bezier_control(points, params, degree, interval, None)?;
+        }
+        let bezier = Bezier::with_interval(control.clone(), interval.0, interval.1)?;
+        let hodograph = bezier.derivative();
+        *curve = Some((bezier, hodograph));
         Ok(())
     };
-    let eval = |curve: &Option<Bezier<T, P>>, t: T| -> Result<(P, P)> {
-        let curve = curve.as_ref().ok_or_else(not_fitted)?;
-        Ok((curve.eval(t)?, curve.derivative().eval(t)?))
+    let eval = |curve: &Option<WithHodograph<T, P>>, t: T| -> Result<(P, P)> {
+        let (curve, hodograph) = curve.as_ref().ok_or_else(not_fitted)?;
+        Ok((curve.eval(t)?, hodograph.eval(t)?))
     };
     let (curve, report) = run(
         points,
@@ -322,7 +334,7 @@ pub fn correct_parameters_bezier<T: Scalar, P: ControlPoint<T>>(
         &mut fit,
         &eval,
     )?;
-    let curve = curve.ok_or_else(not_fitted)?;
+    let (curve, _) = curve.ok_or_else(not_fitted)?;
     let distances = params
         .iter()
         .zip(points)

@@ -232,7 +232,8 @@ fn assemble_normal<T: Scalar, P: ControlPoint<T>>(
     normal_dispatch::<T, P, true>(knots, params, points, weights, check, band, rhs)
 }
 
-/// Data sets at least this large are assembled in parallel (`parallel` feature).
+/// Data sets at least this large are assembled in parallel (`parallel` feature): curve fits,
+/// scattered least-squares surfaces, and the grid lines of grid surface fits.
 #[cfg(feature = "parallel")]
 pub const PARALLEL_MIN_POINTS: usize = 1 << 14;
 

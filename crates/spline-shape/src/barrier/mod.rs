@@ -22,9 +22,9 @@ mod workspace;
 use newton::{DENSE_LIMIT, SparseNewton};
 pub use phase_one::{find_feasible, find_feasible_near};
 use trust_region::centre_trust_region;
-pub use workspace::SparseRows;
 pub(crate) use workspace::Workspace;
 use workspace::with_workspace;
+pub use workspace::{SparseRows, trust_region_eigendecompositions};
 
 /// A smooth problem `min f0(x) s.t. f_i(x) < 0` with first and second derivatives.
 ///

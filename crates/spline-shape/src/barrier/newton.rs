@@ -19,11 +19,7 @@ pub(crate) struct SparseNewton {
     pattern: SparsityPattern,
     /// The slot of every diagonal entry.
     diagonal: Vec<usize>,
-    symbolic: CscSymbolicCholesky,
     factor: CscCholesky<f64>,
-    /// Whether the last factorisation failed (the factor's work memory is then not clean:
-    /// the next one starts from the symbolic analysis again).
-    failed: bool,
     /// The values without the constraints' curvature, and the values being factored.
     pub(super) base: Vec<f64>,
     pub(super) work: Vec<f64>,
@@ -57,16 +53,14 @@ impl SparseNewton {
             })
             .collect();
         let symbolic = CscSymbolicCholesky::factor(pattern.clone());
-        let factor = CscCholesky::factor_numerical(symbolic.clone(), &identity)
+        let factor = CscCholesky::factor_numerical(symbolic, &identity)
             .expect("the identity is positive definite");
         let nnz = pattern.nnz();
         Self {
             n,
             pattern,
             diagonal,
-            symbolic,
             factor,
-            failed: false,
             base: vec![0.0; nnz],
             work: vec![0.0; nnz],
             missed: false,
@@ -135,19 +129,12 @@ impl SparseNewton {
     /// Factors the working values and solves `H d = −g` into `d`, if `H` is positive
     /// definite.
     fn solve_work(&mut self, gradient: &DVector<f64>, d: &mut DVector<f64>) -> bool {
-        let ok = if self.failed {
-            match CscCholesky::factor_numerical(self.symbolic.clone(), &self.work) {
-                Ok(f) => {
-                    self.factor = f;
-                    true
-                }
-                Err(_) => false,
-            }
-        } else {
-            self.factor.refactor(&self.work).is_ok()
-        };
-        self.failed = !ok;
-        if !ok {
+        // A failed factorisation leaves partial sums in the factor's work memory; the next
+        // one on the same symbolic analysis is still exact: left-looking Cholesky's first
+        // touch of a work entry `p` in column `j` is the scatter of column `j` of the matrix
+        // (an assignment: the first column whose factor pattern holds `p` has `p` in the
+        // matrix's pattern), so nothing of the failed one is read (tested below).
+        if self.factor.refactor(&self.work).is_err() {
             return false;
         }
         d.copy_from(gradient);
@@ -195,5 +182,97 @@ impl SparseNewton {
             ErrorKind::SingularSystem,
             "the Newton matrix could not be made positive definite",
         ))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A scattered symmetric pattern whose factor fills in: entries `(i, i + 1)`,
+    /// `(i, i + 4)` and `(i, 7i mod n)`.
+    fn scattered(n: usize) -> SparseNewton {
+        let entries = (0..n).flat_map(|i| {
+            [(i + 1) % n, (i + 4) % n, (7 * i) % n]
+                .into_iter()
+                .flat_map(move |j| [(i, j), (j, i)])
+        });
+        SparseNewton::new(n, entries)
+    }
+
+    fn fill(m: &mut SparseNewton, value: impl Fn(usize, usize) -> f64) {
+        m.clear();
+        let entries: Vec<_> = m.entries().collect();
+        for (i, j) in entries {
+            m.add(i, j, value(i, j));
+        }
+        m.reset_work();
+    }
+
+    fn spd(i: usize, j: usize) -> f64 {
+        if i == j {
+            12.0 + (i % 5) as f64
+        } else {
+            0.3 + 0.05 * ((i * j) % 7) as f64
+        }
+    }
+
+    /// After failed (indefinite) factorisations, failing in every column in turn, the next
+    /// one on the same symbolic analysis solves bit for bit as a factorisation from scratch
+    /// does.
+    #[test]
+    fn a_failed_factorisation_leaves_no_trace() {
+        let n = 23;
+        let gradient = DVector::from_fn(n, |i, _| 1.0 + (i as f64).sin());
+        let mut fresh = scattered(n);
+        fill(&mut fresh, spd);
+        let mut expected = DVector::zeros(n);
+        assert!(fresh.solve_definite(&gradient, &mut expected));
+        let h = nalgebra::DMatrix::from_fn(n, n, |i, j| {
+            if fresh.slot(i, j).is_some() {
+                spd(i, j)
+            } else {
+                0.0
+            }
+        });
+        assert!((h * &expected + &gradient).norm() < 1e-12);
+        let mut d = DVector::zeros(n);
+        let mut reused = scattered(n);
+        for k in 1..n {
+            // Indefinite in column k (the failure happens after columns 0..k wrote).
+            fill(&mut reused, |i, j| {
+                if i == k && j == k {
+                    -100.0
+                } else {
+                    3.0 * spd(i, j) + 1.0
+                }
+            });
+            assert!(!reused.solve_definite(&gradient, &mut d));
+            fill(&mut reused, spd);
+            assert!(reused.solve_definite(&gradient, &mut d));
+            assert_eq!(d, expected, "after a failure in column {k}");
+        }
+    }
+
+    /// The shifted solve after a failed curved one: the same as on a fresh factor.
+    #[test]
+    fn shifted_solves_reuse_the_symbolic_analysis() {
+        let n = 23;
+        let semidefinite = |i: usize, j: usize| if i == 0 || j == 0 { 1.0 } else { 0.0 };
+        let gradient = DVector::from_element(n, 1.0);
+        let mut d = DVector::zeros(n);
+        let mut reused = scattered(n);
+        fill(&mut reused, |i, j| if i == j { -1.0 } else { 2.0 });
+        assert!(!reused.solve_definite(&gradient, &mut d));
+        fill(&mut reused, semidefinite);
+        reused.solve_shifted(&gradient, &mut d).expect("shifted");
+        let mut fresh = scattered(n);
+        fill(&mut fresh, semidefinite);
+        let mut expected = DVector::zeros(n);
+        fresh
+            .solve_shifted(&gradient, &mut expected)
+            .expect("shifted");
+        assert_eq!(d, expected);
+        assert!(d.iter().all(|v| v.is_finite()));
     }
 }

@@ -1,7 +1,7 @@
 //! The dense path: Newton's method with a trust region in the barrier's local metric.
 
 use super::{BarrierOptions, BarrierProblem, StopRule, Workspace, barrier_gradient, barrier_value};
-use nalgebra::{DMatrix, DVector};
+use nalgebra::{Cholesky, DMatrix, DVector, Dyn};
 use spline_core::{Error, ErrorKind, Result};
 
 /// Newton's method with a trust region on the barrier objective for fixed `t` (dense
@@ -110,6 +110,7 @@ pub(super) fn centre_trust_region(
             }
         }
         let eigen = symmetric.symmetric_eigen();
+        super::workspace::count_eigendecomposition();
         eigen.eigenvectors.transpose_to(&mut ws.qt);
         let mut improved = false;
         for _ in 0..60 {
@@ -170,14 +171,35 @@ fn newton_step(ws: &mut Workspace) -> bool {
         .take()
         .unwrap_or_else(|| DMatrix::zeros(ws.n, ws.n));
     storage.copy_from(&ws.hessian);
-    let Some(factor) = storage.cholesky() else {
-        return false;
+    let factor = match cholesky_in(storage) {
+        Ok(factor) => factor,
+        Err(storage) => {
+            ws.hessian_storage = Some(storage);
+            return false;
+        }
     };
     ws.direction.copy_from(&ws.gradient);
     ws.direction.neg_mut();
     factor.solve_mut(&mut ws.direction);
     ws.hessian_storage = Some(factor.unpack_dirty());
     true
+}
+
+/// The Cholesky factorisation of `m` in its own storage, or the storage back when `m` is not
+/// positive definite (nalgebra's `cholesky()` drops it then, and the next attempt would
+/// allocate). `Cholesky::new_unchecked` runs the same arithmetic as `Cholesky::new`, which
+/// fails at the first pivot that is zero, negative or NaN; such a pivot leaves a diagonal
+/// entry of the factor that is not positive (its square root: zero or NaN), and
+/// the columns before it are those of `new`, so "every diagonal entry positive" is exactly
+/// `new`'s success, with the same factor.
+fn cholesky_in(m: DMatrix<f64>) -> std::result::Result<Cholesky<f64, Dyn>, DMatrix<f64>> {
+    let factor = Cholesky::new_unchecked(m);
+    let l = factor.l_dirty();
+    if (0..l.nrows()).all(|i| l[(i, i)] > 0.0) {
+        Ok(factor)
+    } else {
+        Err(factor.unpack_dirty())
+    }
 }
 
 /// The Cholesky factor of `m`, shifted by a small multiple of its largest diagonal entry if
@@ -200,11 +222,14 @@ fn positive_definite_factor(
         for i in 0..n {
             shifted[(i, i)] += shift;
         }
-        if let Some(f) = shifted.cholesky() {
-            l.copy_from(f.l_dirty());
-            l.fill_upper_triangle(0.0, 1);
-            *storage = Some(f.unpack_dirty());
-            return true;
+        match cholesky_in(shifted) {
+            Ok(f) => {
+                l.copy_from(f.l_dirty());
+                l.fill_upper_triangle(0.0, 1);
+                *storage = Some(f.unpack_dirty());
+                return true;
+            }
+            Err(shifted) => *storage = Some(shifted),
         }
         shift = if shift == 0.0 {
             1e-12 * scale
@@ -296,4 +321,57 @@ fn trust_region_step(
     }
     ws.hy.gemv(1.0, q, &ws.weighted, 0.0);
     -(gradient.dot(&*y) + 0.5 * y.dot(&ws.hy))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// `cholesky_in` succeeds exactly when nalgebra's `cholesky()` does, with the same factor
+    /// bit for bit, on positive definite, semi-definite, indefinite and non-finite matrices.
+    #[test]
+    fn cholesky_in_is_nalgebras_cholesky() {
+        let mut seed = 0x2545_f491_4f6c_dd1d_u64;
+        let mut next = || {
+            seed ^= seed << 13;
+            seed ^= seed >> 7;
+            seed ^= seed << 17;
+            (seed >> 11) as f64 / (1u64 << 53) as f64 - 0.5
+        };
+        let (mut successes, mut failures) = (0, 0);
+        for case in 0..400 {
+            let n = 1 + case % 9;
+            let a = DMatrix::from_fn(n, n, |_, _| next());
+            let mut m = &a * a.transpose();
+            match case % 4 {
+                0 => {}
+                1 => m[(n / 2, n / 2)] -= 0.3 * n as f64,
+                2 => {
+                    let v = DVector::from_fn(n, |_, _| next());
+                    m = &v * v.transpose();
+                }
+                _ => m[(n - 1, 0)] = if case % 8 == 3 { f64::NAN } else { 2.0 },
+            }
+            if case % 4 == 3 {
+                m[(0, n - 1)] = m[(n - 1, 0)];
+            }
+            let expected = m.clone().cholesky();
+            match (cholesky_in(m.clone()), expected) {
+                (Ok(ours), Some(theirs)) => {
+                    assert_eq!(ours.unpack_dirty(), theirs.unpack_dirty(), "case {case}");
+                    successes += 1;
+                }
+                (Err(_), None) => failures += 1,
+                (ours, theirs) => panic!(
+                    "case {case}: ours {}, nalgebra's {}",
+                    ours.is_ok(),
+                    theirs.is_some()
+                ),
+            }
+        }
+        assert!(
+            successes > 100 && failures > 100,
+            "{successes} / {failures}"
+        );
+    }
 }

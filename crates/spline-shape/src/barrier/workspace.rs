@@ -280,6 +280,33 @@ impl Workspace {
 }
 
 thread_local! {
+    /// The trust-region subproblems solved by an eigendecomposition on this thread.
+    static EIGENDECOMPOSITIONS: std::cell::Cell<usize> = const { std::cell::Cell::new(0) };
+}
+
+/// Counts one eigendecomposition of the trust-region subproblem on this thread.
+pub(super) fn count_eigendecomposition() {
+    EIGENDECOMPOSITIONS.with(|c| c.set(c.get() + 1));
+}
+
+/// The number of trust-region subproblems the dense solver has solved by an
+/// eigendecomposition on this thread so far (a diagnostic). Every other part of a Newton
+/// step reuses the solver's workspace; nalgebra's symmetric eigendecomposition has no
+/// in-place form and allocates its own work vectors and eigenvectors (5 blocks in nalgebra
+/// 0.35), so the allocations of a solve grow only by 5 per such step.
+///
+/// ```
+/// use spline_shape::barrier::trust_region_eigendecompositions;
+/// let before = trust_region_eigendecompositions();
+/// // … solve …
+/// assert!(trust_region_eigendecompositions() >= before);
+/// ```
+#[must_use]
+pub fn trust_region_eigendecompositions() -> usize {
+    EIGENDECOMPOSITIONS.with(std::cell::Cell::get)
+}
+
+thread_local! {
     /// The workspace of the solver on this thread: kept between calls, so that the centring
     /// steps of one solve (and the solves of one eraser run) reuse the same memory.
     static WORKSPACE: RefCell<Workspace> = RefCell::new(Workspace::default());
