@@ -134,18 +134,45 @@ pub fn surface_grid_params<T: Scalar, P: ControlPoint<T>>(
     Ok((u, v))
 }
 
+/// With the `parallel` feature and at least [`crate::PARALLEL_MIN_POINTS`] pairs: whether
+/// every pair lies in the domains, checked in chunks on every core; `false` otherwise (and
+/// when a check fails), so that the sequential check runs and names the first bad pair.
+#[allow(unused_variables)]
+fn params_inside_on_every_core<T: Scalar>(
+    params: &[(T, T)],
+    knots_u: &KnotVector<T>,
+    knots_v: &KnotVector<T>,
+) -> bool {
+    #[cfg(feature = "parallel")]
+    if params.len() >= crate::PARALLEL_MIN_POINTS {
+        use rayon::prelude::*;
+        let ((a, b), (c, d)) = (knots_u.domain(), knots_v.domain());
+        let chunk = crate::lsq::chunk_len(params.len());
+        // The comparisons fail for NaN too.
+        return params.par_chunks(chunk).all(|pairs| {
+            pairs
+                .iter()
+                .all(|&(u, v)| u >= a && u <= b && v >= c && v <= d)
+        });
+    }
+    false
+}
+
 fn grid_deviation<T: Scalar, P: ControlPoint<T>>(
     surface: &Surface<T, P>,
     grid: &[P],
     u: &[T],
     v: &[T],
 ) -> Result<Deviation<T>> {
-    let mut d = Vec::with_capacity(grid.len());
-    for (k, &uk) in u.iter().enumerate() {
-        for (l, &vl) in v.iter().enumerate() {
-            d.push((surface.eval(uk, vl)? - grid[k * v.len() + l]).length());
-        }
-    }
+    // The grid kernel (iso-curves along v, then one combination per point), not one
+    // evaluation per point.
+    let mut evaluated = vec![P::origin(); grid.len()];
+    surface.eval_grid_into(u, v, &mut evaluated)?;
+    let d = evaluated
+        .iter()
+        .zip(grid)
+        .map(|(s, g)| (*s - *g).length())
+        .collect();
     Ok(Deviation::from_distances(d))
 }
 
@@ -352,11 +379,15 @@ pub fn approximate_surface_scattered<T: Scalar, P: ControlPoint<T>>(
             ),
         ));
     }
-    for (k, &(u, v)) in params.iter().enumerate() {
-        knots_u
-            .check_param(u)
-            .and_then(|()| knots_v.check_param(v))
-            .map_err(|e| e.context(format_args!("point {k}")))?;
+    if !params_inside_on_every_core(params, knots_u, knots_v) {
+        // Sequentially (also when a parallel check failed): the error names the first bad
+        // pair.
+        for (k, &(u, v)) in params.iter().enumerate() {
+            knots_u
+                .check_param(u)
+                .and_then(|()| knots_v.check_param(v))
+                .map_err(|e| e.context(format_args!("point {k}")))?;
+        }
     }
     let (p, q) = (knots_u.degree(), knots_v.degree());
     let (nu, nv) = (knots_u.num_basis(), knots_v.num_basis());

@@ -219,3 +219,58 @@ fn grid_surface_lines_in_parallel_equal_the_sequential_ones() {
     };
     assert_eq!(err(1), err(2));
 }
+
+#[test]
+fn bad_data_is_named_as_the_sequential_checks_name_it() {
+    // The data are validated in chunks on every core; a failed chunk falls back to the
+    // sequential checks, whose messages name the first bad entry.
+    let m = 2 * PARALLEL_MIN_POINTS + 5;
+    let (points, params, _) = data(m);
+    let knots = KnotVector::uniform(3, 40, 0.0, 1.0).expect("knots");
+    let fit = |points: &[Vector2<f64>], params: &[f64]| {
+        on_threads(2, || {
+            LeastSquares::new(points, params, knots.clone())
+                .control_points()
+                .map(|_| ())
+        })
+    };
+    assert!(fit(&points, &params).is_ok());
+    let mut outside = params.clone();
+    // The last parameter, so that they stay sorted.
+    outside[m - 1] = 2.0;
+    let e = fit(&points, &outside).unwrap_err();
+    assert_eq!(e.kind(), ErrorKind::OutOfDomain);
+    assert!(
+        e.to_string().contains(&format!("parameter {}", m - 1)),
+        "{e}"
+    );
+    let mut unsorted = params.clone();
+    // Across the boundary of two chunks (of at least 4096 parameters).
+    unsorted.swap(4 * 4096 - 1, 4 * 4096);
+    let e = fit(&points, &unsorted).unwrap_err();
+    assert_eq!(e.kind(), ErrorKind::UnsortedKnots, "{e}");
+    let mut nan_point = points.clone();
+    nan_point[20_000].y = f64::NAN;
+    let e = fit(&nan_point, &params).unwrap_err();
+    assert_eq!(e.kind(), ErrorKind::NonFinite);
+    assert!(e.to_string().contains("data point 20000"), "{e}");
+    let mut nan_param = params.clone();
+    nan_param[30_000] = f64::NAN;
+    let e = fit(&points, &nan_param).unwrap_err();
+    assert_eq!(e.kind(), ErrorKind::NonFinite);
+    assert!(e.to_string().contains("parameter 30000"), "{e}");
+
+    let (pairs, values) = scattered(m);
+    let surface = |pairs: &[(f64, f64)]| {
+        on_threads(2, || {
+            spline_fit::approximate_surface_scattered(pairs, &values, &knots, &knots, 0.0)
+                .map(|_| ())
+        })
+    };
+    assert!(surface(&pairs).is_ok());
+    let mut bad = pairs.clone();
+    bad[m - 10].1 = f64::NAN;
+    let e = surface(&bad).unwrap_err();
+    assert_eq!(e.kind(), ErrorKind::NonFinite);
+    assert!(e.to_string().contains(&format!("point {}", m - 10)), "{e}");
+}

@@ -9,6 +9,8 @@ mod parallel;
 pub use assemble::PARALLEL_MIN_POINTS;
 pub(crate) use assemble::penalty_rows;
 pub use normal::{GridLeastSquares, GridNormalEquations, NormalEquations};
+#[cfg(feature = "parallel")]
+pub(crate) use parallel::chunk_len;
 
 use crate::params::check_degree;
 use crate::params::{
@@ -251,6 +253,19 @@ impl<'a, T: Scalar, P: ControlPoint<T>> LeastSquares<'a, T, P> {
         self.validate_with(self.params)
     }
 
+    /// With the `parallel` feature and at least [`PARALLEL_MIN_POINTS`] points: whether
+    /// every point is finite and the parameters are non-decreasing inside the domain, checked
+    /// in chunks on every core. `false` otherwise (and when a check fails), so that the
+    /// sequential checks run and name the first bad entry.
+    #[allow(clippy::unused_self, unused_variables)]
+    fn data_valid_on_every_core(&self, params: &[T]) -> bool {
+        #[cfg(feature = "parallel")]
+        if params.len() >= PARALLEL_MIN_POINTS {
+            return parallel::data_valid(&self.knots, params, self.points);
+        }
+        false
+    }
+
     /// [`LeastSquares::validate`] with other parameters.
     fn validate_with(&self, params: &[T]) -> Result<()> {
         let m = self.points.len();
@@ -260,12 +275,16 @@ impl<'a, T: Scalar, P: ControlPoint<T>> LeastSquares<'a, T, P> {
                 format!("{} parameters for {m} points", params.len()),
             ));
         }
-        check_points(self.points, 1, "least squares")?;
-        check_params(params)?;
-        for (j, &u) in params.iter().enumerate() {
-            self.knots
-                .check_param(u)
-                .map_err(|e| e.context(format_args!("parameter {j}")))?;
+        if !self.data_valid_on_every_core(params) {
+            // Sequentially (also when a parallel check failed): the error names the first
+            // bad entry.
+            check_points(self.points, 1, "least squares")?;
+            check_params(params)?;
+            for (j, &u) in params.iter().enumerate() {
+                self.knots
+                    .check_param(u)
+                    .map_err(|e| e.context(format_args!("parameter {j}")))?;
+            }
         }
         if let Some(w) = self.weights {
             if w.len() != m {
@@ -359,16 +378,7 @@ impl<'a, T: Scalar, P: ControlPoint<T>> LeastSquares<'a, T, P> {
             (Sink::Qr(_), _) => unreachable!("normal equations requested"),
         };
         let half: T = cast(0.5);
-        let constant = self
-            .points
-            .iter()
-            .enumerate()
-            .map(|(k, q)| {
-                let w = self.weights.map_or_else(T::one, |w| w[k]);
-                w * w * q.length_squared()
-            })
-            .fold(T::zero(), |a, b| a + b)
-            * half;
+        let constant = weighted_square_sum(self.points, self.weights) * half;
         Ok(NormalEquations {
             knots: self.knots.clone(),
             matrix,
@@ -440,4 +450,29 @@ pub fn approximate<T: Scalar, P: ControlPoint<T>>(
     let params = parametrize(points, parametrization)?;
     let knot_vector = knots_for(knots, degree, num_control, &params)?;
     LeastSquares::new(points, &params, knot_vector).solve()
+}
+
+/// $\sum_k w_k^2 |q_k|^2$ (weights 1 when absent): with the `parallel` feature and at least
+/// [`PARALLEL_MIN_POINTS`] points, in chunks on every core summed in chunk order.
+fn weighted_square_sum<T: Scalar, P: ControlPoint<T>>(points: &[P], weights: Option<&[T]>) -> T {
+    #[cfg(feature = "parallel")]
+    if points.len() >= PARALLEL_MIN_POINTS {
+        return parallel::weighted_square_sum(points, weights);
+    }
+    weighted_square_sum_of(points, weights)
+}
+
+/// [`weighted_square_sum`] in one pass.
+pub(crate) fn weighted_square_sum_of<T: Scalar, P: ControlPoint<T>>(
+    points: &[P],
+    weights: Option<&[T]>,
+) -> T {
+    points
+        .iter()
+        .enumerate()
+        .map(|(k, q)| {
+            let w = weights.map_or_else(T::one, |w| w[k]);
+            w * w * q.length_squared()
+        })
+        .fold(T::zero(), |a, b| a + b)
 }

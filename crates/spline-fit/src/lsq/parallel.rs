@@ -10,6 +10,54 @@ use spline_core::{ControlPoint, KnotVector, Scalar};
 /// Points per chunk at least (smaller chunks cost more in partial bands than they gain).
 const MIN_CHUNK: usize = 4096;
 
+/// Items per chunk for `len` items: about four chunks per thread, at least [`MIN_CHUNK`].
+pub(crate) fn chunk_len(len: usize) -> usize {
+    len.div_ceil(4 * rayon::current_num_threads())
+        .max(MIN_CHUNK)
+}
+
+/// Whether every point is finite and the parameters are non-decreasing inside the domain of
+/// `knots` (one comparison per entry, in chunks on every core; the chunks' boundaries after).
+pub(super) fn data_valid<T: Scalar, P: ControlPoint<T>>(
+    knots: &KnotVector<T>,
+    params: &[T],
+    points: &[P],
+) -> bool {
+    let (a, b) = knots.domain();
+    let chunk = chunk_len(params.len());
+    // `a ≤ u ≤ b` fails for NaN too.
+    params.len() == points.len()
+        && params
+            .par_chunks(chunk)
+            .zip(points.par_chunks(chunk))
+            .all(|(ps, qs)| {
+                qs.iter().all(ControlPoint::all_finite)
+                    && ps.iter().all(|&u| u >= a && u <= b)
+                    && ps.is_sorted_by(|x, y| x <= y)
+            })
+        && (chunk..params.len())
+            .step_by(chunk)
+            .all(|i| params[i - 1] <= params[i])
+}
+
+/// $\sum_k w_k^2 |q_k|^2$ in chunks on every core, the partial sums added in chunk order
+/// (the same value for the same number of threads).
+pub(super) fn weighted_square_sum<T: Scalar, P: ControlPoint<T>>(
+    points: &[P],
+    weights: Option<&[T]>,
+) -> T {
+    let chunk = chunk_len(points.len());
+    let parts: Vec<T> = points
+        .par_chunks(chunk)
+        .enumerate()
+        .map(|(c, qs)| {
+            let ws = weights.map(|w| &w[c * chunk..c * chunk + qs.len()]);
+            super::weighted_square_sum_of(qs, ws)
+        })
+        .collect();
+    parts.into_iter().fold(T::zero(), |s, part| s + part)
+}
+
 /// Adds the normal equations of the data to `band` and `rhs` (degree at most 5): as the
 /// sequential kernel, the sums in another order.
 pub(super) fn assemble<T: Scalar, P: ControlPoint<T>>(
@@ -21,10 +69,7 @@ pub(super) fn assemble<T: Scalar, P: ControlPoint<T>>(
     band: &mut [T],
     rhs: &mut [P],
 ) -> std::result::Result<(), usize> {
-    let chunk = params
-        .len()
-        .div_ceil(4 * rayon::current_num_threads())
-        .max(MIN_CHUNK);
+    let chunk = chunk_len(params.len());
     let (band_len, rhs_len) = (band.len(), rhs.len());
     let (checked, parts) = rayon::join(
         || {
