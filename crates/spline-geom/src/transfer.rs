@@ -314,7 +314,8 @@ fn blossom_basis_inside<T: Scalar>(t: &[T], p: usize, mu: usize, args: &[T], out
 }
 
 /// The blossom at `args` of the Bézier piece on `[a, b]` with control points `points`, for
-/// `N = p + 1` (arrays of exactly `N` entries; the arithmetic of [`blossom_bernstein`]).
+/// `N = p + 1` (arrays of exactly `N` entries, so that the constant degree unrolls
+/// [`blossom_bernstein`]).
 #[inline(always)]
 fn bezier_blossom<T: Scalar, V: VectorSpace<T>, const N: usize>(
     a: T,
@@ -322,21 +323,8 @@ fn bezier_blossom<T: Scalar, V: VectorSpace<T>, const N: usize>(
     args: &[T],
     points: &[V],
 ) -> V {
-    let p = N - 1;
-    let inv = T::one() / (b - a);
     let mut beta = [T::zero(); N];
-    beta[p] = T::one();
-    for k in 1..=p {
-        let lambda = (args[k - 1] - a) * inv;
-        let mu = T::one() - lambda;
-        let mut saved = T::zero();
-        for r in p + 1 - k..=p {
-            let old = beta[r];
-            beta[r - 1] = saved + mu * old;
-            saved = lambda * old;
-        }
-        beta[p] = saved;
-    }
+    blossom_bernstein(a, b, N - 1, args, &mut beta);
     let mut acc = V::zero_vector();
     for (point, &weight) in points[..N].iter().zip(&beta) {
         acc.add_scaled(point, weight);
@@ -347,6 +335,7 @@ fn bezier_blossom<T: Scalar, V: VectorSpace<T>, const N: usize>(
 /// [`blossom_basis`] for a Bézier piece on `[a, b]` (both ends of multiplicity `p + 1`):
 /// the blossom of the Bernstein polynomials, with the local parameters
 /// $\lambda_k = (x_k - a)/(b - a)$ of the arguments.
+#[inline(always)]
 fn blossom_bernstein<T: Scalar>(a: T, b: T, p: usize, args: &[T], out: &mut [T]) {
     let inv = T::one() / (b - a);
     out[p] = T::one();
