@@ -304,9 +304,8 @@ pub fn correct_parameters_bezier<T: Scalar, P: ControlPoint<T>>(
     let start = params;
     let mut params = start.to_vec();
     check_inputs(points, &params, options)?;
-    // Each refit writes the control points through a reused least-squares workspace; the
-    // curve and its hodograph are then made again (two vectors per sweep: `Bezier` has no
-    // in-place form), and evaluated exactly as before.
+    // Each refit writes the control points through a reused least-squares workspace into
+    // the curve, and the hodograph in place: no allocation per sweep.
     let knots = KnotVector::bezier(degree, interval.0, interval.1)?;
     let problem = LeastSquares::new(points, start, knots);
     let mut workspace = None;
@@ -315,9 +314,18 @@ pub fn correct_parameters_bezier<T: Scalar, P: ControlPoint<T>>(
         if !problem.control_points_into(params, &mut workspace, &mut control)? {
             control = bezier_control(points, params, degree, interval, None)?;
         }
-        let bezier = Bezier::with_interval(control.clone(), interval.0, interval.1)?;
-        let hodograph = bezier.derivative();
-        *curve = Some((bezier, hodograph));
+        match curve {
+            // (Non-finite control points go the other way, whose check reports them.)
+            Some((bezier, hodograph)) if control.iter().all(ControlPoint::all_finite) => {
+                bezier.control_points_mut().copy_from_slice(&control);
+                bezier.derivative_into(hodograph);
+            }
+            _ => {
+                let bezier = Bezier::with_interval(control.clone(), interval.0, interval.1)?;
+                let hodograph = bezier.derivative();
+                *curve = Some((bezier, hodograph));
+            }
+        }
         Ok(())
     };
     let eval = |curve: &Option<WithHodograph<T, P>>, t: T| -> Result<(P, P)> {

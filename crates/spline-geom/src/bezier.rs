@@ -52,6 +52,12 @@ impl<T: Scalar, P> Bezier<T, P> {
         &self.control_points
     }
 
+    /// Mutable access to the control points (their number, the degree plus one, is fixed).
+    #[inline]
+    pub fn control_points_mut(&mut self) -> &mut [P] {
+        &mut self.control_points
+    }
+
     /// The parameter interval `[a, b]`.
     #[must_use]
     pub fn interval(&self) -> (T, T) {
@@ -216,17 +222,50 @@ impl<T: Scalar, P: ControlPoint<T>> Bezier<T, P> {
     /// derivative of a constant is the zero curve of degree 0.
     #[must_use]
     pub fn derivative(&self) -> Self {
+        let mut hodograph = Self::new_unchecked(
+            vec![P::origin(); self.degree().max(1)],
+            self.start,
+            self.end,
+        );
+        self.derivative_into(&mut hodograph);
+        hodograph
+    }
+
+    /// [`Bezier::derivative`] written into `hodograph`, a curve on the same interval with
+    /// `max(n, 1)` control points (no allocation).
+    ///
+    /// ```
+    /// use spline_geom::Bezier;
+    /// let f = Bezier::new(vec![0.0, 1.0, 3.0])?;
+    /// let mut d = f.derivative();
+    /// Bezier::new(vec![0.0, 2.0, 2.0])?.derivative_into(&mut d);
+    /// assert_eq!(d.control_points(), &[4.0, 0.0]);
+    /// # Ok::<(), spline_core::Error>(())
+    /// ```
+    ///
+    /// # Panics
+    /// If `hodograph` has another number of control points or another interval.
+    pub fn derivative_into(&self, hodograph: &mut Self) {
         let n = self.degree();
+        assert!(
+            hodograph.control_points.len() == n.max(1)
+                && hodograph.start == self.start
+                && hodograph.end == self.end,
+            "the hodograph of a degree-{n} Bézier curve has {} control points on the same interval",
+            n.max(1)
+        );
         if n == 0 {
-            return Self::new_unchecked(vec![P::origin()], self.start, self.end);
+            hodograph.control_points[0] = P::origin();
+            return;
         }
         let scale = from_count::<T>(n) / (self.end - self.start);
-        let points = self
+        for (slot, w) in hodograph
             .control_points
-            .windows(2)
-            .map(|w| (w[1] - w[0]) * scale)
-            .collect();
-        Self::new_unchecked(points, self.start, self.end)
+            .iter_mut()
+            .zip(self.control_points.windows(2))
+        {
+            *slot = (w[1] - w[0]) * scale;
+        }
     }
 
     /// The same curve as a clamped B-spline on `[a, b]`.

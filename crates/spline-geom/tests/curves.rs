@@ -788,3 +788,25 @@ fn elevation_at_high_degree_with_close_knots_is_exact() {
         }
     }
 }
+
+#[test]
+fn bezier_hodograph_in_place_equals_the_new_one_and_checks_its_size() {
+    let f = Bezier::with_interval(vec![0.5, -1.0, 2.0, 4.0], 1.0, 3.0).unwrap();
+    let mut d = Bezier::with_interval(vec![9.0; 3], 1.0, 3.0).unwrap();
+    f.derivative_into(&mut d);
+    assert_eq!(d, f.derivative());
+    let constant = Bezier::with_interval(vec![2.0], 1.0, 3.0).unwrap();
+    let mut zero = Bezier::with_interval(vec![7.0], 1.0, 3.0).unwrap();
+    constant.derivative_into(&mut zero);
+    assert_eq!(zero.control_points(), &[0.0]);
+    let wrong = std::panic::catch_unwind(|| {
+        let mut short = Bezier::with_interval(vec![0.0; 2], 1.0, 3.0).unwrap();
+        f.derivative_into(&mut short);
+    });
+    assert!(wrong.is_err(), "a hodograph of the wrong size is refused");
+    let other_interval = std::panic::catch_unwind(|| {
+        let mut moved = Bezier::with_interval(vec![0.0; 3], 0.0, 3.0).unwrap();
+        f.derivative_into(&mut moved);
+    });
+    assert!(other_interval.is_err());
+}
