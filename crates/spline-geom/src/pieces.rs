@@ -31,6 +31,11 @@ use std::sync::{Arc, Mutex, OnceLock, PoisonError};
 /// power form loses accuracy as the degree grows).
 const MAX_CACHED_DEGREE: usize = 5;
 
+/// Whether degree `p` has a cached form (1 to [`MAX_CACHED_DEGREE`]).
+fn has_form(p: usize) -> bool {
+    (1..=MAX_CACHED_DEGREE).contains(&p)
+}
+
 /// The largest ratio of `Σ |c_k| h^k` to the largest control point of a span for which the
 /// cached form is used: it bounds the loss of accuracy against the triangular scheme. Up to
 /// degree 3 it always holds (the ratio is at most `3^p`).
@@ -54,6 +59,9 @@ impl<T: Scalar, P: ControlPoint<T>> Pieces<T, P> {
     /// [`MAX_CACHED_DEGREE`], for degree 0, or when a span's form would lose accuracy
     /// (see [`CONDITION`]).
     fn new(curve: &BSpline<T, P>) -> Option<Self> {
+        if !has_form(curve.degree()) {
+            return None;
+        }
         let (start, end) = curve.domain();
         let mut pieces = Self {
             table: SpanTable::new(curve.knots()),
@@ -63,15 +71,25 @@ impl<T: Scalar, P: ControlPoint<T>> Pieces<T, P> {
             coefficients: Vec::new(),
             falling: [[T::zero(); MAX_CACHED_DEGREE + 1]; MAX_CACHED_DEGREE + 1],
         };
-        pieces.refill(curve).then_some(pieces)
+        pieces.fill_coefficients(curve).then_some(pieces)
     }
 
     /// Makes these the pieces of `curve`, reusing the storage (no allocation when the curve
     /// has no more spans than the one they were built for); `false` where
     /// [`Pieces::new`] gives `None`.
     fn refill(&mut self, curve: &BSpline<T, P>) -> bool {
+        if !self.fill_coefficients(curve) {
+            return false;
+        }
+        self.table.rebuild(curve.knots());
+        true
+    }
+
+    /// Everything but the span table: the Taylor coefficients, the degree and the domain;
+    /// `false` where the form is refused.
+    fn fill_coefficients(&mut self, curve: &BSpline<T, P>) -> bool {
         let p = curve.degree();
-        if p == 0 || p > MAX_CACHED_DEGREE {
+        if !has_form(p) {
             return false;
         }
         let knots = curve.knots();
@@ -130,7 +148,6 @@ impl<T: Scalar, P: ControlPoint<T>> Pieces<T, P> {
             }
         }
         let (start, end) = knots.domain();
-        self.table.rebuild(knots);
         self.order = order;
         self.start = start;
         self.end = end;

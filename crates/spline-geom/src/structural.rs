@@ -12,6 +12,7 @@ use spline_core::{
     ControlPoint, Error, ErrorKind, KnotVector, Result, Scalar, VectorSpace, binomial, from_count,
     to_f64,
 };
+use std::borrow::Cow;
 
 /// The default relative tolerance of [`BSpline::remove_knot`]: `1e-9` times the size of the
 /// control polygon.
@@ -63,13 +64,6 @@ impl<T: Scalar> BernsteinElevation<T> {
             *slot = acc;
         }
     }
-}
-
-/// The knots in increasing order (checked finite before: no NaN to order).
-fn sorted_copy<T: Scalar>(knots: &[T]) -> Vec<T> {
-    let mut x = knots.to_vec();
-    x.sort_by(|a, b| a.partial_cmp(b).unwrap_or(std::cmp::Ordering::Equal));
-    x
 }
 
 /// The differences $Q_i = \frac{p}{u_{i+p+1} - u_{i+1}} (P_{i+1} - P_i)$ of the first
@@ -220,15 +214,8 @@ impl<T: Scalar, V: VectorSpace<T>> BSpline<T, V> {
     /// # Errors
     /// As [`BSpline::insert_knot`] for each knot, checked before anything is computed.
     pub fn refine(&self, new_knots: &[T]) -> Result<Self> {
-        self.knots().check_new_knots(new_knots)?;
-        if new_knots.is_sorted_by(|a, b| a <= b) {
-            self.knots().check_refinement(new_knots)?;
-            Ok(self.refined_unchecked(new_knots))
-        } else {
-            let x = sorted_copy(new_knots);
-            self.knots().check_refinement(&x)?;
-            Ok(self.refined_unchecked(&x))
-        }
+        let x = self.checked_refinement(new_knots)?;
+        Ok(self.refined_unchecked(&x))
     }
 
     /// [`BSpline::refine`] in place (sorted knots need no copy of them).
@@ -236,16 +223,25 @@ impl<T: Scalar, V: VectorSpace<T>> BSpline<T, V> {
     /// # Errors
     /// As [`BSpline::refine`]; the curve is unchanged on error.
     pub fn refine_mut(&mut self, new_knots: &[T]) -> Result<()> {
-        self.knots().check_new_knots(new_knots)?;
-        if new_knots.is_sorted_by(|a, b| a <= b) {
-            self.knots().check_refinement(new_knots)?;
-            self.refine_sorted_unchecked(new_knots);
-        } else {
-            let x = sorted_copy(new_knots);
-            self.knots().check_refinement(&x)?;
-            self.refine_sorted_unchecked(&x);
-        }
+        let x = self.checked_refinement(new_knots)?;
+        self.refine_sorted_unchecked(&x);
         Ok(())
+    }
+
+    /// The new knots in increasing order (borrowed when they already are), after the checks
+    /// of [`BSpline::refine`].
+    fn checked_refinement<'a>(&self, new_knots: &'a [T]) -> Result<Cow<'a, [T]>> {
+        self.knots().check_new_knots(new_knots)?;
+        let x = if new_knots.is_sorted_by(|a, b| a <= b) {
+            Cow::Borrowed(new_knots)
+        } else {
+            // Finite after the checks: no NaN to order.
+            let mut x = new_knots.to_vec();
+            x.sort_by(|a, b| a.partial_cmp(b).unwrap_or(std::cmp::Ordering::Equal));
+            Cow::Owned(x)
+        };
+        self.knots().check_refinement(&x)?;
+        Ok(x)
     }
 
     /// The spline on a *subspace* (same degree and domain, every knot at most as often as
