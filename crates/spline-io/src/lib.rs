@@ -1,0 +1,45 @@
+//! CAD exchange: STEP (ISO 10303-21, AP214/AP242 geometry) and IGES 5.3 files in and out.
+//!
+//! Both formats read into and write from the same [`Item`]s: a piece of geometry
+//! ([`Geometry`]: a B-spline or NURBS curve in 2-D or 3-D, a B-spline or NURBS surface) with the
+//! name and the identifier the file gives it (a STEP instance `#id`, an IGES directory-entry
+//! sequence number).
+
+pub mod iges;
+pub mod step;
+
+use nalgebra::{Vector2, Vector3};
+use spline_geom::{BSpline, NurbsCurve2, NurbsCurve3, NurbsSurface3, Surface};
+
+/// The geometry of one imported or exported entity, converted exactly to (rational) B-splines.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Geometry {
+    /// A polynomial B-spline curve in the plane.
+    Curve2(BSpline<f64, Vector2<f64>>),
+    /// A polynomial B-spline curve in space.
+    Curve3(BSpline<f64, Vector3<f64>>),
+    /// A rational (NURBS) curve in the plane.
+    NurbsCurve2(NurbsCurve2<f64>),
+    /// A rational (NURBS) curve in space.
+    NurbsCurve3(NurbsCurve3<f64>),
+    /// A polynomial tensor-product B-spline surface in space.
+    Surface(Surface<f64, Vector3<f64>>),
+    /// A rational (NURBS) tensor-product surface in space.
+    NurbsSurface(NurbsSurface3<f64>),
+}
+
+/// One entity of a CAD file: its geometry, with the name and identifier the file gives it.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Item {
+    /// The entity's identifier in the file: the STEP instance number (`#12` → 12), or the IGES
+    /// directory-entry sequence number. Writers number entities themselves and ignore it.
+    pub id: u64,
+    /// The entity's name (STEP: the `name` attribute, or the name of the face or edge that
+    /// holds the geometry; IGES: the entity label); empty when the file gives none.
+    pub name: String,
+    /// The entity type the geometry was read from (`B_SPLINE_CURVE_WITH_KNOTS`,
+    /// `CYLINDRICAL_SURFACE`, `126`, …); writers ignore it.
+    pub entity: String,
+    /// The geometry.
+    pub geometry: Geometry,
+}
