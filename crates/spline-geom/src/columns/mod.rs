@@ -1,0 +1,403 @@
+//! Splines with many coefficient columns on one knot vector, with the semantics of
+//! `scipy.interpolate.BSpline` (scipy 1.17): the Rust side of a drop-in replacement.
+//!
+//! A [`ColumnSpline`] holds a knot vector `t`, a degree `k` and an `rows × m` row-major
+//! coefficient matrix: `m ≥ 1` columns share the knots (scipy's trailing dimensions
+//! flattened; a complex spline is two real columns per complex one). Every per-point kernel
+//! computes the basis once and combines the coefficient rows for all columns in one pass.
+//!
+//! ```
+//! use spline_geom::{ColumnSpline, Extrapolate};
+//! // Two columns: x ↦ x and x ↦ 1 as linear splines on [0, 2].
+//! let s = ColumnSpline::new(vec![0.0, 0.0, 1.0, 2.0, 2.0], vec![0.0, 1.0, 1.0, 1.0, 2.0, 1.0], 1, 2)?;
+//! let mut out = [0.0; 4];
+//! s.eval_into(&[0.5, 3.0], 0, Extrapolate::On, &mut out)?;
+//! assert_eq!(out, [0.5, 1.0, 3.0, 1.0]);
+//! # Ok::<(), spline_core::Error>(())
+//! ```
+
+use spline_core::{BatchBasis, Error, ErrorKind, KnotVector, MAX_DEGREE, Result};
+
+/// What happens at points outside the base interval $[t_k, t_n]$ (scipy's `extrapolate`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Extrapolate {
+    /// scipy's `extrapolate=False`: points outside the base interval (and NaN points) give a
+    /// row of NaN, counted in the result of [`ColumnSpline::eval_into`].
+    Off,
+    /// scipy's `extrapolate=True` (the default): below $t_k$ the first non-empty span's
+    /// polynomial, above $t_n$ the last one's.
+    On,
+    /// scipy's `extrapolate='periodic'`: `x` is mapped to
+    /// $t_k + (x - t_k) \bmod (t_n - t_k)$ (the floor modulo of Python) first.
+    Periodic,
+}
+
+/// A spline of degree `k` on a knot vector `t` with `m` columns of coefficients: the
+/// container behind `scipy.interpolate.BSpline` with the trailing dimensions of `c`
+/// flattened.
+///
+/// $$ s_j(x) = \sum_{i=0}^{n-1} c_{ij} B_{i,k}(x; t), \qquad n = \mathrm{len}(t) - k - 1. $$
+///
+/// **Knot vectors accepted**: at least `2k + 2` finite knots in non-decreasing order, each
+/// value repeated at most `k + 1` times (ends included, clamped or not), with
+/// $t_k < t_n$ and `k ≤ 32` ([`MAX_DEGREE`]). scipy also accepts knots repeated more than
+/// `k + 1` times; those are refused here. The coefficient matrix has `rows ≥ n` rows (scipy
+/// allows extra rows, and its derivative and antiderivative pad `c` to `len(t)` rows in
+/// FITPACK's convention; the extra rows are kept and never used), each of `m ≥ 1` finite
+/// values.
+#[derive(Clone, Debug)]
+pub struct ColumnSpline {
+    knots: KnotVector<f64>,
+    coefficients: Vec<f64>,
+    rows: usize,
+    columns: usize,
+    batch: BatchBasis<f64>,
+}
+
+fn invalid(message: impl Into<String>) -> Error {
+    Error::new(ErrorKind::InvalidArgument, message)
+}
+
+/// scipy's checks of a knot vector for degree `k`, with scipy's words, then the library's
+/// rules (multiplicity, degree limit) through [`KnotVector::new`].
+pub(crate) fn check_knots(t: Vec<f64>, k: usize) -> Result<KnotVector<f64>> {
+    if k > MAX_DEGREE {
+        return Err(Error::new(
+            ErrorKind::DegreeTooHigh,
+            format!("degree {k} is above the supported maximum {MAX_DEGREE}"),
+        ));
+    }
+    if t.len() < 2 * k + 2 {
+        return Err(Error::new(
+            ErrorKind::InvalidLength,
+            format!("Need at least {} knots for degree {k}", 2 * k + 2),
+        )
+        .with_counts(2 * k + 2, t.len()));
+    }
+    if let Some(i) = t.iter().position(|v| !v.is_finite()) {
+        return Err(Error::new(
+            ErrorKind::NonFinite,
+            format!("Knots should not have nans or infs (knot {i} is {})", t[i]),
+        )
+        .with_index(i));
+    }
+    if let Some(i) = (1..t.len()).find(|&i| t[i] < t[i - 1]) {
+        return Err(Error::new(
+            ErrorKind::UnsortedKnots,
+            format!(
+                "Knots must be in a non-decreasing order (knot {i} = {} follows {})",
+                t[i],
+                t[i - 1]
+            ),
+        )
+        .with_index(i));
+    }
+    let n = t.len() - k - 1;
+    if t[k] >= t[n] {
+        return Err(Error::new(
+            ErrorKind::EmptyDomain,
+            format!(
+                "Need at least two internal knots: the base interval [t[{k}], t[{n}]] = [{}, {}] is empty",
+                t[k], t[n]
+            ),
+        ));
+    }
+    KnotVector::new(k, t)
+}
+
+impl ColumnSpline {
+    /// A spline from knots `t`, row-major coefficients `c` (`rows × columns`, `rows ≥ n`)
+    /// and degree `k`.
+    ///
+    /// # Errors
+    /// [`ErrorKind::InvalidArgument`] for `columns == 0` or non-finite coefficients;
+    /// [`ErrorKind::InvalidLength`] when `c.len()` is not a multiple of `columns` or the
+    /// rows are fewer than `n = len(t) − k − 1` ("Knots, coefficients and degree are
+    /// inconsistent"), or with fewer than `2k + 2` knots ("Need at least … knots");
+    /// [`ErrorKind::NonFinite`] ("Knots should not have nans or infs"),
+    /// [`ErrorKind::UnsortedKnots`] ("Knots must be in a non-decreasing order"),
+    /// [`ErrorKind::EmptyDomain`] ("Need at least two internal knots"),
+    /// [`ErrorKind::KnotMultiplicity`] above `k + 1` repeats, [`ErrorKind::DegreeTooHigh`]
+    /// above [`MAX_DEGREE`].
+    pub fn new(t: Vec<f64>, c: Vec<f64>, k: usize, columns: usize) -> Result<Self> {
+        let knots = check_knots(t, k)?;
+        Self::from_knot_vector(knots, c, columns)
+    }
+
+    /// [`ColumnSpline::new`] with a validated knot vector.
+    ///
+    /// # Errors
+    /// As [`ColumnSpline::new`] for the coefficients.
+    pub fn from_knot_vector(knots: KnotVector<f64>, c: Vec<f64>, columns: usize) -> Result<Self> {
+        if columns == 0 {
+            return Err(invalid(
+                "a spline needs at least one column of coefficients",
+            ));
+        }
+        if c.len() % columns != 0 {
+            return Err(Error::new(
+                ErrorKind::InvalidLength,
+                format!(
+                    "{} coefficients do not fill rows of {columns} columns",
+                    c.len()
+                ),
+            ));
+        }
+        let rows = c.len() / columns;
+        let n = knots.num_basis();
+        if rows < n {
+            return Err(Error::new(
+                ErrorKind::InvalidLength,
+                format!(
+                    "Knots, coefficients and degree are inconsistent: {} knots of degree {} need {n} coefficient rows, got {rows}",
+                    knots.len(),
+                    knots.degree()
+                ),
+            )
+            .with_counts(n, rows));
+        }
+        if let Some(i) = c.iter().position(|v| !v.is_finite()) {
+            return Err(Error::new(
+                ErrorKind::NonFinite,
+                format!(
+                    "coefficient ({}, {}) is not finite ({})",
+                    i / columns,
+                    i % columns,
+                    c[i]
+                ),
+            )
+            .with_index(i));
+        }
+        let batch = BatchBasis::new(&knots);
+        Ok(Self {
+            knots,
+            coefficients: c,
+            rows,
+            columns,
+            batch,
+        })
+    }
+
+    /// The knots `t`.
+    #[must_use]
+    pub fn knots(&self) -> &[f64] {
+        self.knots.knots()
+    }
+
+    /// The knot vector with its degree.
+    #[must_use]
+    pub fn knot_vector(&self) -> &KnotVector<f64> {
+        &self.knots
+    }
+
+    /// The degree `k`.
+    #[must_use]
+    pub fn degree(&self) -> usize {
+        self.knots.degree()
+    }
+
+    /// The coefficients, row-major (`rows × columns`).
+    #[must_use]
+    pub fn coefficients(&self) -> &[f64] {
+        &self.coefficients
+    }
+
+    /// Consumes the spline, returning knots and coefficients.
+    #[must_use]
+    pub fn into_parts(self) -> (Vec<f64>, Vec<f64>) {
+        (self.knots.into_knots(), self.coefficients)
+    }
+
+    /// The number of coefficient rows (at least [`ColumnSpline::num_basis`]).
+    #[must_use]
+    pub fn rows(&self) -> usize {
+        self.rows
+    }
+
+    /// The number of columns `m`.
+    #[must_use]
+    pub fn columns(&self) -> usize {
+        self.columns
+    }
+
+    /// The number of basis functions `n = len(t) − k − 1`.
+    #[must_use]
+    pub fn num_basis(&self) -> usize {
+        self.knots.num_basis()
+    }
+
+    /// The base interval $[t_k, t_n]$.
+    #[must_use]
+    pub fn domain(&self) -> (f64, f64) {
+        self.knots.domain()
+    }
+
+    /// Where `x` is evaluated under `mode`, or `None` for a NaN row.
+    #[inline(always)]
+    fn mapped(&self, x: f64, mode: Extrapolate, (a, b): (f64, f64)) -> Option<f64> {
+        match mode {
+            Extrapolate::On => x.is_finite().then_some(x),
+            Extrapolate::Off => (x >= a && x <= b).then_some(x),
+            Extrapolate::Periodic => {
+                let u = a + (x - a).rem_euclid(b - a);
+                u.is_finite().then_some(u)
+            }
+        }
+    }
+
+    /// Evaluates the derivative of order `nu` (0 for values) of every column at every `x`
+    /// into `out`, row-major: `out[i m + j]` $= s_j^{(\nu)}(x_i)$. Derivatives above the
+    /// degree are zero (as scipy's).
+    ///
+    /// Rows that scipy fills with NaN are NaN here too, and their number is returned: NaN
+    /// (or infinite) `x` in every mode, and `x` outside $[t_k, t_n]$ with
+    /// [`Extrapolate::Off`]. Every other row is finite. At interior knots the right limit
+    /// is taken, at $t_n$ the left one.
+    ///
+    /// One span search and one basis evaluation per point, no allocation per point.
+    ///
+    /// # Errors
+    /// [`ErrorKind::InvalidLength`] unless `out.len() == x.len() · columns`.
+    pub fn eval_into(
+        &self,
+        x: &[f64],
+        nu: usize,
+        mode: Extrapolate,
+        out: &mut [f64],
+    ) -> Result<usize> {
+        let expected = x.len().checked_mul(self.columns);
+        if expected != Some(out.len()) {
+            return Err(Error::new(
+                ErrorKind::InvalidLength,
+                format!(
+                    "the output holds {} values; {} points of {} columns need {}",
+                    out.len(),
+                    x.len(),
+                    self.columns,
+                    x.len().saturating_mul(self.columns)
+                ),
+            ));
+        }
+        let k = self.degree();
+        if nu > k {
+            let domain = self.domain();
+            let mut nan = 0;
+            for (&xi, row) in x.iter().zip(out.chunks_exact_mut(self.columns)) {
+                if self.mapped(xi, mode, domain).is_some() {
+                    row.fill(0.0);
+                } else {
+                    row.fill(f64::NAN);
+                    nan += 1;
+                }
+            }
+            return Ok(nan);
+        }
+        Ok(if nu == 0 {
+            match k {
+                0 => self.eval_fixed::<1>(x, mode, out),
+                1 => self.eval_fixed::<2>(x, mode, out),
+                2 => self.eval_fixed::<3>(x, mode, out),
+                3 => self.eval_fixed::<4>(x, mode, out),
+                4 => self.eval_fixed::<5>(x, mode, out),
+                5 => self.eval_fixed::<6>(x, mode, out),
+                _ => self.eval_general(x, 0, mode, out),
+            }
+        } else {
+            self.eval_general(x, nu, mode, out)
+        })
+    }
+
+    /// Evaluates at many points into a new vector (see [`ColumnSpline::eval_into`]).
+    ///
+    /// # Errors
+    /// As [`ColumnSpline::eval_into`] (never for a correct size).
+    pub fn eval(&self, x: &[f64], nu: usize, mode: Extrapolate) -> Result<Vec<f64>> {
+        let mut out = vec![0.0; x.len().saturating_mul(self.columns)];
+        self.eval_into(x, nu, mode, &mut out)?;
+        Ok(out)
+    }
+
+    /// The span for a point `u` that is finite: inside the base interval by the batch
+    /// tables, outside the first or last non-empty span.
+    #[inline(always)]
+    fn span_of(&self, u: f64, (a, b): (f64, f64), hint: usize) -> usize {
+        if u < a {
+            self.knots.span_in_domain(a)
+        } else if u > b {
+            self.knots.span_in_domain(b)
+        } else {
+            self.batch.span_from(&self.knots, u, hint)
+        }
+    }
+
+    /// Combines rows `first ..= first + width − 1` of the coefficients with `basis` into
+    /// `row` (all columns in one pass).
+    #[inline(always)]
+    fn combine(&self, first: usize, basis: &[f64], row: &mut [f64]) {
+        let m = self.columns;
+        let c = &self.coefficients[first * m..(first + basis.len()) * m];
+        if m == 1 {
+            row[0] = basis.iter().zip(c).map(|(b, c)| b * c).sum();
+            return;
+        }
+        row.fill(0.0);
+        for (&b, crow) in basis.iter().zip(c.chunks_exact(m)) {
+            for (o, &cv) in row.iter_mut().zip(crow) {
+                *o += b * cv;
+            }
+        }
+    }
+
+    /// Values for degree `N − 1` with the fixed-size basis kernels.
+    fn eval_fixed<const N: usize>(&self, x: &[f64], mode: Extrapolate, out: &mut [f64]) -> usize {
+        let domain = self.domain();
+        let (a, b) = domain;
+        let mut hint = usize::MAX;
+        let mut nan = 0;
+        for (&xi, row) in x.iter().zip(out.chunks_exact_mut(self.columns)) {
+            let Some(u) = self.mapped(xi, mode, domain) else {
+                row.fill(f64::NAN);
+                nan += 1;
+                continue;
+            };
+            let (span, basis) = if u >= a && u <= b {
+                self.batch.eval_fixed_from::<N>(&self.knots, u, hint)
+            } else {
+                let span = self.span_of(u, domain, hint);
+                (span, self.knots.basis_values_fixed::<N>(span, u))
+            };
+            hint = span;
+            self.combine(span + 1 - N, &basis, row);
+        }
+        nan
+    }
+
+    /// Values or derivatives of order `nu ≤ k` for any degree.
+    fn eval_general(&self, x: &[f64], nu: usize, mode: Extrapolate, out: &mut [f64]) -> usize {
+        let domain = self.domain();
+        let k = self.degree();
+        let width = k + 1;
+        let mut scratch = vec![0.0; (nu + 1) * width];
+        let mut hint = usize::MAX;
+        let mut nan = 0;
+        for (&xi, row) in x.iter().zip(out.chunks_exact_mut(self.columns)) {
+            let Some(u) = self.mapped(xi, mode, domain) else {
+                row.fill(f64::NAN);
+                nan += 1;
+                continue;
+            };
+            let span = self.span_of(u, domain, hint);
+            hint = span;
+            if nu == 0 {
+                self.knots.basis_values(span, u, &mut scratch);
+            } else {
+                self.knots.basis_derivatives(span, u, nu, &mut scratch);
+            }
+            self.combine(span - k, &scratch[nu * width..(nu + 1) * width], row);
+        }
+        nan
+    }
+}
+
+#[cfg(test)]
+mod tests;
