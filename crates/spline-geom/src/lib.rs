@@ -62,7 +62,7 @@ mod variation;
 pub use arclength::DEFAULT_ACCURACY;
 pub use bezier::Bezier;
 pub use bspline::BSpline;
-pub use columns::{ColumnSpline, Extrapolate};
+pub use columns::{ColumnSpline, Extrapolate, PowerBasisKnots};
 pub use construct::{
     Axis, CircleConstruction, ConicKind, Frame, MAX_ARC_PIECES, MovingFrame, compatible_curves,
     compatible_surfaces, rotation_minimizing_frames,

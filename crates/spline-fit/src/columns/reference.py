@@ -36,3 +36,72 @@ b7 = BSpline(t7, c7, 7)
 x7 = np.array([-0.1, 0.4, 0.5, 0.61, 0.65, 1.2])
 show("eval k=7 nu=0", b7(x7))
 show("eval k=7 nu=2", b7(x7, nu=2))
+
+# derivative / antiderivative of the cubic above (knots and coefficients).
+d = b.derivative(2)
+show("derivative(2) t", d.t)
+show("derivative(2) c", d.c)
+a2 = b.antiderivative(2)
+show("antiderivative(2) t", a2.t)
+show("antiderivative(2) c", a2.c)
+# integrals
+show("integrate(-1.5, 4.0) extrapolate=True", b.integrate(-1.5, 4.0))
+show("integrate(0.5, 1.8)", b.integrate(0.5, 1.8))
+show("integrate(1.8, 0.5)", b.integrate(1.8, 0.5))
+show("integrate(-1.5, 4.0) extrapolate=False", b.integrate(-1.5, 4.0, extrapolate=False))
+show("integrate(-3.3, 7.9) periodic", b.integrate(-3.3, 7.9, extrapolate="periodic"))
+show("integrate(1.9, 2.1) periodic", b.integrate(1.9, 2.1, extrapolate="periodic"))
+# roots of column 1 (PPoly with discontinuity=True, extrapolate=False).
+from scipy.interpolate import PPoly
+pp = PPoly.from_spline(BSpline(t, c[:, 1], 3), extrapolate=False)
+show("roots column 1", pp.roots())
+# a discontinuous linear spline (double knot) that jumps across zero at 1
+tl = [0.0, 0.0, 1.0, 1.0, 2.0, 2.0]
+cl = [-1.0, -0.5, 0.5, 2.0]
+ppl = PPoly.from_spline(BSpline(tl, cl, 1), extrapolate=False)
+show("roots linear jump", ppl.roots())
+# a quintic with roots
+t5 = np.r_[[0.0] * 6, 0.5, 1.1, 2.0, [3.0] * 6]
+c5 = np.array([1.0, -2.0, 0.5, 3.0, -1.0, 0.2, 0.7, -0.4, 1.0])
+pp5 = PPoly.from_spline(BSpline(t5, c5, 5), extrapolate=False)
+show("roots quintic", pp5.roots())
+# insert_knot
+bi = b.insert_knot(1.2, 2)
+show("insert_knot(1.2, 2) t", bi.t)
+show("insert_knot(1.2, 2) c", bi.c)
+tp = np.arange(-3.0, 11.0)  # uniform knots, cubic periodic on [0, 7]
+cp = np.array([1.0, 2.0, -1.0, 0.5, 3.0, 0.0, 1.5, 1.0, 2.0, -1.0])
+bp = BSpline(tp, cp, 3, extrapolate="periodic")
+for xv in (0.5, 6.5, 3.2):
+    bq = bp.insert_knot(xv)
+    show(f"periodic insert_knot({xv}) t", bq.t)
+    show(f"periodic insert_knot({xv}) c", bq.c)
+# basis_element
+e = BSpline.basis_element([0.0, 1.0, 1.0, 3.0])
+show("basis_element [0,1,1,3] t", e.t)
+show("basis_element values", e(np.array([-0.5, 0.5, 1.0, 2.0, 3.5])))
+# design_matrix
+xd = np.array([-0.5, 0.3, 1.0, 1.5, 2.0, 2.5])
+dm = BSpline.design_matrix(xd, t, 3, extrapolate=True)
+show("design_matrix extrapolate=True data", dm.data)
+show("design_matrix extrapolate=True indices", dm.indices)
+dmp = BSpline.design_matrix(xd, t, 3, extrapolate="periodic")
+show("design_matrix periodic data", dmp.data)
+show("design_matrix periodic indices", dmp.indices)
+# from_power_basis
+from scipy.interpolate import CubicSpline
+xs = np.array([0.0, 0.7, 1.5, 2.0, 3.2, 4.0])
+ys = np.sin(xs) + np.cos(2 * xs)  # scipy accepts one column only
+for bc in ("not-a-knot", "natural", "clamped"):
+    cs = CubicSpline(xs, ys, bc_type=bc)
+    bb = BSpline.from_power_basis(cs, bc_type=bc)
+    show(f"from_power_basis {bc} pp.c", cs.c)
+    show(f"from_power_basis {bc} t", bb.t)
+    show(f"from_power_basis {bc} c", bb.c)
+ysp = np.sin(xs * 2 * np.pi / 4.0)
+ysp[-1] = ysp[0]
+cs = CubicSpline(xs, ysp, bc_type="periodic")
+bb = BSpline.from_power_basis(cs, bc_type="periodic")
+show("from_power_basis periodic pp.c", cs.c)
+show("from_power_basis periodic t", bb.t)
+show("from_power_basis periodic c", bb.c)

@@ -16,6 +16,12 @@
 //! # Ok::<(), spline_core::Error>(())
 //! ```
 
+mod design;
+mod ops;
+mod roots;
+
+pub use design::PowerBasisKnots;
+
 use spline_core::{BatchBasis, Error, ErrorKind, KnotVector, MAX_DEGREE, Result};
 
 /// What happens at points outside the base interval $[t_k, t_n]$ (scipy's `extrapolate`).
