@@ -43,6 +43,7 @@ pub mod exchange;
 pub mod export;
 mod homogeneous;
 mod mesh;
+mod nd;
 mod nurbs;
 mod operations;
 #[cfg(feature = "parallel")]
@@ -74,6 +75,7 @@ pub use curve_tools::{
 pub use evaluator::{CurveEvaluator, NurbsEvaluator};
 pub use homogeneous::Homogeneous;
 pub use mesh::{MAX_MESH_SEGMENTS, MeshView, SvgOverlay, TriangleMesh};
+pub use nd::{NdSpline, knot_vectors};
 pub use nurbs::{
     HomogeneousContainer, NurbsCurve, NurbsCurve2, NurbsCurve3, NurbsSurface, NurbsSurface3,
     Rational,
