@@ -11,9 +11,11 @@
 // reference does not apply to `#[pyfunction]`s and `#[pymethods]`.
 #![allow(clippy::needless_pass_by_value)]
 
+mod columns;
 mod curve;
 mod fitting;
 mod nurbs;
+mod scipy_fit;
 
 use numpy::{PyArray1, PyReadonlyArray1};
 use pyo3::create_exception;
@@ -102,8 +104,10 @@ pub(crate) fn csr<'py>(py: Python<'py>, m: &CsrMatrix<f64>) -> Csr<'py> {
 #[pymodule]
 fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("SplineError", m.py().get_type::<SplineError>())?;
+    columns::register(m)?;
     curve::register(m)?;
     fitting::register(m)?;
     nurbs::register(m)?;
+    scipy_fit::register(m)?;
     Ok(())
 }

@@ -31,8 +31,8 @@ CORE = (
 
 #: Passes that must not be lost (core classes, whole file); missing names are stubs, so
 #: these count only what the package does. The issue's goal: 183 and 505.
-BAR_CORE = 14
-BAR_ALL = 30
+BAR_CORE = 138
+BAR_ALL = 216
 
 HERE = Path(__file__).resolve().parent
 

@@ -23,6 +23,7 @@ from ._bspline import (
     Features,
     make_interp_spline,
     make_lsq_spline,
+    make_smoothing_spline,
     product,
     read_json,
 )
@@ -43,6 +44,7 @@ __all__ = [
     "Features",
     "make_interp_spline",
     "make_lsq_spline",
+    "make_smoothing_spline",
     "product",
     "read_json",
     "NurbsCurve",

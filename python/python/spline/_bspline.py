@@ -3,11 +3,14 @@
 from __future__ import annotations
 
 import json
+import operator
+from math import prod
 from typing import NamedTuple, Optional, Sequence, Tuple
 
 import numpy as np
 import numpy.typing as npt
 import scipy.sparse
+from numpy.lib.array_utils import normalize_axis_index
 
 from . import _core
 
@@ -54,15 +57,60 @@ class Features(NamedTuple):
     constant_curvature: Optional[float]
 
 
+def _float_dtype(dtype: np.dtype) -> type:
+    """scipy's rule: complex coefficients stay complex (``complex128``), others ``float64``."""
+    return np.complex128 if np.issubdtype(dtype, np.complexfloating) else np.float64
+
+
+def _as_float_array(x: ArrayLike, check_finite: bool = False) -> FloatArray:
+    """``x`` as a contiguous float64 array (scipy's ``_as_float_array``)."""
+    x = np.ascontiguousarray(x)
+    x = x.astype(_float_dtype(x.dtype), copy=False)
+    if check_finite and not np.isfinite(x).all():
+        raise _core.SplineError("Array must not contain infs or nans.")
+    return x
+
+
+def _mode(extrapolate) -> str:
+    """scipy's ``extrapolate`` (``True``, ``False`` or ``'periodic'``) as the library's name."""
+    if isinstance(extrapolate, str) and extrapolate == "periodic":
+        return "periodic"
+    return "on" if extrapolate else "off"
+
+
+def _real_columns(c: np.ndarray) -> Tuple[FloatArray, bool]:
+    """The coefficients as a row-major ``(rows, m)`` float64 matrix (trailing dimensions
+    flattened, a complex value as two real columns) and whether they were complex."""
+    is_complex = np.iscomplexobj(c)
+    c = np.ascontiguousarray(c, dtype=np.complex128 if is_complex else np.float64)
+    cc = c.view(np.float64) if is_complex else c
+    if is_complex and c.ndim == 1:
+        cc = cc.reshape(c.shape[0], 2)
+    return np.ascontiguousarray(cc.reshape(cc.shape[0], -1)), is_complex
+
+
+def _from_columns(flat: FloatArray, rows: int, tail: tuple, is_complex: bool) -> np.ndarray:
+    """The inverse of ``_real_columns`` for a flat row-major result of ``rows`` rows."""
+    out = np.ascontiguousarray(flat, dtype=np.float64).reshape(rows, -1)
+    if is_complex:
+        out = out.view(np.complex128)
+    return out.reshape((rows,) + tail)
+
+
 class BSpline:
-    """A B-spline function or curve, as ``scipy.interpolate.BSpline``.
+    r"""A univariate spline in the B-spline basis, as ``scipy.interpolate.BSpline``:
 
-    ``t`` are the ``n + k + 1`` knots, ``c`` the ``n`` coefficients — shape ``(n,)`` for a
-    function, ``(n, d)`` with ``1 ≤ d ≤ 4`` for a curve — and ``k`` the degree. The base
-    interval is ``[t[k], t[n]]``.
+    .. math:: S(x) = \sum_{j=0}^{n-1} c_j B_{j,k;t}(x)
 
-    Differences from scipy: parameters outside the base interval raise ``SplineError``
-    (the library does not extrapolate), and ``c`` must have exactly ``n`` rows.
+    ``t`` are the ``n + k + 1`` knots, ``c`` the coefficients (any shape whose axis ``axis``
+    has at least ``n`` entries: the trailing dimensions are columns evaluated together;
+    complex coefficients are two real columns), ``k`` the degree. ``extrapolate``: ``True``
+    (the end polynomials continue outside the base interval ``[t[k], t[n]]``), ``False``
+    (NaN there) or ``'periodic'``. The numerics run in the library (``ColumnSpline``); this
+    class moves axes and validates arguments with scipy's messages.
+
+    Beyond scipy: Jacobians of structural operations (``insertion_matrix``…), planar curve
+    features and curvature, refinement and degree elevation, the JSON exchange format.
 
     >>> import numpy as np, spline
     >>> s = spline.BSpline([0, 0, 0, 1, 2, 2, 2], [0.0, 1.0, 3.0, 4.0], 2)
@@ -70,69 +118,227 @@ class BSpline:
     2.0
     """
 
-    __slots__ = ("_s",)
+    def __init__(self, t: ArrayLike, c: ArrayLike, k: int, extrapolate=True, axis: int = 0):
+        self.k = operator.index(k)
+        self._c = np.asarray(c)
+        self._t = np.ascontiguousarray(t, dtype=np.float64)
+        if isinstance(extrapolate, str) and extrapolate == "periodic":
+            self.extrapolate = extrapolate
+        else:
+            self.extrapolate = bool(extrapolate)
+        n = self._t.shape[0] - self.k - 1
+        axis = normalize_axis_index(axis, self._c.ndim)
+        self.axis = axis
+        if axis != 0:
+            self._c = np.moveaxis(self._c, axis, 0)
+        if k < 0:
+            raise _core.SplineError("Spline order cannot be negative.")
+        if self._t.ndim != 1:
+            raise _core.SplineError("Knot vector must be one-dimensional.")
+        if n < self.k + 1:
+            raise _core.SplineError(f"Need at least {2 * k + 2} knots for degree {k}")
+        if (np.diff(self._t) < 0).any():
+            raise _core.SplineError("Knots must be in a non-decreasing order.")
+        if len(np.unique(self._t[k : n + 1])) < 2:
+            raise _core.SplineError("Need at least two internal knots.")
+        if not np.isfinite(self._t).all():
+            raise _core.SplineError("Knots should not have nans or infs.")
+        if self._c.ndim < 1:
+            raise _core.SplineError("Coefficients must be at least 1-dimensional.")
+        if self._c.shape[0] < n:
+            raise _core.SplineError("Knots, coefficients and degree are inconsistent.")
+        self._c = np.ascontiguousarray(self._c, dtype=_float_dtype(self._c.dtype))
 
-    def __init__(self, t: ArrayLike, c: ArrayLike, k: int, extrapolate: bool = False) -> None:
-        if extrapolate:
-            raise _core.SplineError(
-                "extrapolate=True: the library evaluates inside the base interval only"
-            )
-        flat, dim = _flat_rows(c, "c")
-        self._s = _core.Curve(int(k), _floats(t, "t"), flat, dim)
+    @classmethod
+    def construct_fast(cls, t, c, k, extrapolate=True, axis=0) -> "BSpline":
+        """A spline without checks: ``t`` and ``c`` must have the right shape and dtype."""
+        self = object.__new__(cls)
+        self._t, self._c, self.k = np.asarray(t), np.asarray(c), k
+        self.extrapolate = extrapolate
+        self.axis = axis
+        return self
 
     @classmethod
     def _wrap(cls, core: "_core.Curve") -> "BSpline":
-        obj = cls.__new__(cls)
-        obj._s = core
-        return obj
+        """A spline from the library's ``Curve`` (the package's own operations)."""
+        flat = core.coefficients()
+        c = flat if core.dim == 0 else flat.reshape(-1, core.dim)
+        return cls.construct_fast(core.knots(), c, core.degree)
+
+    @property
+    def tck(self):
+        """``(t, c, k)`` (read-only)."""
+        return self.t, self.c, self.k
 
     @property
     def t(self) -> FloatArray:
-        """The knots (a copy)."""
-        return self._s.knots()
+        """The knots."""
+        return self._t
+
+    @t.setter
+    def t(self, t) -> None:
+        self._t = np.asarray(t)
 
     @property
-    def c(self) -> FloatArray:
-        """The coefficients, ``(n,)`` or ``(n, d)`` (a copy)."""
-        flat = self._s.coefficients()
-        return flat if self._s.dim == 0 else flat.reshape(-1, self._s.dim)
+    def c(self) -> np.ndarray:
+        """The coefficients, interpolation axis first."""
+        return self._c
+
+    @c.setter
+    def c(self, c) -> None:
+        self._c = np.asarray(c)
 
     @property
-    def k(self) -> int:
-        """The degree."""
-        return self._s.degree
+    def _s(self) -> "_core.Curve":
+        """The library's ``Curve`` (scalar or points of dimension 1 to 4) for the package's
+        own operations (Jacobians, features, refinement, elevation, JSON)."""
+        n = self._t.shape[0] - self.k - 1
+        c = np.asarray(self._c)[:n]
+        if np.iscomplexobj(c) or c.ndim > 2:
+            raise _core.SplineError(
+                "this operation needs real coefficients of shape (n,) or (n, d)"
+            )
+        flat, dim = _flat_rows(c, "c")
+        return _core.Curve(int(self.k), _floats(self._t, "t"), flat, dim)
+
+    def _columns(self) -> Tuple["_core.Columns", bool]:
+        cc, is_complex = _real_columns(self._c)
+        t = np.ascontiguousarray(self._t, dtype=np.float64)
+        return _core.Columns(t, cc.reshape(-1), int(self.k), cc.shape[1]), is_complex
 
     @property
     def domain(self) -> Tuple[float, float]:
         """The base interval ``(t[k], t[n])``."""
-        return self._s.domain()
+        n = self._t.shape[0] - self.k - 1
+        return float(self._t[self.k]), float(self._t[n])
 
     def __repr__(self) -> str:
-        return f"BSpline(k={self.k}, n={len(self.t) - self.k - 1}, dim={self._s.dim or 'scalar'})"
+        return f"BSpline(k={self.k}, n={len(self._t) - self.k - 1}, c.shape={self._c.shape})"
 
-    def __call__(self, x: ArrayLike, nu: int = 0) -> FloatArray:
-        """The ``nu``-th derivative at ``x`` (any shape): shape ``x.shape + c.shape[1:]``.
-
-        One batch call into the library (GIL released); derivatives above the degree are 0.
-        """
-        xa = _floats(x, "x")
-        flat = xa.reshape(-1)
-        tail = () if self._s.dim == 0 else (self._s.dim,)
+    def __call__(self, x: ArrayLike, nu: int = 0, extrapolate=None) -> np.ndarray:
+        """The ``nu``-th derivative at ``x``: shape ``x.shape`` in place of the
+        interpolation axis of ``c``. ``extrapolate`` defaults to ``self.extrapolate``."""
+        if extrapolate is None:
+            extrapolate = self.extrapolate
+        x = np.asarray(x)
+        x_shape, x_ndim = x.shape, x.ndim
+        x = np.ascontiguousarray(x.ravel(), dtype=np.float64)
+        nu = operator.index(nu)
         if nu < 0:
-            raise _core.SplineError(f"nu must be non-negative, got {nu}")
-        if nu > self.k:
-            # Checked like any other parameter, then zero (the exchange format's convention).
-            self._s.eval(flat, 0)
-            return np.zeros(xa.shape + tail)
-        return self._s.eval(flat, int(nu)).reshape(xa.shape + tail)
+            raise _core.SplineError(f"Derivative order must be non-negative, got nu = {nu}.")
+        tail = self._c.shape[1:]
+        if prod(tail) == 0:
+            out = np.zeros((x.size,) + tail, dtype=_float_dtype(self._c.dtype))
+        else:
+            columns, is_complex = self._columns()
+            flat = columns.eval(x, nu, _mode(extrapolate))
+            out = _from_columns(flat, x.size, tail, is_complex)
+        out = out.reshape(x_shape + tail)
+        if self.axis != 0:
+            order = list(range(out.ndim))
+            order = order[x_ndim : x_ndim + self.axis] + order[:x_ndim] + order[x_ndim + self.axis :]
+            out = out.transpose(order)
+        return out
+
+    def _columns_result(self, core: "_core.Columns", is_complex: bool, extrapolate) -> "BSpline":
+        """A ``BSpline`` from a library result with this spline's trailing shape."""
+        t = core.knots()
+        flat = core.coefficients()
+        rows = flat.size // core.columns
+        c = _from_columns(flat, rows, self._c.shape[1:], is_complex)
+        return self.construct_fast(t, c, core.degree, extrapolate, self.axis)
 
     def derivative(self, nu: int = 1) -> "BSpline":
-        """The derivative of order ``nu`` as a B-spline of degree ``k − nu``."""
-        return BSpline._wrap(self._s.derivative(int(nu)))
+        """The derivative of order ``nu`` as a spline of degree ``k − nu`` (scipy's
+        convention: knots ``t[nu:-nu]``, ``c`` padded with zeros to the knots' length)."""
+        columns, is_complex = self._columns()
+        return self._columns_result(columns.derivative(int(nu)), is_complex, self.extrapolate)
+
+    def antiderivative(self, nu: int = 1) -> "BSpline":
+        """The antiderivative of order ``nu`` (zero at ``t[k]``), degree ``k + nu``; a periodic
+        spline's antiderivative does not extrapolate (``extrapolate=False``)."""
+        columns, is_complex = self._columns()
+        extrapolate = False if _mode(self.extrapolate) == "periodic" else self.extrapolate
+        return self._columns_result(columns.antiderivative(int(nu)), is_complex, extrapolate)
+
+    def integrate(self, a: float, b: float, extrapolate=None) -> np.ndarray:
+        """The integral over ``[a, b]``: outside the base interval the end polynomials
+        (``extrapolate=True``), zero (``False``) or the periodic continuation."""
+        if extrapolate is None:
+            extrapolate = self.extrapolate
+        columns, is_complex = self._columns()
+        flat = columns.integrate(float(a), float(b), _mode(extrapolate))
+        return np.asarray(_from_columns(flat, 1, self._c.shape[1:], is_complex)[0])
 
     def insert_knot(self, x: float, m: int = 1) -> "BSpline":
-        """The same curve with the knot ``x`` inserted ``m`` times (Boehm)."""
-        return BSpline._wrap(self._s.insert_knot(float(x), int(m)))
+        """The same spline with the knot ``x`` inserted ``m`` times (Boehm); a periodic spline
+        (``extrapolate='periodic'``) keeps its periodic form."""
+        x = float(x)
+        if x < self._t[self.k] or x > self._t[-self.k - 1]:
+            raise _core.SplineError(f"Cannot insert a knot at {x}.")
+        if m <= 0:
+            raise _core.SplineError(f"`m` must be positive, got {m = }.")
+        columns, is_complex = self._columns()
+        periodic = _mode(self.extrapolate) == "periodic"
+        return self._columns_result(
+            columns.insert_knot(x, int(m), periodic), is_complex, self.extrapolate
+        )
+
+    @classmethod
+    def basis_element(cls, t: ArrayLike, extrapolate=True) -> "BSpline":
+        """The B-spline basis element ``B(x | t[0], ..., t[k+1])``, ``k = len(t) − 2``."""
+        core = _core.Columns.basis_element(_floats(t, "t"))
+        return cls.construct_fast(core.knots(), core.coefficients(), core.degree, extrapolate)
+
+    @classmethod
+    def design_matrix(cls, x: ArrayLike, t: ArrayLike, k: int, extrapolate=False) -> scipy.sparse.csr_array:
+        """The ``len(x) × (len(t) − k − 1)`` collocation matrix ``B_j(x_i)`` as a
+        ``scipy.sparse.csr_array``; points outside the base interval raise unless
+        ``extrapolate`` (``True`` or ``'periodic'``)."""
+        x = _as_float_array(x, True)
+        t = _as_float_array(t, True)
+        if not (isinstance(extrapolate, str) and extrapolate == "periodic"):
+            extrapolate = bool(extrapolate)
+        if k < 0:
+            raise _core.SplineError("Spline order cannot be negative.")
+        if t.ndim != 1 or np.any(t[1:] < t[:-1]):
+            raise _core.SplineError(f"Expect t to be a 1-D sorted array_like, but got t={t}.")
+        if len(t) < 2 * k + 2:
+            raise _core.SplineError(f"Length t is not enough for k={k}.")
+        if extrapolate is False and x.size and (
+            (min(x) < t[k]) or (max(x) > t[t.shape[0] - k - 1])
+        ):
+            raise _core.SplineError(f"Out of bounds w/ x = {x}.")
+        data, indices, indptr, shape = _core.design_matrix(
+            np.ascontiguousarray(x.ravel()), t, int(k), _mode(extrapolate)
+        )
+        int_dtype = np.int32 if len(data) < np.iinfo(np.int32).max else np.int64
+        return scipy.sparse.csr_array(
+            (data, np.asarray(indices, dtype=int_dtype), np.asarray(indptr, dtype=int_dtype)),
+            shape=shape,
+        )
+
+    @classmethod
+    def from_power_basis(cls, pp, bc_type: str = "not-a-knot") -> "BSpline":
+        """A ``scipy.interpolate.CubicSpline`` in the B-spline basis (knots by ``bc_type``:
+        ``'not-a-knot'``, ``'natural'``, ``'clamped'`` or ``'periodic'``)."""
+        from scipy.interpolate import CubicSpline
+
+        if not isinstance(pp, CubicSpline):
+            raise NotImplementedError(
+                f"Only CubicSpline objects are accepted for now. Got {type(pp)} instead."
+            )
+        if bc_type not in ("not-a-knot", "natural", "clamped", "periodic"):
+            raise TypeError(f"Unknown boundary condition: {bc_type}")
+        x = np.ascontiguousarray(pp.x, dtype=np.float64)
+        coef = np.asarray(pp.c)
+        order, pieces, tail = coef.shape[0], coef.shape[1], coef.shape[2:]
+        cc, is_complex = _real_columns(coef.reshape(order * pieces, -1))
+        core = _core.Columns.from_power_basis(x, cc.reshape(-1), order, cc.shape[1], bc_type)
+        t = core.knots()
+        flat = core.coefficients()
+        c = _from_columns(flat, flat.size // core.columns, tail, is_complex)
+        return cls.construct_fast(t, c, core.degree, pp.extrapolate, pp.axis)
 
     def refine(self, knots: ArrayLike) -> "BSpline":
         """The same curve with every knot of ``knots`` inserted (Oslo algorithm)."""
@@ -155,7 +361,8 @@ class BSpline:
         return _csr(self._s.elevation_map(int(times)))
 
     def derivative_matrix(self, nu: int = 1) -> scipy.sparse.csr_array:
-        """The Jacobian of differentiation: ``derivative(nu).c == M @ c``."""
+        """The Jacobian of differentiation: ``derivative(nu).c[:m] == M @ c`` (``m`` the
+        matrix's rows; the rest of scipy's padded ``c`` is zero)."""
         return _csr(self._s.derivative_map(int(nu)))
 
     def features(self, accuracy: float = 1e-12) -> Features:
@@ -178,26 +385,203 @@ class BSpline:
         return cls._wrap(_core.Curve.from_json(text))
 
 
+def _fit_input(y: ArrayLike, axis: int, check_finite: bool) -> Tuple[np.ndarray, int]:
+    """``y`` with the interpolation axis first, and that axis normalised."""
+    y = _as_float_array(y, check_finite)
+    axis = normalize_axis_index(axis, y.ndim)
+    return np.moveaxis(y, axis, 0), axis
+
+
+def _solve_columns(y: np.ndarray, solve) -> np.ndarray:
+    """Runs ``solve(flat, m)`` (a library fit on ``m`` real columns, returning row-major
+    coefficients) on ``y`` (interpolation axis first, any trailing shape, maybe complex) and
+    gives the coefficients with ``y``'s trailing shape and dtype."""
+    cc, is_complex = _real_columns(y)
+    flat = solve(np.ascontiguousarray(cc).reshape(-1), cc.shape[1])
+    return _from_columns(flat, flat.size // cc.shape[1], y.shape[1:], is_complex)
+
+
 def make_interp_spline(
-    x: ArrayLike, y: ArrayLike, k: int = 3, t: Optional[ArrayLike] = None
+    x: ArrayLike,
+    y: ArrayLike,
+    k: int = 3,
+    t: Optional[ArrayLike] = None,
+    bc_type=None,
+    axis: int = 0,
+    check_finite: bool = True,
 ) -> BSpline:
-    """The interpolating B-spline of degree ``k`` (as scipy's): ``f(x[j]) = y[j]`` on the
-    not-a-knot knots, or on ``t``; ``y`` of shape ``(m,)`` or ``(m, d)``."""
-    flat, dim = _flat_rows(y, "y")
-    tt = None if t is None else _floats(t, "t")
-    return BSpline._wrap(_core.interpolate(_floats(x, "x"), flat, dim, int(k), tt))
+    """The interpolating B-spline of degree ``k`` (scipy's ``make_interp_spline``):
+    ``f(x[j]) = y[j]`` along ``axis`` of ``y``, on the knots ``t`` or the not-a-knot knots;
+    ``bc_type``: ``None``/``'not-a-knot'``, or ``'natural'`` for cubics."""
+    if bc_type is None or bc_type == "not-a-knot" or bc_type == "periodic":
+        deriv_l, deriv_r = None, None
+    elif isinstance(bc_type, str):
+        deriv_l, deriv_r = bc_type, bc_type
+    else:
+        try:
+            deriv_l, deriv_r = bc_type
+        except TypeError as e:
+            raise _core.SplineError(f"Unknown boundary condition: {bc_type}") from e
+    x = _as_float_array(x, check_finite)
+    y, axis = _fit_input(y, axis, check_finite)
+    if bc_type == "periodic" and not np.allclose(y[0], y[-1], atol=1e-15):
+        raise _core.SplineError(
+            "First and last points does not match while periodic case expected"
+        )
+    if x.size != y.shape[0]:
+        raise _core.SplineError(f"Shapes of x {x.shape} and y {y.shape} are incompatible")
+    if np.any(x[1:] == x[:-1]):
+        raise _core.SplineError("Expect x to not have duplicates")
+    if x.ndim != 1 or np.any(x[1:] < x[:-1]):
+        raise _core.SplineError("Expect x to be a 1D strictly increasing sequence.")
+    if k == 0:
+        if any(v is not None for v in (t, deriv_l, deriv_r)):
+            raise _core.SplineError("Too much info for k=0: t and bc_type can only be None.")
+        t = np.r_[x, x[-1]]
+        return BSpline.construct_fast(t, np.ascontiguousarray(y), k, axis=axis)
+    if k == 1 and t is None:
+        if not (deriv_l is None and deriv_r is None):
+            raise _core.SplineError("Too much info for k=1: bc_type can only be None.")
+        t = np.r_[x[0], x, x[-1]]
+        return BSpline.construct_fast(t, np.ascontiguousarray(y), k, axis=axis)
+    k = operator.index(k)
+    if bc_type == "periodic" and t is not None:
+        raise NotImplementedError(
+            "For periodic case t is constructed automatically and can not be passed manually"
+        )
+    if k < 0:
+        raise _core.SplineError("Expect non-negative k.")
+    natural = (
+        isinstance(deriv_l, str) and isinstance(deriv_r, str)
+        and deriv_l == "natural" and deriv_r == "natural" and k == 3 and t is None
+    )
+    for d in (deriv_l, deriv_r):
+        if isinstance(d, str) and d not in ("clamped", "natural"):
+            raise _core.SplineError(f"Unknown boundary condition : {d}")
+    if natural:
+        if y.size == 0:
+            pass
+        else:
+            t_out = []
+
+            def solve(flat, m):
+                t_nat, c = _core.natural_columns(x, flat, m)
+                t_out.append(t_nat)
+                return c
+
+            c = _solve_columns(y, solve)
+            return BSpline.construct_fast(t_out[0], c, k, axis=axis)
+    if deriv_l is not None or deriv_r is not None or bc_type == "periodic":
+        raise NotImplementedError(
+            f"bc_type={bc_type!r}: boundary derivatives and periodic interpolation wait "
+            "for the library's column fits"
+        )
+    if t is None:
+        t = _core.not_a_knot(np.ascontiguousarray(x), k)
+    t = _as_float_array(t, check_finite)
+    if t.ndim != 1 or np.any(t[1:] < t[:-1]):
+        raise _core.SplineError("Expect t to be a 1-D sorted array_like.")
+    if t.size < x.size + k + 1:
+        raise _core.SplineError(f"Got {t.size} knots, need at least {x.size + k + 1}.")
+    if (x[0] < t[k]) or (x[-1] > t[-k]):
+        raise _core.SplineError(f"Out of bounds w/ x = {x}.")
+    nt = t.size - k - 1
+    if nt - x.size != 0:
+        raise _core.SplineError(
+            f"The number of derivatives at boundaries does not match: expected {nt - x.size}, got 0+0"
+        )
+    if y.size == 0:
+        c = np.zeros((nt,) + y.shape[1:], dtype=float)
+        return BSpline.construct_fast(t, c, k, axis=axis)
+    c = _solve_columns(y, lambda flat, m: _core.interp_columns(x, flat, m, t, k))
+    return BSpline.construct_fast(t, c, k, axis=axis)
 
 
 def make_lsq_spline(
-    x: ArrayLike, y: ArrayLike, t: ArrayLike, k: int = 3, w: Optional[ArrayLike] = None
+    x: ArrayLike,
+    y: ArrayLike,
+    t: ArrayLike,
+    k: int = 3,
+    w: Optional[ArrayLike] = None,
+    axis: int = 0,
+    check_finite: bool = True,
+    *,
+    method: str = "qr",
 ) -> BSpline:
-    """The least-squares B-spline on the knots ``t`` (as scipy's): minimises
-    ``sum((w[j] * (y[j] - f(x[j])))**2)``."""
-    flat, dim = _flat_rows(y, "y")
-    ww = None if w is None else _floats(w, "w")
-    return BSpline._wrap(
-        _core.least_squares(_floats(x, "x"), flat, dim, _floats(t, "t"), int(k), ww)
+    """The least-squares B-spline on the knots ``t`` (scipy's ``make_lsq_spline``):
+    minimises ``sum((w[j] * (y[j] - f(x[j])))**2)`` along ``axis``; ``method``: ``'qr'``
+    (Givens rotations) or ``'norm-eq'`` (banded normal equations)."""
+    x = _as_float_array(x, check_finite)
+    y = _as_float_array(y, check_finite)
+    t = _as_float_array(t, check_finite)
+    if w is not None:
+        w = _as_float_array(w, check_finite)
+    else:
+        w = np.ones_like(x)
+    k = operator.index(k)
+    axis = normalize_axis_index(axis, y.ndim)
+    y = np.moveaxis(y, axis, 0)
+    if x.ndim != 1:
+        raise _core.SplineError("Expect x to be a 1-D sequence.")
+    if x.shape[0] < k + 1:
+        raise _core.SplineError("Need more x points.")
+    if k < 0:
+        raise _core.SplineError("Expect non-negative k.")
+    if t.ndim != 1 or np.any(t[1:] - t[:-1] < 0):
+        raise _core.SplineError("Expect t to be a 1D strictly increasing sequence.")
+    if x.size != y.shape[0]:
+        raise _core.SplineError(f"Shapes of x {x.shape} and y {y.shape} are incompatible")
+    if k > 0 and np.any((x < t[k]) | (x > t[-k])):
+        raise _core.SplineError(f"Out of bounds w/ x = {x}.")
+    if x.size != w.size:
+        raise _core.SplineError(f"Shapes of x {x.shape} and w {w.shape} are incompatible")
+    if method == "norm-eq" and np.any(x[1:] - x[:-1] <= 0):
+        raise _core.SplineError("Expect x to be a 1D strictly increasing sequence.")
+    if method == "qr" and any(x[1:] - x[:-1] < 0):
+        raise _core.SplineError("Expect x to be a 1D non-decreasing sequence.")
+    if method not in ("qr", "norm-eq"):
+        raise _core.SplineError(f"Unknown {method = }.")
+    n = t.size - k - 1
+    if prod(y.shape[1:]) == 0:
+        return BSpline.construct_fast(t, np.zeros((n,) + y.shape[1:]), k, axis=axis)
+    ww = np.ascontiguousarray(w, dtype=np.float64)
+    c = _solve_columns(
+        y, lambda flat, m: _core.lsq_columns(x, flat, m, t, k, ww, method)
     )
+    return BSpline.construct_fast(t, np.ascontiguousarray(c), k, axis=axis)
+
+
+def make_smoothing_spline(
+    x: ArrayLike, y: ArrayLike, w: Optional[ArrayLike] = None, lam: Optional[float] = None, *, axis: int = 0
+) -> BSpline:
+    """The cubic smoothing spline (scipy's ``make_smoothing_spline``): minimises
+    ``sum(w_j (y_j - f(x_j))**2) + lam * integral(f''**2)``, ``lam`` chosen by generalised
+    cross-validation when ``None`` (per column)."""
+    x = np.ascontiguousarray(x, dtype=float)
+    y = np.ascontiguousarray(y, dtype=float)
+    if any(x[1:] - x[:-1] <= 0):
+        raise _core.SplineError("``x`` should be an ascending array")
+    if x.ndim != 1 or x.shape[0] != y.shape[axis]:
+        raise _core.SplineError(f"``x`` should be 1D and {x.shape = } == {y.shape = }")
+    if w is not None:
+        w = np.ascontiguousarray(w, dtype=float)
+        if any(w <= 0):
+            raise _core.SplineError("Invalid vector of weights")
+    if x.shape[0] <= 4:
+        raise _core.SplineError("``x`` and ``y`` length must be at least 5")
+    if lam is not None and lam < 0.0:
+        raise _core.SplineError("Regularization parameter should be non-negative")
+    axis = normalize_axis_index(axis, y.ndim)
+    y = np.moveaxis(y, axis, 0)
+    t_out = []
+
+    def solve(flat, m):
+        t, c = _core.smoothing_columns(x, flat, m, w, None if lam is None else float(lam))
+        t_out.append(t)
+        return c
+
+    c = _solve_columns(y, solve)
+    return BSpline.construct_fast(t_out[0], c, 3, axis=axis)
 
 
 def product(a: BSpline, b: BSpline) -> Tuple[BSpline, scipy.sparse.csr_array, scipy.sparse.csr_array]:

@@ -1,0 +1,193 @@
+//! scipy's fitting functions for many columns (`make_interp_spline`, `make_lsq_spline`,
+//! `make_smoothing_spline`): each column of the row-major `len(x) × m` data goes through the
+//! library's scalar fit on the same knots (`interpolate_with_knots`, `natural_cubic`,
+//! `LeastSquares`, `smoothing_spline`). `spline._bspline` validates the arguments with scipy's
+//! words and moves the axes.
+
+use crate::{IntoPy, array, bad_input, slice};
+use numpy::{PyArray1, PyReadonlyArray1};
+use pyo3::prelude::*;
+use spline::KnotVector;
+use spline::fit::{
+    LeastSquares, LsqMethod, SmoothingParameter, interpolate_with_knots, natural_cubic,
+    smoothing_spline,
+};
+
+/// Knots and row-major coefficients of a fitted spline.
+type KnotsAndCoefficients<'py> = (Bound<'py, PyArray1<f64>>, Bound<'py, PyArray1<f64>>);
+
+/// Column `j` of a row-major matrix of `m` columns.
+fn column(flat: &[f64], m: usize, j: usize) -> Vec<f64> {
+    flat.iter().skip(j).step_by(m).copied().collect()
+}
+
+/// The columns' coefficients (each of `rows` entries) as one row-major matrix.
+fn interleave(columns: &[Vec<f64>], rows: usize) -> Vec<f64> {
+    let mut out = Vec::with_capacity(rows * columns.len());
+    for i in 0..rows {
+        out.extend(columns.iter().map(|c| c[i]));
+    }
+    out
+}
+
+/// Checks that `y` holds `len(x)` rows of `m ≥ 1` values.
+fn check_rows(x: &[f64], y: &[f64], m: usize) -> PyResult<()> {
+    if m == 0 || Some(y.len()) != x.len().checked_mul(m) {
+        return Err(bad_input(format!(
+            "{} values do not make {} rows of {m} columns",
+            y.len(),
+            x.len()
+        )));
+    }
+    Ok(())
+}
+
+/// Interpolation of every column at `x` on the knots `t` of degree `k`: the coefficients,
+/// row-major (`len(t) − k − 1` rows × `m`).
+#[pyfunction]
+fn interp_columns<'py>(
+    py: Python<'py>,
+    x: PyReadonlyArray1<'py, f64>,
+    y: PyReadonlyArray1<'py, f64>,
+    m: usize,
+    t: PyReadonlyArray1<'py, f64>,
+    k: usize,
+) -> PyResult<Bound<'py, PyArray1<f64>>> {
+    let (x, y) = (slice(&x, "x")?, slice(&y, "y")?);
+    check_rows(x, y, m)?;
+    let knots = KnotVector::new(k, slice(&t, "t")?.to_vec()).py()?;
+    let rows = knots.num_basis();
+    let columns = py
+        .detach(|| {
+            (0..m)
+                .map(|j| {
+                    interpolate_with_knots(&knots, x, &column(y, m, j))
+                        .map(|s| s.control_points().to_vec())
+                })
+                .collect::<spline::Result<Vec<_>>>()
+        })
+        .py()?;
+    Ok(array(py, interleave(&columns, rows)))
+}
+
+/// The natural cubic interpolant of every column (knots: the abscissae, ends four times):
+/// `(t, c)` with `c` row-major.
+#[pyfunction]
+fn natural_columns<'py>(
+    py: Python<'py>,
+    x: PyReadonlyArray1<'py, f64>,
+    y: PyReadonlyArray1<'py, f64>,
+    m: usize,
+) -> PyResult<KnotsAndCoefficients<'py>> {
+    let (x, y) = (slice(&x, "x")?, slice(&y, "y")?);
+    check_rows(x, y, m)?;
+    let splines = py
+        .detach(|| {
+            (0..m)
+                .map(|j| natural_cubic(x, &column(y, m, j)))
+                .collect::<spline::Result<Vec<_>>>()
+        })
+        .py()?;
+    let t = splines[0].knots().knots().to_vec();
+    let rows = splines[0].len();
+    let columns: Vec<Vec<f64>> = splines
+        .iter()
+        .map(|s| s.control_points().to_vec())
+        .collect();
+    Ok((array(py, t), array(py, interleave(&columns, rows))))
+}
+
+/// Weighted least squares of every column on the knots `t`: minimises
+/// $\sum_i (w_i (y_{ij} - s_j(x_i)))^2$; `method` is `"qr"` or `"norm-eq"`. The
+/// coefficients, row-major.
+#[pyfunction]
+#[pyo3(signature = (x, y, m, t, k, w, method))]
+#[allow(clippy::too_many_arguments)]
+fn lsq_columns<'py>(
+    py: Python<'py>,
+    x: PyReadonlyArray1<'py, f64>,
+    y: PyReadonlyArray1<'py, f64>,
+    m: usize,
+    t: PyReadonlyArray1<'py, f64>,
+    k: usize,
+    w: Option<PyReadonlyArray1<'py, f64>>,
+    method: &str,
+) -> PyResult<Bound<'py, PyArray1<f64>>> {
+    let (x, y) = (slice(&x, "x")?, slice(&y, "y")?);
+    check_rows(x, y, m)?;
+    let w = w.as_ref().map(|w| slice(w, "w")).transpose()?;
+    let method = match method {
+        "qr" => LsqMethod::Qr,
+        "norm-eq" => LsqMethod::NormalEquations,
+        other => return Err(bad_input(format!("Unknown method = {other:?}."))),
+    };
+    let knots = KnotVector::new(k, slice(&t, "t")?.to_vec()).py()?;
+    let rows = knots.num_basis();
+    let columns = py
+        .detach(|| {
+            (0..m)
+                .map(|j| {
+                    let values = column(y, m, j);
+                    let mut problem = LeastSquares::new(&values, x, knots.clone()).method(method);
+                    if let Some(w) = w {
+                        problem = problem.weights(w);
+                    }
+                    problem.control_points()
+                })
+                .collect::<spline::Result<Vec<_>>>()
+        })
+        .py()?;
+    Ok(array(py, interleave(&columns, rows)))
+}
+
+/// scipy's `make_smoothing_spline` for every column: λ given, or chosen per column by
+/// generalised cross-validation. `(t, c)` with `c` row-major.
+#[pyfunction]
+#[pyo3(signature = (x, y, m, w=None, lam=None))]
+fn smoothing_columns<'py>(
+    py: Python<'py>,
+    x: PyReadonlyArray1<'py, f64>,
+    y: PyReadonlyArray1<'py, f64>,
+    m: usize,
+    w: Option<PyReadonlyArray1<'py, f64>>,
+    lam: Option<f64>,
+) -> PyResult<KnotsAndCoefficients<'py>> {
+    let (x, y) = (slice(&x, "x")?, slice(&y, "y")?);
+    check_rows(x, y, m)?;
+    let w = w.as_ref().map(|w| slice(w, "w")).transpose()?;
+    let parameter = lam.map_or(SmoothingParameter::Gcv, SmoothingParameter::Lambda);
+    let fits = py
+        .detach(|| {
+            (0..m)
+                .map(|j| smoothing_spline(x, &column(y, m, j), w, parameter).map(|f| f.spline))
+                .collect::<spline::Result<Vec<_>>>()
+        })
+        .py()?;
+    let t = fits[0].knots().knots().to_vec();
+    let rows = fits[0].len();
+    let columns: Vec<Vec<f64>> = fits.iter().map(|s| s.control_points().to_vec()).collect();
+    Ok((array(py, t), array(py, interleave(&columns, rows))))
+}
+
+/// The not-a-knot knots of degree `k` for the abscissae `x` (scipy's `_not_a_knot`: the
+/// ends `k + 1` times, interior knots the data for odd `k`, midpoints for even `k`, leaving
+/// out the first and last `⌈k/2⌉`).
+#[pyfunction]
+fn not_a_knot<'py>(
+    py: Python<'py>,
+    x: PyReadonlyArray1<'py, f64>,
+    k: usize,
+) -> PyResult<Bound<'py, PyArray1<f64>>> {
+    let knots = KnotVector::not_a_knot(k, slice(&x, "x")?).py()?;
+    Ok(array(py, knots.knots().to_vec()))
+}
+
+/// Registers the functions.
+pub(crate) fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    m.add_function(wrap_pyfunction!(interp_columns, m)?)?;
+    m.add_function(wrap_pyfunction!(not_a_knot, m)?)?;
+    m.add_function(wrap_pyfunction!(natural_columns, m)?)?;
+    m.add_function(wrap_pyfunction!(lsq_columns, m)?)?;
+    m.add_function(wrap_pyfunction!(smoothing_columns, m)?)?;
+    Ok(())
+}
