@@ -1,6 +1,6 @@
 //! The browser suite of `cargo xtask test`: `spline studio` in headless Chromium.
 //!
-//! The test (`crates/spline-studio/tests/browser.rs`) is `#[ignore]`d so that a plain
+//! The test (`crates/spline-studio/tests/integration/browser.rs`) is `#[ignore]`d so that a plain
 //! `cargo test --workspace` needs no browser; this suite installs Debian's `chromium` and
 //! `chromium-driver` with apt-get when `/usr/bin/chromedriver` is missing (CI runs as root;
 //! `apt-get update` first), then runs it with `--ignored`. Its screenshots go to
@@ -49,8 +49,9 @@ pub(crate) fn run_browser_test(root: &Path, screenshot: Option<&Path>) -> Result
             "-p",
             "spline-studio",
             "--test",
-            "browser",
+            "integration",
             "--",
+            "browser::",
             "--ignored",
             "--nocapture",
         ])

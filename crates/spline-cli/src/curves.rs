@@ -4,8 +4,9 @@
 
 use crate::fitting::read_values;
 use crate::io::{Pt, parse_arg, print_json};
+use crate::objects::Object;
 use crate::objects::{Sized, read_curve};
-use crate::plot::{Planar, read_planar};
+use crate::plot::{Planar, planar_of, read_planar};
 use clap::Args;
 use nalgebra::Vector2;
 use serde_json::{Value, json};
@@ -109,12 +110,18 @@ fn pair<A: PlanarCurve<f64>>(a: &A, b: &Planar, tol: f64) -> Result<Vec<CurveInt
 /// surface intersections, which dispatch here when neither object is a surface): all
 /// intersections of two planar curves, or the self-intersections of one, at the contact
 /// tolerance `tolerance` (default [`CURVE_CONTACT_TOLERANCE`]).
-pub fn intersect_curve_files(a: &str, b: Option<&str>, tolerance: Option<f64>) -> Result<()> {
+/// The objects are read once by the caller (a path `-` is standard input, which can be read
+/// only once); `a` and `b` pair each with the path it came from, for messages.
+pub fn intersect_curve_objects(
+    a: (Object, &str),
+    b: Option<(Object, &str)>,
+    tolerance: Option<f64>,
+) -> Result<()> {
     let tolerance = tolerance.unwrap_or(CURVE_CONTACT_TOLERANCE);
-    let first = read_planar(a, "intersect")?;
+    let first = planar_of(a.0, a.1, "intersect")?;
     let hits = match b {
-        Some(path) => {
-            let second = read_planar(path, "intersect")?;
+        Some((object, path)) => {
+            let second = planar_of(object, path, "intersect")?;
             match &first {
                 Planar::Polynomial(x) => pair(x, &second, tolerance)?,
                 Planar::Rational(x) => pair(x, &second, tolerance)?,

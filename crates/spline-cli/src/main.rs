@@ -20,6 +20,7 @@ mod objects;
 mod plot;
 mod shape;
 mod structural;
+#[cfg(feature = "studio")]
 mod studio;
 mod surface_features;
 mod surfaces;
@@ -96,6 +97,7 @@ enum Command {
     /// Smoothing spline of data: lambda given or by GCV (scipy), or a residual target (FITPACK).
     Smoothing(curves::SmoothingArgs),
     /// Serve the interactive curve-design page (seed 003's labs) on 127.0.0.1; prints its URL.
+    #[cfg(feature = "studio")]
     Studio(studio::StudioArgs),
 }
 
@@ -129,6 +131,7 @@ fn run(command: Command) -> spline_core::Result<()> {
         Command::Arclength(args) => curves::arclength(&args),
         Command::Reduce(args) => curves::reduce(&args),
         Command::Smoothing(args) => curves::smoothing(&args),
+        #[cfg(feature = "studio")]
         Command::Studio(args) => studio::studio(&args),
     }
 }

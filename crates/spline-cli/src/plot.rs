@@ -55,7 +55,7 @@ pub fn read_planar(path: &str, what: &str) -> Result<Planar> {
 }
 
 /// The planar curve in an object read from `path`.
-fn planar_of(object: Object, path: &str, what: &str) -> Result<Planar> {
+pub fn planar_of(object: Object, path: &str, what: &str) -> Result<Planar> {
     let planar = |p: &crate::io::Pt| Vector2::new(p[0], p[1]);
     let dimension = |dim| check_dim(dim, 2, "a planar curve").map_err(|e| e.context(path));
     match object {

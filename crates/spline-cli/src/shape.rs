@@ -216,6 +216,28 @@ pub fn smooth(args: &SmoothArgs) -> Result<()> {
     batch(&inputs, Path::new(out), &options, args)
 }
 
+/// The output name of each input: its file stem, made unique by `-2`, `-3`, … for inputs
+/// whose stems repeat (`d/a.dat` and `e/a.dat` give `a` and `a-2`), so that no output
+/// overwrites another.
+fn unique_names(inputs: &[String]) -> Vec<String> {
+    let mut taken = std::collections::HashSet::new();
+    inputs
+        .iter()
+        .map(|input| {
+            let stem = Path::new(input)
+                .file_stem()
+                .map_or_else(|| input.clone(), |s| s.to_string_lossy().into_owned());
+            let mut name = stem.clone();
+            let mut k = 2;
+            while !taken.insert(name.to_ascii_lowercase()) {
+                name = format!("{stem}-{k}");
+                k += 1;
+            }
+            name
+        })
+        .collect()
+}
+
 /// Smooths every input in parallel, writing `DIR/NAME.json` and `DIR/summary.jsonl`; goes on
 /// after failures and reports them at the end.
 fn batch(
@@ -250,13 +272,12 @@ fn batch(
         ProgressBar::hidden()
     };
     let started = Instant::now();
+    let names = unique_names(inputs);
     let lines: Vec<(String, bool)> = pool.install(|| {
         inputs
             .par_iter()
-            .map(|input| {
-                let name = Path::new(input)
-                    .file_stem()
-                    .map_or_else(|| input.clone(), |s| s.to_string_lossy().into_owned());
+            .zip(names.par_iter())
+            .map(|(input, name)| {
                 let t0 = Instant::now();
                 let outcome = run_one(input, options, args.max_deviation).and_then(|result| {
                     let mut value = report(&result);
@@ -271,6 +292,7 @@ fn batch(
                 let line = match &outcome {
                     Ok(r) => json!({
                         "name": name,
+                        "input": input,
                         "control_points": r.curve.control_points().len(),
                         "max_deviation": r.deviation.to_curve.max,
                         "max_deviation_to_data": r.deviation.to_data,
@@ -280,6 +302,7 @@ fn batch(
                     }),
                     Err(e) => json!({
                         "name": name,
+                        "input": input,
                         "control_points": null,
                         "max_deviation": null,
                         "max_deviation_to_data": null,

@@ -140,7 +140,7 @@ pub fn intersect(args: &IntersectArgs) -> Result<()> {
     let a = read_object(&args.a)?;
     let Some(path_b) = &args.b else {
         // One curve: its self-intersections.
-        return crate::curves::intersect_curve_files(&args.a, None, args.tolerance);
+        return crate::curves::intersect_curve_objects((a, &args.a), None, args.tolerance);
     };
     let b = read_object(path_b)?;
     if let Some(t) = args.tolerance {
@@ -163,7 +163,11 @@ pub fn intersect(args: &IntersectArgs) -> Result<()> {
         (Some(s), None) => curve_surface(&b, path_b, &s, &tolerances)?,
         (None, Some(s)) => curve_surface(&a, &args.a, &s, &tolerances)?,
         (None, None) => {
-            return crate::curves::intersect_curve_files(&args.a, Some(path_b), args.tolerance);
+            return crate::curves::intersect_curve_objects(
+                (a, &args.a),
+                Some((b, path_b)),
+                args.tolerance,
+            );
         }
     };
     io::print_json(&out)

@@ -70,9 +70,27 @@ pub trait ControlPoint<T: Scalar>:
         self.dot(self)
     }
 
-    /// Euclidean length.
+    /// Euclidean length, without underflow or overflow of the squares: coordinates of any
+    /// magnitude the scalar holds (`3e-300, 4e-300` has length `5e-300`, not 0; `3e300,
+    /// 4e300` has `5e300`, not infinity).
     fn length(&self) -> T {
-        self.length_squared().sqrt()
+        let squared = self.length_squared();
+        // The squares are exact enough between these bounds; outside them (or when they
+        // underflow to 0 or overflow), the point is scaled by its largest coordinate first.
+        if squared > crate::cast::<T>(1e-290) && squared < crate::cast::<T>(1e290) {
+            return squared.sqrt();
+        }
+        let largest = self.max_abs();
+        if !(largest > T::zero()) || !largest.is_finite() {
+            return squared.sqrt();
+        }
+        // Divided, not multiplied by the inverse: 1/largest overflows for subnormal points.
+        let mut scaled = T::zero();
+        for i in 0..Self::DIM {
+            let c = self.coord(i) / largest;
+            scaled += c * c;
+        }
+        largest * scaled.sqrt()
     }
 
     /// Whether every coordinate is finite.
@@ -113,6 +131,11 @@ impl<T: Scalar> ControlPoint<T> for T {
     #[inline]
     fn dot(&self, other: &Self) -> T {
         *self * *other
+    }
+
+    #[inline]
+    fn length(&self) -> T {
+        self.abs()
     }
 }
 
@@ -339,5 +362,32 @@ impl<T: Scalar> VectorSpace<T> for SymbolicPoint<T> {
 
     fn is_finite_vector(&self) -> bool {
         self.entries.iter().all(|(_, v)| v.is_finite())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::ControlPoint;
+    use nalgebra::{Vector2, Vector3};
+
+    #[test]
+    fn length_holds_at_every_magnitude() {
+        // 3-4-5 at scales where the squares underflow or overflow.
+        for scale in [1e-300, 1e-200, 1e-160, 1.0, 1e160, 1e200, 1e300] {
+            let p = Vector2::new(3.0 * scale, -4.0 * scale);
+            let length = ControlPoint::<f64>::length(&p);
+            assert!(
+                (length / (5.0 * scale) - 1.0).abs() < 4.0 * f64::EPSILON,
+                "scale {scale}: {length}"
+            );
+        }
+        // Subnormal coordinates, zero, a scalar.
+        let tiny = Vector3::new(0.0, 3e-320, 4e-320);
+        assert!((ControlPoint::<f64>::length(&tiny) / 5e-320 - 1.0).abs() < 1e-3);
+        assert_eq!(ControlPoint::<f64>::length(&Vector2::new(0.0, 0.0)), 0.0);
+        assert_eq!(ControlPoint::<f64>::length(&-2e-300f64), 2e-300);
+        // Non-finite coordinates stay non-finite (validation elsewhere catches them).
+        assert!(ControlPoint::<f64>::length(&Vector2::new(f64::INFINITY, 1.0)).is_infinite());
+        assert!(ControlPoint::<f64>::length(&Vector2::new(f64::NAN, 1.0)).is_nan());
     }
 }

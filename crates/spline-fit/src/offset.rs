@@ -18,6 +18,41 @@ pub fn offset_point<T: Scalar, C: PlanarCurve<T> + ?Sized>(
     Ok(curve.eval(u)? + curve.unit_normal(u)? * distance)
 }
 
+/// The unit tangents of `curve` on either side of the interior break `k`: the directions of
+/// the last leg of the Bézier piece ending at `k` and of the first leg of the piece starting
+/// there (exact); where a leg has zero length (repeated control points), the tangents just
+/// off the break, `delta` away.
+fn one_sided_tangents<T: Scalar, C: PlanarCurve<T> + ?Sized>(
+    curve: &C,
+    pieces: &[(T, T, Vec<C::Coefficient>)],
+    k: T,
+    delta: T,
+) -> Result<(Vector2<T>, Vector2<T>)> {
+    let leg = |from: &C::Coefficient, to: &C::Coefficient| C::project(to) - C::project(from);
+    let ending = pieces.iter().find(|(_, end, _)| *end == k);
+    let starting = pieces.iter().find(|(start, _, _)| *start == k);
+    if let (Some((_, _, left)), Some((_, _, right))) = (ending, starting) {
+        if left.len() >= 2 && right.len() >= 2 {
+            let l = leg(&left[left.len() - 2], &left[left.len() - 1]);
+            let r = leg(&right[0], &right[1]);
+            let size = left
+                .iter()
+                .chain(right)
+                .map(|c| C::project(c).amax())
+                .fold(T::zero(), nalgebra::RealField::max);
+            let degenerate = cast::<T>(1e-12) * size;
+            if l.amax() > degenerate && r.amax() > degenerate {
+                return Ok((l.normalize(), r.normalize()));
+            }
+        }
+    }
+    let mut left = [Vector2::zeros(); 2];
+    let mut right = [Vector2::zeros(); 2];
+    curve.derivatives_into(k - delta, &mut left)?;
+    curve.derivatives_into(k + delta, &mut right)?;
+    Ok((left[1].normalize(), right[1].normalize()))
+}
+
 /// A B-spline of degree `degree` (3 is a good choice) on the curve's domain within `tolerance` of the offset
 /// $O(u) = C(u) + d\,N(u)$ at every parameter (the same parameter: the error bounds the
 /// distance between the point sets too), by [`AdaptiveApproximation`] with the curve's
@@ -56,14 +91,13 @@ pub fn offset_curve<T: Scalar, C: PlanarCurve<T> + ?Sized>(
     let (a, b) = curve.domain();
     let breaks = curve.breaks();
     let interior = &breaks[1..breaks.len() - 1];
-    // A corner at a break (the unit tangent jumps) tears the offset apart.
+    // A corner at a break (the unit tangent jumps) tears the offset apart. The one-sided
+    // tangents at a break are read off the Bézier pieces on either side (the directions of
+    // their end legs: exact, however fast the tangent turns next to the break).
+    let pieces = curve.bezier_pieces();
     let delta = (b - a) * cast(1e-9);
     for &k in interior {
-        let mut left = [Vector2::zeros(); 2];
-        let mut right = [Vector2::zeros(); 2];
-        curve.derivatives_into(k - delta, &mut left)?;
-        curve.derivatives_into(k + delta, &mut right)?;
-        let (l, r) = (left[1].normalize(), right[1].normalize());
+        let (l, r) = one_sided_tangents(curve, &pieces, k, delta)?;
         if !((l - r).norm() <= cast(1e-6)) {
             return Err(Error::new(
                 ErrorKind::InvalidArgument,

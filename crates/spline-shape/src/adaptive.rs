@@ -175,6 +175,14 @@ pub fn optimise_perimeter_over_area(
     options: &AdaptiveOptions,
 ) -> Result<Vec<AdaptiveIteration>> {
     let d = options.degree;
+    if d == 0 {
+        // A piecewise-constant curve jumps between its values: it has no tangent, no
+        // perimeter as a continuous curve and no area under it (refused before any work).
+        return Err(Error::new(
+            ErrorKind::InvalidArgument,
+            "degree must be at least 1: a piecewise-constant curve encloses no area",
+        ));
+    }
     if options.control_points < d + 2 || options.samples < options.control_points {
         return Err(Error::new(
             ErrorKind::InvalidArgument,

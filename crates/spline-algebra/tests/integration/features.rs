@@ -1,7 +1,7 @@
 //! Inflections and curvature extrema of rational curves, against closed forms and against
 //! the sampled signed curvature.
 
-mod common;
+use crate::common;
 
 use nalgebra::Vector2;
 use spline_algebra::planar_features;

@@ -2,7 +2,7 @@
 //! extremum, the thesis's settings can be written on the command line, a directory gives one
 //! JSON per airfoil and a summary, bad input gives exit status 2 and one line.
 
-mod common;
+use crate::common;
 
 use common::{spline, temp_file};
 use serde_json::Value;
@@ -127,6 +127,47 @@ fn a_directory_of_airfoils() {
     let _ = std::fs::remove_dir_all(&dir);
 }
 
+/// Two inputs with the same file name in different folders: two outputs, none overwritten
+/// (reproducer `smooth d/a.dat e/a.dat --out O`).
+#[test]
+fn inputs_with_the_same_name_get_outputs_of_their_own() {
+    let dir = std::env::temp_dir().join(format!("spline-smooth-same-{}", std::process::id()));
+    let out = dir.join("out");
+    for (folder, name) in [("d", "clarkv"), ("e", "e422")] {
+        std::fs::create_dir_all(dir.join(folder)).unwrap();
+        std::fs::copy(airfoil(name), dir.join(folder).join("a.dat")).unwrap();
+    }
+    let first = dir.join("d").join("a.dat");
+    let second = dir.join("e").join("a.dat");
+    let run = spline(&[
+        "smooth",
+        first.to_str().unwrap(),
+        second.to_str().unwrap(),
+        "--control-points",
+        "16",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert_eq!(run.status, 0, "{}", run.stderr);
+    let summary = std::fs::read_to_string(out.join("summary.jsonl")).unwrap();
+    let rows: Vec<Value> = summary
+        .lines()
+        .map(|l| serde_json::from_str(l).unwrap())
+        .collect();
+    let names: Vec<&str> = rows.iter().map(|r| r["name"].as_str().unwrap()).collect();
+    assert_eq!(names, ["a", "a-2"], "{summary}");
+    assert_eq!(rows[0]["input"], first.to_str().unwrap());
+    assert_eq!(rows[1]["input"], second.to_str().unwrap());
+    // Each output holds its own airfoil's result.
+    for row in &rows {
+        let file = out.join(format!("{}.json", row["name"].as_str().unwrap()));
+        let one: Value = serde_json::from_str(&std::fs::read_to_string(file).unwrap()).unwrap();
+        assert_eq!(one["max_deviation"], row["max_deviation"]);
+    }
+    assert_ne!(rows[0]["max_deviation"], rows[1]["max_deviation"]);
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
 #[test]
 fn smoothing_errors() {
     let points3d = temp_file("p.json", "[[0,0,0],[1,0,0],[2,1,0],[3,0,0]]");
@@ -207,6 +248,11 @@ fn optimising_perimeter_squared_over_area() {
     assert_eq!(out["iterations"].as_array().unwrap().len(), 3);
     let message = spline(&["optimize", "--iterations", "0"]).assert_clean_error();
     assert!(message.contains("--iterations"), "{message}");
+    // Degree 0 is refused at once (it used to run 30 s before failing on the area).
+    let started = std::time::Instant::now();
+    let message = spline(&["optimize", "--degree", "0"]).assert_clean_error();
+    assert!(message.contains("degree must be at least 1"), "{message}");
+    assert!(started.elapsed().as_secs_f64() < 5.0);
 }
 
 /// Points of a noisy ellipse, closed by a repeated first point, as JSON.

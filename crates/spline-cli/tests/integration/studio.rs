@@ -1,7 +1,9 @@
 //! `spline studio` through the binary: it prints its URL as JSON, serves the page and the
 //! endpoints on loopback, and refuses a bad address with the one-line error contract.
 
-mod common;
+#![cfg(feature = "studio")]
+
+use crate::common;
 
 use common::spline;
 use serde_json::Value;

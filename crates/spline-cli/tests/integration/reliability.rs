@@ -3,7 +3,7 @@
 //! expected answer. Numbers are checked against independent computations (closed forms,
 //! the unscaled problem, interpolation conditions).
 
-mod common;
+use crate::common;
 
 use common::{Run, spline, temp_file};
 use serde_json::Value;

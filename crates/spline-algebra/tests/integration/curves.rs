@@ -8,7 +8,7 @@
     clippy::manual_range_contains
 )]
 
-mod common;
+use crate::common;
 
 use common::dense;
 use nalgebra::Vector2;

@@ -5,7 +5,7 @@
 // Grid indices become coordinates: small integer counts, exact as f64.
 #![allow(clippy::cast_lossless)]
 
-mod common;
+use crate::common;
 use common::{spline, temp_file};
 use serde_json::Value;
 

@@ -2,7 +2,7 @@
 //! sphere, the ellipsoid's umbilics and ridges (its principal sections), the spheroid's
 //! umbilics at its poles, and the error contract.
 
-mod common;
+use crate::common;
 
 use common::{spline, temp_file};
 

@@ -7,7 +7,7 @@
     clippy::manual_range_contains
 )]
 
-mod common;
+use crate::common;
 
 use common::dense;
 use num_dual::{Dual64, HyperDual64};

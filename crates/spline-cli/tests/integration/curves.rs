@@ -1,7 +1,7 @@
 //! The tool on curves: every reference case of basis, curve_eval, insert, split, derivative and
 //! elevate through `spline`, the other curve subcommands, and clean errors for bad input.
 
-mod common;
+use crate::common;
 
 use common::{assert_close_json, assert_same_curve, cases, spline, temp_file};
 use serde_json::{Value, json};

@@ -1,7 +1,7 @@
 //! The curve tools through the binary: `intersect`, `offset`, `arclength`, `reduce` and
 //! `smoothing`, against closed forms and scipy's reference data, and clean errors.
 
-mod common;
+use crate::common;
 
 use common::{spline, temp_file};
 use serde_json::{Value, json};
@@ -51,6 +51,40 @@ fn intersect_two_curves_and_one_with_itself() {
     assert!(num(&hits[0]["u"]) < num(&hits[0]["v"]));
     // Errors.
     spline(&["intersect", &parabola(), &line, "--tolerance", "0"]).assert_clean_error();
+    // A curve from standard input, against a file and alone (it used to fail: "- is not
+    // valid JSON: EOF while parsing a value", the input being read twice).
+    let parabola_text = std::fs::read_to_string(parabola()).unwrap();
+    let hits = spline_with_stdin(&["intersect", "-", &line], &parabola_text);
+    assert_eq!(hits.as_array().unwrap().len(), 2, "{hits}");
+    let looped_text = std::fs::read_to_string(&looped).unwrap();
+    let hits = spline_with_stdin(&["intersect", "-"], &looped_text);
+    assert_eq!(hits.as_array().unwrap().len(), 1, "{hits}");
+}
+
+/// Runs the tool with `input` on its standard input; its output as JSON, asserting success.
+fn spline_with_stdin(args: &[&str], input: &str) -> Value {
+    use std::io::Write;
+    use std::process::{Command, Stdio};
+    let mut child = Command::new(env!("CARGO_BIN_EXE_spline"))
+        .args(args)
+        .stdin(Stdio::piped())
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .expect("run spline");
+    child
+        .stdin
+        .take()
+        .expect("stdin")
+        .write_all(input.as_bytes())
+        .expect("write stdin");
+    let output = child.wait_with_output().expect("wait for spline");
+    assert!(
+        output.status.success(),
+        "{}",
+        String::from_utf8_lossy(&output.stderr)
+    );
+    serde_json::from_slice(&output.stdout).expect("JSON")
 }
 
 #[test]
@@ -132,6 +166,73 @@ fn arclength_of_a_segment_and_a_quarter_circle() {
     }
     spline(&["arclength", &segment, "--at-length", "[6]"]).assert_clean_error();
     spline(&["arclength", &segment, "--tolerance", "0"]).assert_clean_error();
+}
+
+/// A C¹ curve whose tangent turns by almost 90° within 0.001 of its knot (reproducer
+/// `offset_c1.json`): it used to be refused as having a corner there.
+#[test]
+fn offset_of_a_c1_curve_that_turns_fast_at_a_knot() {
+    let base = file(
+        &json!({"degree": 2, "knots": [0, 0, 0, 0.5, 1, 1, 1], "control_points": [[0, 0], [1, 0], [1, 0.001], [0, 1]]}),
+    );
+    let out = spline(&[
+        "offset",
+        &base,
+        "--distance",
+        "0.001",
+        "--tolerance",
+        "1e-7",
+    ])
+    .json();
+    let curve = file(&out["curve"]);
+    let us: Vec<f64> = (0..=50).map(|i| f64::from(i) / 50.0).collect();
+    let values = spline(&["eval", &curve, "--at", &json!(us).to_string()]).json();
+    // The offset keeps the base's parametrisation: C(u) + d·N(u) with the unit normal N
+    // from the base's first derivative (through `spline eval`).
+    let base_values = spline(&[
+        "eval",
+        &base,
+        "--at",
+        &json!(us).to_string(),
+        "--derivatives",
+        "1",
+    ])
+    .json();
+    for (k, u) in us.iter().enumerate() {
+        let (p, d) = (&base_values[k][0], &base_values[k][1]);
+        let speed = num(&d[0]).hypot(num(&d[1]));
+        let exact = [
+            num(&p[0]) - 0.001 * num(&d[1]) / speed,
+            num(&p[1]) + 0.001 * num(&d[0]) / speed,
+        ];
+        let got = &values[k][0];
+        let e = (num(&got[0]) - exact[0]).hypot(num(&got[1]) - exact[1]);
+        assert!(e <= 1e-7, "u = {u}: {e:e}");
+    }
+}
+
+/// Lengths at the ends of the floating-point range (reproducers `hugedom.json` and
+/// `seg_tiny.json`): the speed's squares used to underflow, giving length 0.
+#[test]
+fn arclength_at_extreme_scales() {
+    // The parabola [[0,0],[1,1],[2,0]] on knots up to 1e300: its length does not depend on
+    // the parametrisation: ∫₀¹ 2√(1 + (1 − 2t)²) dt = √2 + asinh(1) = 2.2956.
+    let hugedom = file(
+        &json!({"degree": 2, "knots": [0, 0, 0, 1e300, 1e300, 1e300], "control_points": [[0, 0], [1, 1], [2, 0]]}),
+    );
+    let expected = 2f64.sqrt() + 1f64.asinh();
+    let length = num(&spline(&["arclength", &hugedom]).json()["length"]);
+    assert!((length - expected).abs() < 1e-9, "{length} vs {expected}");
+    let tiny = file(
+        &json!({"degree": 1, "knots": [0, 0, 1, 1], "control_points": [[0, 0], [3e-300, 4e-300]]}),
+    );
+    let length = num(&spline(&["arclength", &tiny]).json()["length"]);
+    assert!((length / 5e-300 - 1.0).abs() < 1e-12, "{length}");
+    // A point 1e-295 from a segment of length 1e-300 (reproducer `tinyseg.json`): the
+    // distance used to come out 0.
+    let hits = spline(&["closest", &tiny, "--points", "[[0, 1e-295]]"]).json();
+    let d = num(&hits[0]["distance"]);
+    assert!((d / 1e-295 - 1.0).abs() < 1e-12, "{d}");
 }
 
 #[test]

@@ -1,0 +1,21 @@
+//! The integration tests of spline-algebra, one module per former test file, linked into one
+//! test binary (one link instead of one per file: the cold CI build is dominated by links).
+
+#![allow(unreachable_pub)]
+
+mod bounds;
+mod common;
+mod curves;
+mod features;
+mod intersections;
+mod maps;
+mod offset_cusps;
+mod products;
+mod revolution;
+mod roots;
+mod segment_curvature;
+mod space;
+mod surface_features;
+mod surface_jacobians;
+mod surface_ridges;
+mod tensor;

@@ -1,0 +1,17 @@
+//! The integration tests of the `spline` tool, one module per former test file, linked into one
+//! test binary (one link instead of one per file: the cold CI build is dominated by links).
+
+#![allow(unreachable_pub)]
+
+mod algebra;
+mod common;
+mod curve_tools;
+mod curves;
+mod fitting;
+mod readme;
+mod reliability;
+mod shape;
+mod studio;
+mod surface_features;
+mod surface_tools;
+mod surfaces;

@@ -1,0 +1,14 @@
+//! The integration tests of spline-geom, one module per former test file, linked into one
+//! test binary (one link instead of one per file: the cold CI build is dominated by links).
+
+#![allow(unreachable_pub)]
+
+mod constructions;
+mod curves;
+mod in_place;
+mod nurbs;
+mod periodic;
+mod pieces;
+mod reference_surfaces;
+mod surface_mesh;
+mod surfaces;

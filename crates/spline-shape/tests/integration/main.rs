@@ -1,0 +1,16 @@
+//! The integration tests of spline-shape, one module per former test file, linked into one
+//! test binary (one link instead of one per file: the cold CI build is dominated by links).
+
+#![allow(unreachable_pub)]
+
+mod adaptive;
+mod barrier;
+mod clarabel;
+mod eraser;
+mod eraser_closed;
+mod flecnodal;
+mod functions;
+mod parametric_convexity;
+mod revolution;
+mod spatial_convexity;
+mod surfaces;
