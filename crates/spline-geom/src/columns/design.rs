@@ -221,6 +221,20 @@ impl ColumnSpline {
     }
 }
 
+impl ColumnSpline {
+    /// The knots of scipy's periodic interpolation (`_periodic_knots(x, k)`, used by
+    /// `make_interp_spline(…, bc_type='periodic')` and `from_power_basis`): the abscissae
+    /// (for even `k` the interior ones moved back by half a step), extended on each side by
+    /// `k` knots continued with the period's steps; `len(x) + 2k` knots.
+    ///
+    /// # Panics
+    /// If `x` has fewer than 2 entries.
+    #[must_use]
+    pub fn periodic_knots(x: &[f64], k: usize) -> Vec<f64> {
+        periodic_knots(x, k)
+    }
+}
+
 /// scipy's `_periodic_knots(x, k)`.
 fn periodic_knots(x: &[f64], k: usize) -> Vec<f64> {
     let n = x.len();

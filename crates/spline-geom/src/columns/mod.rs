@@ -260,7 +260,9 @@ impl ColumnSpline {
     /// [`Extrapolate::Off`]. Every other row is finite. At interior knots the right limit
     /// is taken, at $t_n$ the left one.
     ///
-    /// One span search and one basis evaluation per point, no allocation per point.
+    /// One span search and one basis evaluation per point, no allocation per point. For
+    /// derivatives at many points (at least as many as basis functions) the derivative
+    /// spline is built once and its values evaluated with the fixed-size kernels.
     ///
     /// # Errors
     /// [`ErrorKind::InvalidLength`] unless `out.len() == x.len() · columns`.
@@ -297,6 +299,15 @@ impl ColumnSpline {
                 }
             }
             return Ok(nan);
+        }
+        if nu > 0 && x.len() >= self.num_basis() {
+            // Many points: evaluate the derivative spline (built once, O(n m)) with the
+            // fixed-size value kernels. Its end pieces are the derivatives of the end pieces,
+            // so extrapolation agrees. Knots of multiplicity k + 1 inside have no derivative
+            // spline: the general path below handles them.
+            if let Ok(derivative) = self.derivative(nu) {
+                return derivative.eval_into(x, 0, mode, out);
+            }
         }
         Ok(if nu == 0 {
             match k {
@@ -358,9 +369,11 @@ impl ColumnSpline {
     fn eval_fixed<const N: usize>(&self, x: &[f64], mode: Extrapolate, out: &mut [f64]) -> usize {
         let domain = self.domain();
         let (a, b) = domain;
+        let m = self.columns;
+        let coefficients = &self.coefficients[..];
         let mut hint = usize::MAX;
         let mut nan = 0;
-        for (&xi, row) in x.iter().zip(out.chunks_exact_mut(self.columns)) {
+        for (&xi, row) in x.iter().zip(out.chunks_exact_mut(m)) {
             let Some(u) = self.mapped(xi, mode, domain) else {
                 row.fill(f64::NAN);
                 nan += 1;
@@ -373,7 +386,16 @@ impl ColumnSpline {
                 (span, self.knots.basis_values_fixed::<N>(span, u))
             };
             hint = span;
-            self.combine(span + 1 - N, &basis, row);
+            // All columns from the N rows starting at span + 1 − N; the sum over the basis
+            // unrolls.
+            let c = &coefficients[(span + 1 - N) * m..(span + 1) * m];
+            for (j, o) in row.iter_mut().enumerate() {
+                let mut acc = 0.0;
+                for r in 0..N {
+                    acc += basis[r] * c[r * m + j];
+                }
+                *o = acc;
+            }
         }
         nan
     }

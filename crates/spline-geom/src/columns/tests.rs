@@ -581,10 +581,18 @@ fn design_matrix_matches_scipy() {
 /// The breakpoints of the `from_power_basis` reference cases.
 const XS: [f64; 6] = [0.0, 0.7, 1.5, 2.0, 3.2, 4.0];
 
+/// Knot choice, `pp.c`, expected `t` and `c` of one `from_power_basis` case.
+type PowerCase = (
+    PowerBasisKnots,
+    &'static [f64],
+    &'static [f64],
+    &'static [f64],
+);
+
 #[test]
 fn from_power_basis_matches_scipy() {
     // from_power_basis not-a-knot / natural / clamped / periodic: pp.c, t, c
-    let cases: [(PowerBasisKnots, &[f64], &[f64], &[f64]); 4] = [
+    let cases: [PowerCase; 4] = [
         (
             PowerBasisKnots::NotAKnot,
             &[
@@ -711,7 +719,7 @@ fn from_power_basis_matches_scipy() {
                 0.4292267190636126,
                 0.0,
                 0.8910065241883678,
-                0.7071067811865476,
+                std::f64::consts::FRAC_1_SQRT_2,
                 1.2246467991473532e-16,
                 -0.9510565162951536,
             ],
