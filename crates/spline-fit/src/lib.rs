@@ -64,6 +64,7 @@ mod adaptive;
 mod arclength;
 mod banded;
 mod bezier;
+mod columns;
 mod correction;
 mod feature_knots;
 mod hausdorff;
@@ -89,6 +90,7 @@ mod sweep;
 pub use adaptive::{AdaptiveApproximation, AdaptiveFit, MAX_ADAPTIVE_PIECES};
 pub use arclength::reparametrize_by_arc_length;
 pub use bezier::{BezierFit, bezier_interpolate, bezier_least_squares};
+pub use columns::{InterpBc, make_interp_spline, make_lsq_spline};
 pub use correction::{
     CorrectionOptions, CorrectionReport, MAX_CORRECTION_ITERATIONS, correct_parameters,
     correct_parameters_bezier,

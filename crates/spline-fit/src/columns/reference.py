@@ -5,16 +5,35 @@ Run with scipy 1.17 in the workspace's virtual environment:
     target/python-venv/bin/python crates/spline-fit/src/columns/reference.py
 
 Every section prints the values pasted into the unit tests (the test names the section).
+With `--rust FILE` it also writes the sections as Rust constants (named after the section,
+upper case): that is how `crates/spline-fit/src/columns/reference_values.rs` was made.
 """
+import re
+import sys
 import numpy as np
 from scipy.interpolate import BSpline
 
 np.set_printoptions(precision=17, linewidth=120)
 
 
+SECTIONS = {}
+
+
 def show(name, value):
+    values = np.asarray(value, dtype=float).ravel().tolist()
+    SECTIONS[name] = values
     print(f"// {name}")
-    print(repr(np.asarray(value, dtype=float).ravel().tolist()))
+    print(repr(values))
+
+
+def write_rust(path):
+    with open(path, "w") as f:
+        f.write("//! scipy 1.17 reference values, written by `reference.py --rust` (do not edit).\n\n")
+        f.write("#![allow(clippy::approx_constant, clippy::unreadable_literal)]\n\n")
+        for name, values in SECTIONS.items():
+            ident = re.sub(r"[^A-Za-z0-9]+", "_", name).strip("_").upper()
+            body = ", ".join("f64::NAN" if v != v else repr(v) for v in values)
+            f.write(f"/// `{name}`\n#[rustfmt::skip]\npub(super) const {ident}: &[f64] = &[{body}];\n")
 
 
 # eval: a cubic with 2 columns on non-uniform unclamped knots.
@@ -105,3 +124,48 @@ bb = BSpline.from_power_basis(cs, bc_type="periodic")
 show("from_power_basis periodic pp.c", cs.c)
 show("from_power_basis periodic t", bb.t)
 show("from_power_basis periodic c", bb.c)
+
+# ---- spline-fit columns ----
+from scipy.interpolate import make_interp_spline, make_lsq_spline
+xi = np.array([0.0, 0.4, 1.0, 1.7, 2.1, 3.0, 3.6, 4.5, 5.0])
+yi = np.c_[np.sin(xi), np.cos(xi) + xi]
+for k in range(1, 6):
+    s = make_interp_spline(xi, yi, k=k)
+    show(f"interp k={k} not-a-knot t", s.t)
+    show(f"interp k={k} not-a-knot c", s.c)
+for k in (3,):
+    for bc in ("natural", "clamped"):
+        s = make_interp_spline(xi, yi, k=k, bc_type=bc)
+        show(f"interp k={k} {bc} t", s.t)
+        show(f"interp k={k} {bc} c", s.c)
+s = make_interp_spline(xi, yi, k=2, bc_type=([(1, [0.5, -1.0])], None))
+show("interp k=2 ([(1, [0.5, -1])], None) t", s.t)
+show("interp k=2 ([(1, [0.5, -1])], None) c", s.c)
+s = make_interp_spline(xi, yi, k=4, bc_type=([(1, [0.5, -1.0]), (2, [0.0, 1.0])], [(3, [1.0, 1.0])]))
+show("interp k=4 two derivatives each end t", s.t)
+show("interp k=4 two derivatives each end c", s.c)
+yp = np.c_[np.sin(xi * 2 * np.pi / 5.0), np.cos(xi * 2 * np.pi / 5.0)]
+yp[-1] = yp[0]
+for k in range(1, 6):
+    s = make_interp_spline(xi, yp, k=k, bc_type="periodic")
+    show(f"interp k={k} periodic t", s.t)
+    show(f"interp k={k} periodic c", s.c)
+# least squares
+rng = np.random.default_rng(1234)
+xl = np.sort(rng.uniform(0, 4, 40))
+yl = np.c_[np.sin(xl) + 0.1 * rng.standard_normal(40), xl ** 2, np.exp(-xl), np.cos(3 * xl), xl]
+wl = rng.uniform(0.5, 2.0, 40)
+tl = np.r_[[0.0] * 4, 0.5, 1.3, 2.0, 2.2, 3.1, [4.0] * 4]
+tl[:4] = xl[0]; tl[-4:] = xl[-1]
+show("lsq x", xl)
+show("lsq y", yl)
+show("lsq w", wl)
+show("lsq t", tl)
+for method in ("qr", "norm-eq"):
+    s = make_lsq_spline(xl, yl, tl, k=3, w=wl, method=method)
+    show(f"lsq k=3 weighted {method} c", s.c)
+s = make_lsq_spline(xl, yl[:, 0], tl, k=3)
+show("lsq k=3 unweighted column 0 c", s.c)
+
+if len(sys.argv) == 3 and sys.argv[1] == "--rust":
+    write_rust(sys.argv[2])

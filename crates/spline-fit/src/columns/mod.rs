@@ -1,0 +1,559 @@
+//! Interpolation and least squares of many columns of data on one knot vector, with the
+//! semantics of scipy 1.17's `make_interp_spline` and `make_lsq_spline`: the same knots,
+//! conditions, results (to rounding) and the words of scipy's error messages. The results
+//! are [`ColumnSpline`]s.
+//!
+//! ```
+//! use spline_fit::{InterpBc, make_interp_spline};
+//! // Two columns, x ↦ x² and x ↦ 1 − x, through 6 points: a cubic reproduces both.
+//! let x = [0.0, 1.0, 2.0, 3.0, 4.0, 5.0];
+//! let y: Vec<f64> = x.iter().flat_map(|&v: &f64| [v * v, 1.0 - v]).collect();
+//! let s = make_interp_spline(&x, &y, 2, 3, None, &InterpBc::NotAKnot)?;
+//! assert_eq!(s.knots(), &[0.0, 0.0, 0.0, 0.0, 2.0, 3.0, 5.0, 5.0, 5.0, 5.0]);
+//! let v = s.eval(&[2.5], 0, spline_geom::Extrapolate::On)?;
+//! assert!((v[0] - 6.25).abs() < 1e-12 && (v[1] + 1.5).abs() < 1e-12);
+//! # Ok::<(), spline_core::Error>(())
+//! ```
+
+use crate::banded::BandLu;
+use crate::lsq::{LeastSquares, LsqMethod};
+use crate::periodic::solve_periodic_collocation;
+use nalgebra::SVector;
+use spline_core::{Error, ErrorKind, KnotVector, MAX_DEGREE, MAX_ORDER, Result};
+use spline_geom::ColumnSpline;
+
+/// The boundary conditions of scipy's `make_interp_spline` (`bc_type`).
+#[derive(Clone, Debug, PartialEq)]
+pub enum InterpBc {
+    /// `None` or `'not-a-knot'`: no extra conditions; the default knots are the not-a-knot
+    /// knots ([`KnotVector::not_a_knot`]).
+    NotAKnot,
+    /// `'periodic'`: `y[0] = y[-1]` and the spline with the periodic knots of
+    /// [`ColumnSpline::periodic_knots`], `len(x) + k − 1` coefficients with
+    /// `c[i + len(x) − 1] = c[i]`.
+    Periodic,
+    /// Derivatives at the ends (`bc_type = (left, right)`): each a list of
+    /// `(order, values)` with one value per column, order `0 … k`, added as rows of the
+    /// collocation system before the data (left) and after it (right). `'clamped'` is
+    /// `[(1, zeros)]`, `'natural'` `[(2, zeros)]` ([`InterpBc::natural`],
+    /// [`InterpBc::clamped`]). The default knots then repeat each end `k + 1` times with
+    /// every abscissa a knot.
+    Ends {
+        /// The conditions at `x[0]`.
+        left: Vec<(usize, Vec<f64>)>,
+        /// The conditions at `x[-1]`.
+        right: Vec<(usize, Vec<f64>)>,
+    },
+}
+
+impl InterpBc {
+    /// scipy's `'natural'` for `columns` columns: zero second derivatives at both ends.
+    #[must_use]
+    pub fn natural(columns: usize) -> Self {
+        Self::Ends {
+            left: vec![(2, vec![0.0; columns])],
+            right: vec![(2, vec![0.0; columns])],
+        }
+    }
+
+    /// scipy's `'clamped'` for `columns` columns: zero first derivatives at both ends.
+    #[must_use]
+    pub fn clamped(columns: usize) -> Self {
+        Self::Ends {
+            left: vec![(1, vec![0.0; columns])],
+            right: vec![(1, vec![0.0; columns])],
+        }
+    }
+}
+
+/// Derivative conditions at one end: `(order, one value per column)`.
+type EndConditions = [(usize, Vec<f64>)];
+
+fn invalid(message: impl Into<String>) -> Error {
+    Error::new(ErrorKind::InvalidArgument, message)
+}
+
+/// Checks `x` (finite, strictly increasing, as scipy words it) and `y` (`len(x) × columns`,
+/// finite).
+fn check_data(x: &[f64], y: &[f64], columns: usize) -> Result<()> {
+    if columns == 0 {
+        return Err(invalid("the data need at least one column"));
+    }
+    if Some(y.len()) != x.len().checked_mul(columns) {
+        return Err(Error::new(
+            ErrorKind::InvalidLength,
+            format!(
+                "Shapes of x ({},) and y ({} values of {columns} columns) are incompatible",
+                x.len(),
+                y.len()
+            ),
+        ));
+    }
+    if let Some(v) = x.iter().chain(y).find(|v| !v.is_finite()) {
+        return Err(Error::new(
+            ErrorKind::NonFinite,
+            format!("Array must not contain infs or nans (found {v})"),
+        ));
+    }
+    Ok(())
+}
+
+/// The not-a-knot knots of scipy's `_not_a_knot(x, k)`, also for `len(x) ≤ k` (no interior
+/// knots).
+fn not_a_knot_knots(x: &[f64], k: usize) -> Result<Vec<f64>> {
+    let n = x.len();
+    Ok(if n > k {
+        KnotVector::not_a_knot(k, x)?.into_knots()
+    } else {
+        KnotVector::bezier(k, x[0], x[n - 1])?.into_knots()
+    })
+}
+
+/// The interpolating spline of degree `k` through `(x_i, y_i)` for every column of `y`
+/// (row-major, `len(x) × columns`): scipy's `make_interp_spline(x, y, k, t, bc_type)`.
+///
+/// Knots: `t` if given; otherwise the not-a-knot knots (`bc` [`InterpBc::NotAKnot`]), the
+/// periodic ones ([`InterpBc::Periodic`]) or the abscissae with the ends repeated `k + 1`
+/// times ([`InterpBc::Ends`]). `k = 1` without `t` gives the broken line (knots
+/// `[x_0, x…, x_{-1}]`, coefficients `y`). The collocation rows (end derivatives, data,
+/// end derivatives) form one band matrix, factorised once (LU with partial pivoting, as
+/// LAPACK's `gbsv` in scipy) and solved for every column; periodic splines solve the cyclic
+/// system of [`crate::interpolate_periodic`] for up to four columns at once.
+///
+/// # Errors
+/// With scipy's words: "Shapes of x … and y … are incompatible", "Expect x to not have
+/// duplicates", "Expect x to be a 1D strictly increasing sequence", "First and last
+/// points does not match while periodic case expected" (`np.allclose` with `atol = 1e-15`),
+/// "Too much info for k=1: bc_type can only be None", "For periodic case t is constructed
+/// automatically", "Expect t to be a 1-D sorted array_like", "Got … knots, need at least
+/// …", "Out of bounds w/ x = …", "Bad boundary conditions at …", "The number of derivatives
+/// at boundaries does not match", "Colocation matrix is singular"
+/// ([`ErrorKind::SingularSystem`]). Degree 0 is [`ErrorKind::Unsupported`]: scipy's knots
+/// `[x…, x_{-1}]` repeat the last knot twice, which [`ColumnSpline`] does not represent.
+/// Degrees above [`MAX_DEGREE`] are [`ErrorKind::DegreeTooHigh`].
+pub fn make_interp_spline(
+    x: &[f64],
+    y: &[f64],
+    columns: usize,
+    k: usize,
+    t: Option<&[f64]>,
+    bc: &InterpBc,
+) -> Result<ColumnSpline> {
+    check_data(x, y, columns)?;
+    let n = x.len();
+    if n == 0 {
+        return Err(Error::new(
+            ErrorKind::TooFewPoints,
+            "interpolation needs at least one point",
+        ));
+    }
+    if *bc == InterpBc::Periodic {
+        let scale = 1e-5;
+        if let Some(j) = (0..columns).find(|&j| {
+            let (a, b) = (y[j], y[(n - 1) * columns + j]);
+            (a - b).abs() > 1e-15 + scale * b.abs()
+        }) {
+            return Err(invalid(format!(
+                "First and last points does not match while periodic case expected (column {j}: {} and {})",
+                y[j],
+                y[(n - 1) * columns + j]
+            )));
+        }
+    }
+    if let Some(i) = (1..n).find(|&i| x[i] == x[i - 1]) {
+        return Err(Error::new(
+            ErrorKind::UnsortedKnots,
+            format!(
+                "Expect x to not have duplicates (x[{i}] = {} repeats)",
+                x[i]
+            ),
+        ));
+    }
+    if let Some(i) = (1..n).find(|&i| x[i] < x[i - 1]) {
+        return Err(Error::new(
+            ErrorKind::UnsortedKnots,
+            format!(
+                "Expect x to be a 1D strictly increasing sequence (x[{i}] = {} follows {})",
+                x[i],
+                x[i - 1]
+            ),
+        ));
+    }
+    if k > MAX_DEGREE {
+        return Err(Error::new(
+            ErrorKind::DegreeTooHigh,
+            format!("degree {k} is above the supported maximum {MAX_DEGREE}"),
+        ));
+    }
+    let ends_given = matches!(bc, InterpBc::Ends { .. });
+    if k == 0 {
+        if t.is_some() || ends_given {
+            return Err(invalid(
+                "Too much info for k=0: t and bc_type can only be None.",
+            ));
+        }
+        return Err(Error::new(
+            ErrorKind::Unsupported,
+            "degree-0 interpolation repeats the last knot twice (scipy's t = [x, x[-1]]), which a ColumnSpline does not represent",
+        ));
+    }
+    if k == 1 && t.is_none() {
+        if ends_given {
+            return Err(invalid("Too much info for k=1: bc_type can only be None."));
+        }
+        let mut knots = Vec::with_capacity(n + 2);
+        knots.push(x[0]);
+        knots.extend_from_slice(x);
+        knots.push(x[n - 1]);
+        return ColumnSpline::new(knots, y.to_vec(), 1, columns);
+    }
+    if *bc == InterpBc::Periodic && t.is_some() {
+        return Err(invalid(
+            "For periodic case t is constructed automatically and can not be passed manually",
+        ));
+    }
+    let t: Vec<f64> = match (t, bc) {
+        (Some(t), _) => t.to_vec(),
+        (None, InterpBc::NotAKnot) => not_a_knot_knots(x, k)?,
+        (None, InterpBc::Periodic) => ColumnSpline::periodic_knots(x, k),
+        (None, InterpBc::Ends { .. }) => {
+            let mut t = Vec::with_capacity(n + 2 * k);
+            t.extend(std::iter::repeat_n(x[0], k));
+            t.extend_from_slice(x);
+            t.extend(std::iter::repeat_n(x[n - 1], k));
+            t
+        }
+    };
+    if let Some(v) = t.iter().find(|v| !v.is_finite()) {
+        return Err(Error::new(
+            ErrorKind::NonFinite,
+            format!("Array must not contain infs or nans (knot {v})"),
+        ));
+    }
+    if (1..t.len()).any(|i| t[i] < t[i - 1]) {
+        return Err(Error::new(
+            ErrorKind::UnsortedKnots,
+            "Expect t to be a 1-D sorted array_like.",
+        ));
+    }
+    if t.len() < n + k + 1 {
+        return Err(Error::new(
+            ErrorKind::InvalidLength,
+            format!("Got {} knots, need at least {}.", t.len(), n + k + 1),
+        )
+        .with_counts(n + k + 1, t.len()));
+    }
+    if x[0] < t[k] || x[n - 1] > t[t.len() - k] {
+        return Err(out_of_bounds(x));
+    }
+    if *bc == InterpBc::Periodic {
+        return periodic(x, y, columns, t, k);
+    }
+    let (left, right): (&EndConditions, &EndConditions) = match bc {
+        InterpBc::Ends { left, right } => (left, right),
+        _ => (&[], &[]),
+    };
+    for (side, at) in [(left, x[0]), (right, x[n - 1])] {
+        if side.iter().any(|(order, _)| *order > k) {
+            return Err(invalid(format!("Bad boundary conditions at {at:?}.")));
+        }
+        if let Some((order, v)) = side.iter().find(|(_, v)| v.len() != columns) {
+            return Err(Error::new(
+                ErrorKind::InvalidLength,
+                format!(
+                    "Bad boundary conditions at {at:?}: the derivative of order {order} has {} values for {columns} columns",
+                    v.len()
+                ),
+            ));
+        }
+        if let Some(v) = side.iter().flat_map(|(_, v)| v).find(|v| !v.is_finite()) {
+            return Err(Error::new(
+                ErrorKind::NonFinite,
+                format!("Array must not contain infs or nans (boundary value {v})"),
+            ));
+        }
+    }
+    let knots = knot_vector(&t, k)?;
+    let nt = knots.num_basis();
+    let (nleft, nright) = (left.len(), right.len());
+    if nt != n + nleft + nright {
+        return Err(Error::new(
+            ErrorKind::InvalidLength,
+            format!(
+                "The number of derivatives at boundaries does not match: expected {}, got {nleft}+{nright}",
+                nt as i64 - n as i64
+            ),
+        ));
+    }
+    // The rows: (order, point) conditions with their right-hand sides.
+    let conditions = left
+        .iter()
+        .map(|(order, v)| (*order, x[0], v.as_slice()))
+        .chain(
+            x.iter()
+                .enumerate()
+                .map(|(i, &xi)| (0, xi, &y[i * columns..(i + 1) * columns])),
+        )
+        .chain(
+            right
+                .iter()
+                .map(|(order, v)| (*order, x[n - 1], v.as_slice())),
+        );
+    let width = k + 1;
+    let (a, b) = knots.domain();
+    let mut rows: Vec<(usize, [f64; MAX_ORDER])> = Vec::with_capacity(nt);
+    let mut rhs = vec![0.0; nt * columns];
+    let mut table = vec![0.0; width * width];
+    let (mut kl, mut ku) = (0usize, 0usize);
+    let mut hint = k;
+    for (r, (order, at, values)) in conditions.enumerate() {
+        let span = knots.span_in_domain_from(at.clamp(a, b), hint);
+        hint = span;
+        knots.basis_derivatives(span, at, order, &mut table[..(order + 1) * width]);
+        let mut row = [0.0; MAX_ORDER];
+        row[..width].copy_from_slice(&table[order * width..(order + 1) * width]);
+        let first = span - k;
+        for (c, v) in row[..width].iter().enumerate() {
+            if *v != 0.0 {
+                kl = kl.max(r.saturating_sub(first + c));
+                ku = ku.max((first + c).saturating_sub(r));
+            }
+        }
+        rows.push((first, row));
+        rhs[r * columns..(r + 1) * columns].copy_from_slice(values);
+    }
+    let mut lu = BandLu::zeros(nt, kl, ku, 0);
+    for (r, (first, row)) in rows.iter().enumerate() {
+        for (c, &v) in row[..width].iter().enumerate() {
+            if v != 0.0 {
+                lu.add(r, first + c, v);
+            }
+        }
+    }
+    lu.factor().map_err(|e| {
+        Error::new(
+            ErrorKind::SingularSystem,
+            format!("Colocation matrix is singular: {}", e.message()),
+        )
+    })?;
+    let mut column = vec![0.0; nt];
+    for j in 0..columns {
+        for (i, v) in column.iter_mut().enumerate() {
+            *v = rhs[i * columns + j];
+        }
+        lu.solve(&mut column);
+        for (i, v) in column.iter().enumerate() {
+            rhs[i * columns + j] = *v;
+        }
+    }
+    ColumnSpline::from_knot_vector(knots, rhs, columns)
+}
+
+/// The knots checked as [`ColumnSpline::new`] checks them (scipy's words).
+fn knot_vector(t: &[f64], k: usize) -> Result<KnotVector<f64>> {
+    let n = t.len().saturating_sub(k + 1);
+    Ok(ColumnSpline::new(t.to_vec(), vec![0.0; n], k, 1)?
+        .knot_vector()
+        .clone())
+}
+
+/// scipy's error for data outside the knots.
+fn out_of_bounds(x: &[f64]) -> Error {
+    Error::new(
+        ErrorKind::OutOfDomain,
+        format!(
+            "Out of bounds w/ x = [{}, …, {}]: the data leave the knots' base interval",
+            x[0],
+            x[x.len() - 1]
+        ),
+    )
+}
+
+/// Columns `j0 … j0 + D − 1` of `y` as points.
+fn chunk<const D: usize>(y: &[f64], columns: usize, j0: usize) -> Vec<SVector<f64, D>> {
+    y.chunks_exact(columns)
+        .map(|row| SVector::<f64, D>::from_fn(|d, _| row[j0 + d]))
+        .collect()
+}
+
+/// Writes points back into columns `j0 …` of the row-major `out`.
+fn unchunk<const D: usize>(points: &[SVector<f64, D>], out: &mut [f64], columns: usize, j0: usize) {
+    for (row, p) in out.chunks_exact_mut(columns).zip(points) {
+        row[j0..j0 + D].copy_from_slice(p.as_slice());
+    }
+}
+
+/// Runs `solve` on the columns in chunks of up to four (one factorisation per chunk, the
+/// columns as the coordinates of points) and assembles the `rows × columns` result.
+fn by_chunks(
+    columns: usize,
+    rows: usize,
+    y: &[f64],
+    solve: &mut dyn FnMut(Chunk) -> Result<Solved>,
+) -> Result<Vec<f64>> {
+    let mut out = vec![0.0; rows * columns];
+    let mut j0 = 0;
+    while j0 < columns {
+        let width = (columns - j0).min(4);
+        let solved = match width {
+            1 => solve(Chunk::One(chunk::<1>(y, columns, j0)))?,
+            2 => solve(Chunk::Two(chunk::<2>(y, columns, j0)))?,
+            3 => solve(Chunk::Three(chunk::<3>(y, columns, j0)))?,
+            _ => solve(Chunk::Four(chunk::<4>(y, columns, j0)))?,
+        };
+        match solved {
+            Solved::One(p) => unchunk(&p, &mut out, columns, j0),
+            Solved::Two(p) => unchunk(&p, &mut out, columns, j0),
+            Solved::Three(p) => unchunk(&p, &mut out, columns, j0),
+            Solved::Four(p) => unchunk(&p, &mut out, columns, j0),
+        }
+        j0 += width;
+    }
+    Ok(out)
+}
+
+/// Up to four columns of data as points.
+enum Chunk {
+    One(Vec<SVector<f64, 1>>),
+    Two(Vec<SVector<f64, 2>>),
+    Three(Vec<SVector<f64, 3>>),
+    Four(Vec<SVector<f64, 4>>),
+}
+
+/// The coefficients of a [`Chunk`].
+enum Solved {
+    One(Vec<SVector<f64, 1>>),
+    Two(Vec<SVector<f64, 2>>),
+    Three(Vec<SVector<f64, 3>>),
+    Four(Vec<SVector<f64, 4>>),
+}
+
+/// Applies a function generic over the point type to a chunk.
+macro_rules! on_chunk {
+    ($chunk:expr, |$p:ident| $body:expr) => {
+        match $chunk {
+            Chunk::One($p) => $body.map(Solved::One),
+            Chunk::Two($p) => $body.map(Solved::Two),
+            Chunk::Three($p) => $body.map(Solved::Three),
+            Chunk::Four($p) => $body.map(Solved::Four),
+        }
+    };
+}
+
+/// scipy's periodic interpolation on the knots `t` (`len(x) + 2k`): the cyclic collocation
+/// of [`crate::interpolate_periodic`] at `x[..n−1]`.
+fn periodic(x: &[f64], y: &[f64], columns: usize, t: Vec<f64>, k: usize) -> Result<ColumnSpline> {
+    let n = x.len();
+    if n < 2 {
+        return Err(Error::new(
+            ErrorKind::TooFewPoints,
+            "periodic interpolation needs at least 2 points",
+        ));
+    }
+    let knots = KnotVector::new(k, t)?;
+    let rows = knots.num_basis();
+    let params = &x[..n - 1];
+    let data = &y[..(n - 1) * columns];
+    let c = by_chunks(columns, rows, data, &mut |chunk| {
+        on_chunk!(chunk, |p| solve_periodic_collocation(&knots, params, &p))
+    })?;
+    ColumnSpline::from_knot_vector(knots, c, columns)
+}
+
+/// The least-squares spline of degree `k` on knots `t` for every column of `y` (row-major,
+/// `len(x) × columns`): scipy's `make_lsq_spline(x, y, t, k, w, method)`, minimising
+/// $\sum_i w_i^2 (s_j(x_i) - y_{ij})^2$ for each column `j` (weights multiply residuals).
+///
+/// Runs the crate's least-squares path ([`LeastSquares`]: Givens QR of the banded design
+/// matrix for [`LsqMethod::Qr`], scipy's default `'qr'`; banded normal equations and
+/// Cholesky for [`LsqMethod::NormalEquations`], scipy's `'norm-eq'`) with up to four
+/// columns as the coordinates of one point type, so one factorisation serves four columns.
+///
+/// # Errors
+/// With scipy's words: "Need more x points" (fewer than `k + 1`), "Expect t to be a 1D
+/// strictly increasing sequence" (decreasing knots), "Shapes of x … and y … are
+/// incompatible", "Out of bounds w/ x = …", "Shapes of x … and w … are incompatible",
+/// "Expect x to be a 1D strictly increasing sequence" (norm-eq) or "… non-decreasing
+/// sequence" (qr), "Schoenberg-Whitney condition is violated" ([`ErrorKind::SchoenbergWhitney`],
+/// when a basis function has no data of its own); [`ErrorKind::InvalidWeight`] for weights
+/// that are not positive and finite; the errors of [`ColumnSpline::new`] for the knots.
+pub fn make_lsq_spline(
+    x: &[f64],
+    y: &[f64],
+    columns: usize,
+    t: &[f64],
+    k: usize,
+    w: Option<&[f64]>,
+    method: LsqMethod,
+) -> Result<ColumnSpline> {
+    if x.len() < k + 1 {
+        return Err(Error::new(
+            ErrorKind::TooFewPoints,
+            format!("Need more x points: {} for degree {k}", x.len()),
+        ));
+    }
+    if (1..t.len()).any(|i| t[i] < t[i - 1]) {
+        return Err(Error::new(
+            ErrorKind::UnsortedKnots,
+            "Expect t to be a 1D strictly increasing sequence.",
+        ));
+    }
+    check_data(x, y, columns)?;
+    let knots = knot_vector(t, k)?;
+    if k > 0 && x.iter().any(|&v| v < t[k] || v > t[t.len() - k]) {
+        return Err(out_of_bounds(x));
+    }
+    if let Some(w) = w
+        && w.len() != x.len()
+    {
+        return Err(Error::new(
+            ErrorKind::InvalidLength,
+            format!(
+                "Shapes of x ({},) and w ({},) are incompatible",
+                x.len(),
+                w.len()
+            ),
+        ));
+    }
+    match method {
+        LsqMethod::NormalEquations => {
+            if (1..x.len()).any(|i| x[i] <= x[i - 1]) {
+                return Err(Error::new(
+                    ErrorKind::UnsortedKnots,
+                    "Expect x to be a 1D strictly increasing sequence.",
+                ));
+            }
+        }
+        LsqMethod::Qr => {
+            if (1..x.len()).any(|i| x[i] < x[i - 1]) {
+                return Err(Error::new(
+                    ErrorKind::UnsortedKnots,
+                    "Expect x to be a 1D non-decreasing sequence.",
+                ));
+            }
+        }
+    }
+    let n = knots.num_basis();
+    let c = by_chunks(columns, n, y, &mut |chunk| {
+        on_chunk!(chunk, |p| {
+            let mut problem = LeastSquares::new(&p, x, knots.clone()).method(method);
+            if let Some(w) = w {
+                problem = problem.weights(w);
+            }
+            problem.control_points().map_err(|e| {
+                if e.kind() == ErrorKind::SchoenbergWhitney {
+                    Error::new(
+                        ErrorKind::SchoenbergWhitney,
+                        format!("Schoenberg-Whitney condition is violated: {}", e.message()),
+                    )
+                } else {
+                    e
+                }
+            })
+        })
+    })?;
+    ColumnSpline::from_knot_vector(knots, c, columns)
+}
+
+#[cfg(test)]
+mod tests;
