@@ -517,6 +517,69 @@ impl NdSpline {
         Ok(nan)
     }
 
+    /// The partial derivative of orders `nu` (one per dimension) as a spline, scipy's
+    /// `NdBSpline.derivative(nu)`: along each dimension with $\nu_e > 0$ the coefficient
+    /// lines are differentiated as one-dimensional splines ([`crate::ColumnSpline::derivative`],
+    /// FITPACK's `splder`: the first and last knot dropped, the degree lowered by $\nu_e$),
+    /// the other dimensions untouched. The extrapolation mode is kept.
+    ///
+    /// # Errors
+    /// [`ErrorKind::InvalidLength`] unless `nu` has `d` entries;
+    /// [`ErrorKind::OrderTooHigh`] for $\nu_e > k_e$ (scipy returns a zero spline of degree 0
+    /// on the same knots, which this container cannot hold: its clamped ends repeat knots
+    /// more than once); [`ErrorKind::KnotMultiplicity`] when interior knots repeated
+    /// $k_e + 1$ times make the spline non-differentiable.
+    pub fn derivative(&self, nu: &[usize]) -> Result<Self> {
+        let d = self.ndim();
+        if nu.len() != d {
+            return Err(Error::new(
+                ErrorKind::InvalidLength,
+                format!(
+                    "invalid number of derivative orders: {} for ndim = {d}",
+                    nu.len()
+                ),
+            ));
+        }
+        let m = self.columns;
+        let mut knots = self.dims.knots.clone();
+        let mut shape = self.dims.shape.clone();
+        let mut c = self.coefficients.clone();
+        for (e, &order) in nu.iter().enumerate() {
+            if order == 0 {
+                continue;
+            }
+            // The array as (before, n, after): move the axis to the front, so that the
+            // lines along it are the columns of a one-dimensional spline.
+            let n = shape[e];
+            let before: usize = shape[..e].iter().product();
+            let after: usize = shape[e + 1..].iter().product::<usize>() * m;
+            let cols = before * after;
+            let mut front = vec![0.0; c.len()];
+            for b in 0..before {
+                for i in 0..n {
+                    let src = &c[(b * n + i) * after..(b * n + i + 1) * after];
+                    front[i * cols + b * after..i * cols + (b + 1) * after].copy_from_slice(src);
+                }
+            }
+            let line = crate::ColumnSpline::from_knot_vector(knots[e].clone(), front, cols)?
+                .derivative(order)
+                .map_err(|err| err.context(format_args!("dimension {e}")))?;
+            let new_n = line.num_basis();
+            let moved = &line.coefficients()[..new_n * cols];
+            let mut back = vec![0.0; before * new_n * after];
+            for b in 0..before {
+                for i in 0..new_n {
+                    back[(b * new_n + i) * after..(b * new_n + i + 1) * after]
+                        .copy_from_slice(&moved[i * cols + b * after..i * cols + (b + 1) * after]);
+                }
+            }
+            c = back;
+            shape[e] = new_n;
+            knots[e] = line.knot_vector().clone();
+        }
+        Self::from_knot_vectors(knots, c, m, self.extrapolate)
+    }
+
     /// Evaluates into a new vector (see [`NdSpline::eval_into`]), with the spline's own
     /// extrapolation mode.
     ///
