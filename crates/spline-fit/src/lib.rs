@@ -72,6 +72,7 @@ mod interpolate;
 mod intersect;
 mod lsq;
 mod natural;
+mod nd_interp;
 mod offset;
 mod params;
 mod periodic;
@@ -111,6 +112,7 @@ pub use lsq::{
     GridLeastSquares, GridNormalEquations, LeastSquares, LsqMethod, NormalEquations, approximate,
 };
 pub use natural::{natural_cubic, natural_spline};
+pub use nd_interp::make_ndbspl;
 pub use offset::{offset_curve, offset_point};
 pub use params::{
     KnotChoice, Parametrization, nurbs_book_knots, parametrize, parametrize_closed, parametrize_in,
@@ -124,6 +126,9 @@ pub use skin::{Gordon, Skinned, gordon, skin};
 pub use smoothing::{
     MAX_RESIDUAL_ITERATIONS, ResidualFit, SmoothingFit, SmoothingParameter, smoothing_curve,
     smoothing_curve_to_residual, smoothing_spline, smoothing_to_residual,
+};
+pub use smoothing::{
+    SplrepOptions, chord_length_parameters, generate_knots, make_splprep, make_splrep,
 };
 pub use surface::{
     SurfaceFit, approximate_surface_grid, approximate_surface_scattered, interpolate_surface,

@@ -6,9 +6,13 @@
 mod band_inverse;
 mod brent;
 mod residual;
+mod splrep;
 
 pub use residual::{
     MAX_RESIDUAL_ITERATIONS, ResidualFit, smoothing_curve_to_residual, smoothing_to_residual,
+};
+pub use splrep::{
+    SplrepOptions, chord_length_parameters, generate_knots, make_splprep, make_splrep,
 };
 
 use crate::banded::BandCholesky;

@@ -98,7 +98,7 @@ pub fn smoothing_to_residual<T: Scalar, P: ControlPoint<T>>(
             converged: true,
         });
     }
-    data.smooth(&knots, fp)
+    data.smooth(&knots, fp, knots.domain())
 }
 
 /// [`smoothing_to_residual`] of a parametric curve through `points`, as scipy's
@@ -119,7 +119,7 @@ pub fn smoothing_curve_to_residual<T: Scalar, P: ControlPoint<T>>(
 }
 
 /// The validated data of a residual-target fit.
-struct Data<'a, T, P> {
+pub(super) struct Data<'a, T, P> {
     x: &'a [T],
     y: &'a [P],
     weights: Option<&'a [T]>,
@@ -128,7 +128,13 @@ struct Data<'a, T, P> {
 }
 
 impl<'a, T: Scalar, P: ControlPoint<T>> Data<'a, T, P> {
-    fn new(x: &'a [T], y: &'a [P], weights: Option<&'a [T]>, degree: usize, s: T) -> Result<Self> {
+    pub(super) fn new(
+        x: &'a [T],
+        y: &'a [P],
+        weights: Option<&'a [T]>,
+        degree: usize,
+        s: T,
+    ) -> Result<Self> {
         if !(1..=5).contains(&degree) {
             return Err(Error::new(
                 ErrorKind::InvalidArgument,
@@ -213,7 +219,10 @@ impl<'a, T: Scalar, P: ControlPoint<T>> Data<'a, T, P> {
     }
 
     /// The weighted least-squares spline on `knots`, its residuals and their sum.
-    fn least_squares(&self, knots: &KnotVector<T>) -> Result<(BSpline<T, P>, Vec<T>, T)> {
+    pub(super) fn least_squares(
+        &self,
+        knots: &KnotVector<T>,
+    ) -> Result<(BSpline<T, P>, Vec<T>, T)> {
         let mut lsq = LeastSquares::new(self.y, self.x, knots.clone());
         if let Some(w) = self.weights {
             lsq = lsq.weights(w);
@@ -225,17 +234,30 @@ impl<'a, T: Scalar, P: ControlPoint<T>> Data<'a, T, P> {
 
     /// The knots of FITPACK's first stage (scipy's `_generate_knots_impl`, not periodic).
     fn generate_knots(&self) -> Result<KnotVector<T>> {
+        let m = self.x.len();
+        self.generate_knots_with((self.x[0], self.x[m - 1]), None, &mut |_| {})
+    }
+
+    /// [`Data::generate_knots`] on $[x_b, x_e]$ with an optional cap `nest` on the number
+    /// of knots (scipy's default $\max(m + k + 1, 2k + 3)$ for `None`), passing every knot
+    /// vector scipy's `generate_knots` yields to `record`, in order; returns the last.
+    pub(super) fn generate_knots_with(
+        &self,
+        (xb, xe): (T, T),
+        nest: Option<usize>,
+        record: &mut dyn FnMut(&KnotVector<T>),
+    ) -> Result<KnotVector<T>> {
         let k = self.degree;
         let m = self.x.len();
         let acc = self.s * cast::<T>(TOL);
-        let nest = (m + k + 1).max(2 * k + 3);
+        let nest = nest.unwrap_or((m + k + 1).max(2 * k + 3));
         let nmin = 2 * (k + 1);
         let nmax = m + k + 1;
-        let (xb, xe) = (self.x[0], self.x[m - 1]);
         let mut t = KnotVector::clamped(k, xb, xe, &[])?;
         let mut fp = T::zero();
         let mut nplus = 1usize;
         for _ in 0..m {
+            record(&t);
             let fpold = fp;
             let (_, mut residuals, new_fp) = self.least_squares(&t)?;
             fp = new_fp;
@@ -265,9 +287,12 @@ impl<'a, T: Scalar, P: ControlPoint<T>> Data<'a, T, P> {
                 t = add_knot(self.x, &t, &residuals)?;
                 let n = t.len();
                 if n >= nmax {
-                    return KnotVector::not_a_knot(k, self.x);
+                    let t = KnotVector::not_a_knot(k, self.x)?;
+                    record(&t);
+                    return Ok(t);
                 }
                 if n >= nest {
+                    record(&t);
                     return Ok(t);
                 }
                 if j + 1 < nplus {
@@ -279,8 +304,14 @@ impl<'a, T: Scalar, P: ControlPoint<T>> Data<'a, T, P> {
     }
 
     /// FITPACK's second stage on `knots` (scipy's `F` and `root_rati`); `fp_lsq` is the
-    /// residual of the least-squares spline on them.
-    fn smooth(&self, knots: &KnotVector<T>, fp_lsq: T) -> Result<ResidualFit<T, P>> {
+    /// residual of the least-squares spline on them, `bounds` the interval of the
+    /// least-squares polynomial that starts the search.
+    pub(super) fn smooth(
+        &self,
+        knots: &KnotVector<T>,
+        fp_lsq: T,
+        bounds: (T, T),
+    ) -> Result<ResidualFit<T, P>> {
         let k = self.degree;
         let s = self.s;
         let acc = s * cast::<T>(TOL);
@@ -320,7 +351,7 @@ impl<'a, T: Scalar, P: ControlPoint<T>> Data<'a, T, P> {
             let (_, fp) = self.residuals(&spline)?;
             Ok((spline, fp - s))
         };
-        let polynomial = KnotVector::clamped(k, knots.domain().0, knots.domain().1, &[])?;
+        let polynomial = KnotVector::clamped(k, bounds.0, bounds.1, &[])?;
         let fp0 = self.least_squares(&polynomial)?.2 - s;
         let fpinf = fp_lsq - s;
         // scipy's root_rati: (p1, f1) = (0, fp0), (p3, f3) = (∞, fpinf); p3 = None is ∞.

@@ -1,0 +1,339 @@
+//! scipy 1.17's FITPACK replicas with their full signatures: `make_splrep(x, y, w, xb, xe,
+//! k, s, t, nest)`, `make_splprep(x, w, u, ub, ue, k, s, t, nest)` and
+//! `generate_knots(x, y, w, xb, xe, k, s, nest)` (scipy/interpolate/_fitpack_repro.py,
+//! not periodic). The algorithm is [`super::residual`]'s (FITPACK's `curfit`); this module
+//! adds the interval $[x_b, x_e]$, given knots, the cap `nest`, the sequence of knot
+//! vectors and scipy's parameters of curves.
+
+use super::residual::{Data, ResidualFit};
+use crate::interpolate::interpolate_with_knots;
+use crate::params::check_strict;
+use spline_core::{ControlPoint, Error, ErrorKind, KnotVector, Result, Scalar, to_f64};
+
+/// The optional arguments of scipy's `make_splrep`, `make_splprep` and `generate_knots`
+/// (for curves `xb`, `xe` are scipy's `ub`, `ue`).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SplrepOptions<'a, T> {
+    /// Weights `w` (one per datum, positive): they multiply the residuals,
+    /// $\sum_i (w_i \lVert y_i - g(x_i) \rVert)^2 \le s$. `None`: all ones.
+    pub weights: Option<&'a [T]>,
+    /// The start $x_b$ of the interval (`None`: the first abscissa); at most `x[0]`.
+    pub xb: Option<T>,
+    /// The end $x_e$ of the interval (`None`: the last abscissa); at least `x[m − 1]`.
+    pub xe: Option<T>,
+    /// The degree `k` (FITPACK's 1 to 5 when `s > 0`).
+    pub k: usize,
+    /// The smoothing condition `s ≥ 0`; `0` is not-a-knot interpolation.
+    pub s: T,
+    /// Given knots (`make_splrep`/`make_splprep` only): no knots are placed, only the
+    /// smoothing stage runs on them.
+    pub t: Option<&'a [T]>,
+    /// The cap on the number of knots placed (at least `2(k + 1)`); `None`: scipy's
+    /// $\max(m + k + 1, 2k + 3)$.
+    pub nest: Option<usize>,
+}
+
+impl<T: Scalar> Default for SplrepOptions<'_, T> {
+    /// scipy's defaults: cubic, `s = 0`, everything else `None`.
+    fn default() -> Self {
+        Self {
+            weights: None,
+            xb: None,
+            xe: None,
+            k: 3,
+            s: T::zero(),
+            t: None,
+            nest: None,
+        }
+    }
+}
+
+fn invalid(message: impl Into<String>) -> Error {
+    Error::new(ErrorKind::InvalidArgument, message)
+}
+
+impl<T: Scalar> SplrepOptions<'_, T> {
+    /// For `s = 0`: scipy refuses `t`, `w` and `nest`.
+    fn check_interpolation(&self) -> Result<()> {
+        if self.t.is_some() || self.weights.is_some() || self.nest.is_some() {
+            return Err(invalid(
+                "s == 0 is for interpolation only: t, w and nest must not be given",
+            ));
+        }
+        Ok(())
+    }
+
+    /// The interval $[x_b, x_e]$ for sorted abscissae `x` (validated already).
+    fn bounds(&self, x: &[T]) -> Result<(T, T)> {
+        let m = x.len();
+        let xb = self.xb.unwrap_or(x[0]);
+        let xe = self.xe.unwrap_or(x[m - 1]);
+        if !(xb.is_finite() && xe.is_finite()) {
+            return Err(Error::non_finite(format_args!(
+                "the interval [{}, {}]",
+                to_f64(xb),
+                to_f64(xe)
+            )));
+        }
+        if !(xb <= x[0] && xe >= x[m - 1]) {
+            return Err(Error::new(
+                ErrorKind::OutOfDomain,
+                format!(
+                    "the interval [xb, xe] = [{}, {}] must contain the abscissae [{}, {}]",
+                    to_f64(xb),
+                    to_f64(xe),
+                    to_f64(x[0]),
+                    to_f64(x[m - 1])
+                ),
+            ));
+        }
+        Ok((xb, xe))
+    }
+
+    /// scipy's check of `nest`: at least `2(k + 1)`, and not together with `t`.
+    fn check_nest(&self) -> Result<()> {
+        if let Some(nest) = self.nest {
+            let k = self.k;
+            if nest < 2 * (k + 1) {
+                return Err(invalid(format!(
+                    "`nest` too small: nest = {nest} < 2*(k+1) = {}",
+                    2 * (k + 1)
+                )));
+            }
+            if self.t.is_some() {
+                return Err(invalid("Either supply `t` or `nest`."));
+            }
+        }
+        Ok(())
+    }
+}
+
+/// The not-a-knot interpolating spline (scipy's `make_interp_spline(x, y, k)`).
+fn interpolation<T: Scalar, P: ControlPoint<T>>(
+    x: &[T],
+    y: &[P],
+    k: usize,
+) -> Result<ResidualFit<T, P>> {
+    if y.len() != x.len() {
+        return Err(Error::invalid_length(
+            "one value per abscissa",
+            x.len(),
+            y.len(),
+        ));
+    }
+    check_strict(x)?;
+    let knots = KnotVector::not_a_knot(k, x)?;
+    let spline = interpolate_with_knots(&knots, x, y)?;
+    Ok(ResidualFit {
+        spline,
+        residual: T::zero(),
+        smoothing: None,
+        converged: true,
+    })
+}
+
+/// scipy's `fpcheck` of given knots against the data (not periodic): `k + 1 ≤ n − k − 1 ≤ m`
+/// coefficients, interior knots strictly increasing, the data inside $[t_k, t_{n-k-1}]$;
+/// the Schoenberg–Whitney conditions are checked by the least-squares solve.
+fn check_given_knots<T: Scalar>(x: &[T], t: &[T], k: usize) -> Result<KnotVector<T>> {
+    let m = x.len();
+    let n = t.len();
+    if !(n >= 2 * (k + 1) && n - k - 1 <= m) {
+        return Err(Error::new(
+            ErrorKind::InvalidLength,
+            format!("Need k+1 <= n-k-1 <= m. Got m = {m}, n = {n}, k = {k}"),
+        ));
+    }
+    let knots = KnotVector::new(k, t.to_vec())?;
+    if let Some(j) = (k + 1..n - k).find(|&j| !(t[j] > t[j - 1])) {
+        return Err(Error::new(
+            ErrorKind::KnotMultiplicity,
+            format!(
+                "Internal knots must be distinct: knots {} and {j} are both {}",
+                j - 1,
+                to_f64(t[j])
+            ),
+        ));
+    }
+    if !(t[k] <= x[0] && x[m - 1] <= t[n - k - 1]) {
+        return Err(Error::new(
+            ErrorKind::OutOfDomain,
+            format!(
+                "Out of bounds: the data [{}, {}] must lie in [t[k], t[n-k-1]] = [{}, {}]",
+                to_f64(x[0]),
+                to_f64(x[m - 1]),
+                to_f64(t[k]),
+                to_f64(t[n - k - 1])
+            ),
+        ));
+    }
+    Ok(knots)
+}
+
+/// scipy's `make_splrep(x, y, w=w, xb=xb, xe=xe, k=k, s=s, t=t, nest=nest)`: the smoothing
+/// spline of FITPACK's `curfit` (see [`crate::smoothing_to_residual`]) with the options of
+/// scipy. For `s = 0` the not-a-knot interpolating spline (`make_interp_spline`; `t`, `w`
+/// and `nest` refused, `xb`, `xe` ignored, as scipy). Otherwise knots are placed on
+/// $[x_b, x_e]$ until the least-squares residual meets `s` or `nest` knots are reached
+/// (skipped when `t` is given), then the jumps of the `k`-th derivative are minimised
+/// subject to $\sum_i (w_i \lVert y_i - g(x_i) \rVert)^2 = s$. Vector values `y` give
+/// scipy's `make_splprep` with given parameters `x`.
+///
+/// ```
+/// use spline_fit::{SplrepOptions, make_splrep};
+/// let x: Vec<f64> = (0..40).map(|i| f64::from(i) / 39.0).collect();
+/// let y: Vec<f64> = x.iter().map(|t| (6.0 * t).sin()).collect();
+/// let fit = make_splrep(&x, &y, &SplrepOptions { s: 1e-3, ..Default::default() })?;
+/// assert!(fit.converged && fit.spline.len() < 40);
+/// # Ok::<(), spline_core::Error>(())
+/// ```
+///
+/// # Errors
+/// [`ErrorKind::InvalidArgument`] for `t`, `w` or `nest` with `s = 0`, `nest < 2(k + 1)`,
+/// `t` and `nest` together, and the errors of [`crate::smoothing_to_residual`] (degrees 1
+/// to 5, `s` finite and non-negative, lengths, sorted finite data, positive weights);
+/// [`ErrorKind::OutOfDomain`] when $[x_b, x_e]$ does not contain the data or the given
+/// knots' base interval does not; for given knots [`ErrorKind::InvalidLength`] unless
+/// `k + 1 ≤ n − k − 1 ≤ m`, [`ErrorKind::KnotMultiplicity`] for repeated interior knots and
+/// the errors of [`KnotVector::new`]; [`ErrorKind::SchoenbergWhitney`] or
+/// [`ErrorKind::SingularSystem`] when a system cannot be solved. For `s = 0` the errors of
+/// [`crate::interpolate_with_knots`] (strictly increasing `x`).
+pub fn make_splrep<T: Scalar, P: ControlPoint<T>>(
+    x: &[T],
+    y: &[P],
+    options: &SplrepOptions<'_, T>,
+) -> Result<ResidualFit<T, P>> {
+    let k = options.k;
+    if options.s == T::zero() {
+        options.check_interpolation()?;
+        return interpolation(x, y, k);
+    }
+    let data = Data::new(x, y, options.weights, k, options.s)?;
+    options.check_nest()?;
+    let bounds = options.bounds(x)?;
+    let knots = match options.t {
+        Some(t) => check_given_knots(x, t, k)?,
+        None => data.generate_knots_with(bounds, options.nest, &mut |_| {})?,
+    };
+    let (lsq, _, fp) = data.least_squares(&knots)?;
+    if knots.len() == 2 * (k + 1) {
+        return Ok(ResidualFit {
+            spline: lsq,
+            residual: fp,
+            smoothing: None,
+            converged: true,
+        });
+    }
+    data.smooth(&knots, fp, bounds)
+}
+
+/// scipy's parameters of `make_splprep` when `u` is not given: cumulative chord lengths
+/// divided by the total, $u_0 = 0$, $u_j = \sum_{i \le j} \lVert x_i - x_{i-1} \rVert / L$
+/// (summed and divided in scipy's order, so the same numbers).
+///
+/// # Errors
+/// [`ErrorKind::TooFewPoints`] with fewer than 2 points; [`ErrorKind::NonFinite`] for
+/// non-finite points; [`ErrorKind::DegenerateGeometry`] when all points coincide (scipy
+/// would divide by zero).
+pub fn chord_length_parameters<T: Scalar, P: ControlPoint<T>>(points: &[P]) -> Result<Vec<T>> {
+    if points.len() < 2 {
+        return Err(Error::new(
+            ErrorKind::TooFewPoints,
+            format!("parameters need at least 2 points, got {}", points.len()),
+        )
+        .with_counts(2, points.len()));
+    }
+    if let Some(i) = points.iter().position(|p| !p.all_finite()) {
+        return Err(Error::new(
+            ErrorKind::NonFinite,
+            format!("data point {i} is not finite"),
+        )
+        .with_index(i));
+    }
+    let mut u = Vec::with_capacity(points.len());
+    u.push(T::zero());
+    let mut sum = T::zero();
+    for pair in points.windows(2) {
+        let d = pair[1] - pair[0];
+        let squares = (0..P::DIM).fold(T::zero(), |acc, c| acc + d.coord(c) * d.coord(c));
+        sum += squares.sqrt();
+        u.push(sum);
+    }
+    if !(sum > T::zero() && sum.is_finite()) {
+        return Err(Error::new(
+            ErrorKind::DegenerateGeometry,
+            "the points all coincide (or their chord length overflows): no chord-length parameters",
+        ));
+    }
+    for v in &mut u[1..] {
+        *v /= sum;
+    }
+    Ok(u)
+}
+
+/// scipy's `make_splprep(x, w=w, u=u, ub=ub, ue=ue, k=k, s=s, t=t, nest=nest)` for the
+/// curve through `points` (scipy's `x` transposed: one point per datum): the parameters are
+/// `u` or [`chord_length_parameters`], then [`make_splrep`] with the points as values
+/// (`options.xb`, `options.xe` are `ub`, `ue`). Returns the fit and the parameters.
+///
+/// # Errors
+/// As [`chord_length_parameters`] (when `u` is `None`) and [`make_splrep`];
+/// [`ErrorKind::InvalidLength`] unless `u` has one parameter per point.
+pub fn make_splprep<T: Scalar, P: ControlPoint<T>>(
+    points: &[P],
+    u: Option<&[T]>,
+    options: &SplrepOptions<'_, T>,
+) -> Result<(ResidualFit<T, P>, Vec<T>)> {
+    let u = match u {
+        Some(u) => {
+            if u.len() != points.len() {
+                return Err(Error::invalid_length(
+                    "one parameter per point",
+                    points.len(),
+                    u.len(),
+                ));
+            }
+            u.to_vec()
+        }
+        None => chord_length_parameters(points)?,
+    };
+    let fit = make_splrep(&u, points, options)?;
+    Ok((fit, u))
+}
+
+/// scipy's `generate_knots(x, y, w=w, xb=xb, xe=xe, k=k, s=s, nest=nest)`: every knot vector
+/// FITPACK's first stage tries, in order: the polynomial's ($x_b$, $x_e$ each `k + 1`
+/// times), then after each least-squares fit whose residual exceeds `s` the vector with
+/// the knots added; it ends when the residual meets `s` (the last vector is the one that
+/// met it), when `nest` knots are reached, or with the not-a-knot knots of interpolation
+/// when `m + k + 1` would be. For `s = 0` the one vector is the not-a-knot one.
+/// `options.t` must be `None`.
+///
+/// # Errors
+/// [`ErrorKind::InvalidArgument`] for `options.t`, and as [`make_splrep`].
+pub fn generate_knots<T: Scalar, P: ControlPoint<T>>(
+    x: &[T],
+    y: &[P],
+    options: &SplrepOptions<'_, T>,
+) -> Result<Vec<Vec<T>>> {
+    if options.t.is_some() {
+        return Err(invalid(
+            "generate_knots places the knots: t must not be given",
+        ));
+    }
+    if options.s == T::zero() {
+        options.check_interpolation()?;
+        return Ok(vec![KnotVector::not_a_knot(options.k, x)?.into_knots()]);
+    }
+    let data = Data::new(x, y, options.weights, options.k, options.s)?;
+    options.check_nest()?;
+    let bounds = options.bounds(x)?;
+    let mut sequence = Vec::new();
+    data.generate_knots_with(bounds, options.nest, &mut |t| {
+        sequence.push(t.knots().to_vec());
+    })?;
+    Ok(sequence)
+}
+
+#[cfg(test)]
+mod tests;
