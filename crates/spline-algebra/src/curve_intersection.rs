@@ -544,8 +544,13 @@ pub fn self_intersections<T: Scalar, C: PlanarCurve<T>>(
     let mut monotone = Vec::new();
     let mut todo = pieces_of(curve)?;
     todo.reverse();
+    // Pieces smaller than the tolerance are points for this purpose: near a cusp or a turn
+    // back, the legs of ever smaller pieces are rounding noise of either sign, and
+    // splitting them until floating point stops would make ~1e8 pieces (the work is bounded
+    // by the geometry: the curve's extent over the tolerance).
+    let point_like = tolerance * cast(0.25);
     while let Some(p) = todo.pop() {
-        if p.is_monotone(&C::project) {
+        if p.size() <= point_like || p.is_monotone(&C::project) {
             monotone.push(p);
             continue;
         }

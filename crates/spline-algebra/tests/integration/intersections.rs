@@ -515,3 +515,51 @@ fn bad_tolerances_and_overlapping_curves_are_errors() {
         ErrorKind::NoConvergence
     );
 }
+
+/// Curves with a cusp or a turn back (reproducers `loop.json`, `backforth2.json`): the
+/// monotone splitting used to split rounding noise near the cusp until memory ran out. Now
+/// the work is bounded by the geometry; every reported point lies on the curve at both
+/// parameters.
+#[test]
+fn cusps_and_turns_back_end_quickly() {
+    let cubic = |p: [[f64; 2]; 4]| {
+        BSpline::from_knots(
+            3,
+            vec![0.0, 0.0, 0.0, 0.0, 1.0, 1.0, 1.0, 1.0],
+            p.iter().map(|q| Vector2::new(q[0], q[1])).collect(),
+        )
+        .unwrap()
+    };
+    // x = 6t(1 − t), y = 6t(1 − t)² + 2t³: a cusp at t = 1/2, the point (1.5, 1).
+    let cusp = cubic([[0.0, 0.0], [2.0, 2.0], [2.0, 0.0], [0.0, 2.0]]);
+    // Out along the x-axis and back over the same points.
+    let back = BSpline::from_knots(
+        2,
+        vec![0.0, 0.0, 0.0, 1.0, 1.0, 1.0],
+        vec![
+            Vector2::new(0.0, 0.0),
+            Vector2::new(1.0, 0.0),
+            Vector2::new(0.0, 0.0),
+        ],
+    )
+    .unwrap();
+    // All control points equal.
+    let point = cubic([[1.0, 2.0]; 4]);
+    let started = std::time::Instant::now();
+    let at_cusp = self_intersections(&cusp, 1e-9).unwrap();
+    assert!(!at_cusp.is_empty());
+    for hit in &at_cusp {
+        assert!(
+            (hit.point - Vector2::new(1.5, 1.0)).norm() < 1e-6,
+            "{hit:?}"
+        );
+    }
+    let turns: Vec<CurveIntersection<f64>> = self_intersections(&back, 1e-9).unwrap();
+    for hit in &turns {
+        // The turn back: C(u) = C(v) within the tolerance.
+        let gap = (back.eval(hit.u).unwrap() - back.eval(hit.v).unwrap()).norm();
+        assert!(gap <= 1e-9 && hit.u < hit.v, "{hit:?}");
+    }
+    let _: spline_core::Result<Vec<CurveIntersection<f64>>> = self_intersections(&point, 1e-9);
+    assert!(started.elapsed().as_secs_f64() < 10.0);
+}
