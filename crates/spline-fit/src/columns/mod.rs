@@ -301,7 +301,8 @@ pub fn make_interp_spline(
         );
     let width = k + 1;
     let (a, b) = knots.domain();
-    let mut rows: Vec<(usize, [f64; MAX_ORDER])> = Vec::with_capacity(nt);
+    let mut firsts: Vec<usize> = Vec::with_capacity(nt);
+    let mut entries: Vec<f64> = Vec::with_capacity(nt * width);
     let mut rhs = vec![0.0; nt * columns];
     let mut table = vec![0.0; width * width];
     let (mut kl, mut ku) = (0usize, 0usize);
@@ -319,12 +320,22 @@ pub fn make_interp_spline(
                 ku = ku.max((first + c).saturating_sub(r));
             }
         }
-        rows.push((first, row));
-        rhs[r * columns..(r + 1) * columns].copy_from_slice(values);
+        // Rows scaled to a largest entry of one (derivative rows on short intervals are
+        // large, which would hide the collocation rows below the pivot threshold).
+        let size = row[..width].iter().fold(0.0_f64, |m, v| m.max(v.abs()));
+        let scale = if size > 0.0 { 1.0 / size } else { 1.0 };
+        for v in &mut row[..width] {
+            *v *= scale;
+        }
+        firsts.push(first);
+        entries.extend_from_slice(&row[..width]);
+        for (o, &v) in rhs[r * columns..(r + 1) * columns].iter_mut().zip(values) {
+            *o = v * scale;
+        }
     }
     let mut lu = BandLu::zeros(nt, kl, ku, 0);
-    for (r, (first, row)) in rows.iter().enumerate() {
-        for (c, &v) in row[..width].iter().enumerate() {
+    for (r, (&first, row)) in firsts.iter().zip(entries.chunks_exact(width)).enumerate() {
+        for (c, &v) in row.iter().enumerate() {
             if v != 0.0 {
                 lu.add(r, first + c, v);
             }
@@ -351,10 +362,7 @@ pub fn make_interp_spline(
 
 /// The knots checked as [`ColumnSpline::new`] checks them (scipy's words).
 fn knot_vector(t: &[f64], k: usize) -> Result<KnotVector<f64>> {
-    let n = t.len().saturating_sub(k + 1);
-    Ok(ColumnSpline::new(t.to_vec(), vec![0.0; n], k, 1)?
-        .knot_vector()
-        .clone())
+    ColumnSpline::check_knots(t.to_vec(), k)
 }
 
 /// scipy's error for data outside the knots.

@@ -22,6 +22,8 @@ mod roots;
 
 pub use design::PowerBasisKnots;
 
+use std::sync::OnceLock;
+
 use spline_core::{BatchBasis, Error, ErrorKind, KnotVector, MAX_DEGREE, Result};
 
 /// What happens at points outside the base interval $[t_k, t_n]$ (scipy's `extrapolate`).
@@ -57,7 +59,8 @@ pub struct ColumnSpline {
     coefficients: Vec<f64>,
     rows: usize,
     columns: usize,
-    batch: BatchBasis<f64>,
+    /// The span and reciprocal tables, built at the first evaluation.
+    batch: OnceLock<BatchBasis<f64>>,
 }
 
 fn invalid(message: impl Into<String>) -> Error {
@@ -174,13 +177,12 @@ impl ColumnSpline {
             )
             .with_index(i));
         }
-        let batch = BatchBasis::new(&knots);
         Ok(Self {
             knots,
             coefficients: c,
             rows,
             columns,
-            batch,
+            batch: OnceLock::new(),
         })
     }
 
@@ -334,6 +336,20 @@ impl ColumnSpline {
         Ok(out)
     }
 
+    /// The batch tables, built on first use.
+    fn batch(&self) -> &BatchBasis<f64> {
+        self.batch.get_or_init(|| BatchBasis::new(&self.knots))
+    }
+
+    /// The knot vector of degree `k` that [`ColumnSpline::new`] accepts (the same checks
+    /// and messages), for callers that build the coefficients afterwards.
+    ///
+    /// # Errors
+    /// As [`ColumnSpline::new`] for the knots.
+    pub fn check_knots(t: Vec<f64>, k: usize) -> Result<KnotVector<f64>> {
+        check_knots(t, k)
+    }
+
     /// The span for a point `u` that is finite: inside the base interval by the batch
     /// tables, outside the first or last non-empty span.
     #[inline(always)]
@@ -343,7 +359,7 @@ impl ColumnSpline {
         } else if u > b {
             self.knots.span_in_domain(b)
         } else {
-            self.batch.span_from(&self.knots, u, hint)
+            self.batch().span_from(&self.knots, u, hint)
         }
     }
 
@@ -371,6 +387,7 @@ impl ColumnSpline {
         let (a, b) = domain;
         let m = self.columns;
         let coefficients = &self.coefficients[..];
+        let batch = self.batch();
         let mut hint = usize::MAX;
         let mut nan = 0;
         for (&xi, row) in x.iter().zip(out.chunks_exact_mut(m)) {
@@ -380,7 +397,7 @@ impl ColumnSpline {
                 continue;
             };
             let (span, basis) = if u >= a && u <= b {
-                self.batch.eval_fixed_from::<N>(&self.knots, u, hint)
+                batch.eval_fixed_from::<N>(&self.knots, u, hint)
             } else {
                 let span = self.span_of(u, domain, hint);
                 (span, self.knots.basis_values_fixed::<N>(span, u))
