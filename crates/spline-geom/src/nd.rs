@@ -256,11 +256,42 @@ impl Work {
         Some(first)
     }
 
-    /// Calls `f(row, weight)` for every coefficient row of the tensor sum at the prepared
-    /// point, the last dimension innermost (rows in increasing order).
+    /// Calls `f(row, weight, inner)` for every line of the tensor sum at the prepared point
+    /// along the last dimension: the coefficient rows `row ..` (as many as `inner`, the
+    /// last dimension's basis row) enter with the weights `weight · inner[i]`, `weight`
+    /// the product of the other dimensions' basis values (rows in increasing order).
     #[inline(always)]
-    fn for_each_term(&mut self, dims: &Dims, first: usize, mut f: impl FnMut(usize, f64)) {
+    fn for_each_line(&mut self, dims: &Dims, first: usize, mut f: impl FnMut(usize, f64, &[f64])) {
         let d = self.widths.len();
+        // One, two and three dimensions as plain loops (the same products in the same
+        // order as the odometer below).
+        match d {
+            1 => {
+                f(first, 1.0, &self.basis[..self.widths[0]]);
+                return;
+            }
+            2 => {
+                let (b0, b1) = self.basis.split_at(self.widths[0]);
+                let s0 = dims.strides[0];
+                for (i0, &v0) in b0.iter().enumerate() {
+                    f(first + i0 * s0, v0, b1);
+                }
+                return;
+            }
+            3 => {
+                let (b0, rest) = self.basis.split_at(self.widths[0]);
+                let (b1, b2) = rest.split_at(self.widths[1]);
+                let (s0, s1) = (dims.strides[0], dims.strides[1]);
+                for (i0, &v0) in b0.iter().enumerate() {
+                    let r0 = first + i0 * s0;
+                    for (i1, &v1) in b1.iter().enumerate() {
+                        f(r0 + i1 * s1, v0 * v1, b2);
+                    }
+                }
+                return;
+            }
+            _ => {}
+        }
         let last = d - 1;
         for l in 0..last {
             self.index[l] = 0;
@@ -279,9 +310,7 @@ impl Work {
             } else {
                 (self.partial[last - 1], self.base[last - 1])
             };
-            for (i, &v) in inner.iter().enumerate() {
-                f(b + i, p * v);
-            }
+            f(b, p, inner);
             // Advance the odometer over the outer levels.
             let mut l = last;
             loop {
@@ -503,13 +532,23 @@ impl NdSpline {
             let c = &self.coefficients;
             if m == 1 {
                 let mut acc = 0.0;
-                work.for_each_term(&self.dims, first, |r, w| acc += w * c[r]);
+                work.for_each_line(&self.dims, first, |r, p, inner| {
+                    let dot: f64 = inner
+                        .iter()
+                        .zip(&c[r..r + inner.len()])
+                        .map(|(b, c)| b * c)
+                        .sum();
+                    acc += p * dot;
+                });
                 row[0] = acc;
             } else {
                 row.fill(0.0);
-                work.for_each_term(&self.dims, first, |r, w| {
-                    for (o, &cv) in row.iter_mut().zip(&c[r * m..(r + 1) * m]) {
-                        *o += w * cv;
+                work.for_each_line(&self.dims, first, |r, p, inner| {
+                    for (i, &b) in inner.iter().enumerate() {
+                        let w = p * b;
+                        for (o, &cv) in row.iter_mut().zip(&c[(r + i) * m..(r + i + 1) * m]) {
+                            *o += w * cv;
+                        }
                     }
                 });
             }
@@ -648,9 +687,11 @@ impl NdSpline {
                 };
                 return Err(err.context(format_args!("point {p}, dimension {e}")));
             };
-            work.for_each_term(&dims, first, |r, w| {
-                indices.push(r);
-                data.push(w);
+            work.for_each_line(&dims, first, |r, p, inner| {
+                for (i, &b) in inner.iter().enumerate() {
+                    indices.push(r + i);
+                    data.push(p * b);
+                }
             });
             indptr.push(indices.len());
         }
