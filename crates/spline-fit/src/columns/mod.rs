@@ -15,12 +15,24 @@
 //! # Ok::<(), spline_core::Error>(())
 //! ```
 
-use crate::banded::BandLu;
+use crate::banded::{BandLu, Staircase};
 use crate::lsq::{LeastSquares, LsqMethod};
 use crate::periodic::solve_periodic_collocation;
 use nalgebra::SVector;
 use spline_core::{Error, ErrorKind, KnotVector, MAX_DEGREE, MAX_ORDER, Result};
 use spline_geom::ColumnSpline;
+
+/// Applies a function generic over the point type to a chunk.
+macro_rules! on_chunk {
+    ($chunk:expr, |$p:ident| $body:expr) => {
+        match $chunk {
+            Chunk::One($p) => $body.map(Solved::One),
+            Chunk::Two($p) => $body.map(Solved::Two),
+            Chunk::Three($p) => $body.map(Solved::Three),
+            Chunk::Four($p) => $body.map(Solved::Four),
+        }
+    };
+}
 
 /// The boundary conditions of scipy's `make_interp_spline` (`bc_type`).
 #[derive(Clone, Debug, PartialEq)]
@@ -285,6 +297,16 @@ pub fn make_interp_spline(
             ),
         ));
     }
+    if nleft == 0 && nright == 0 {
+        // Collocation only: a totally positive matrix when the data suit the knots, solved
+        // without pivoting in one pass (the crate's interpolation kernel); anything else
+        // goes through the pivoting band LU below, as scipy's gbsv.
+        if let Ok(c) = by_chunks(columns, nt, y, &mut |chunk| {
+            on_chunk!(chunk, |p| staircase(&knots, x, &p))
+        }) {
+            return ColumnSpline::from_knot_vector(knots, c, columns);
+        }
+    }
     // The rows: (order, point) conditions with their right-hand sides.
     let conditions = left
         .iter()
@@ -358,6 +380,34 @@ pub fn make_interp_spline(
         }
     }
     ColumnSpline::from_knot_vector(knots, rhs, columns)
+}
+
+/// Collocation at `x` (as many points as basis functions) by elimination without pivoting,
+/// or an error when a row has no diagonal entry or a negligible pivot.
+fn staircase<P: spline_core::ControlPoint<f64>>(
+    knots: &KnotVector<f64>,
+    x: &[f64],
+    points: &[P],
+) -> Result<Vec<P>> {
+    let k = knots.degree();
+    let width = k + 1;
+    let (a, b) = knots.domain();
+    let mut system = Staircase::with_capacity(x.len(), width);
+    let mut row = [0.0; MAX_ORDER];
+    let mut span = k;
+    for (i, (&u, &q)) in x.iter().zip(points).enumerate() {
+        span = knots.span_in_domain_from(u.clamp(a, b), span);
+        let first = span - k;
+        if i < first || i > span {
+            return Err(Error::new(
+                ErrorKind::SchoenbergWhitney,
+                "collocation row without a diagonal entry",
+            ));
+        }
+        knots.basis_values(span, u, &mut row[..width]);
+        system.push_row(first, &row[..width], q)?;
+    }
+    Ok(system.solve())
 }
 
 /// The knots checked as [`ColumnSpline::new`] checks them (scipy's words).
@@ -434,18 +484,6 @@ enum Solved {
     Two(Vec<SVector<f64, 2>>),
     Three(Vec<SVector<f64, 3>>),
     Four(Vec<SVector<f64, 4>>),
-}
-
-/// Applies a function generic over the point type to a chunk.
-macro_rules! on_chunk {
-    ($chunk:expr, |$p:ident| $body:expr) => {
-        match $chunk {
-            Chunk::One($p) => $body.map(Solved::One),
-            Chunk::Two($p) => $body.map(Solved::Two),
-            Chunk::Three($p) => $body.map(Solved::Three),
-            Chunk::Four($p) => $body.map(Solved::Four),
-        }
-    };
 }
 
 /// scipy's periodic interpolation on the knots `t` (`len(x) + 2k`): the cyclic collocation

@@ -275,4 +275,3 @@ fn periodic_interpolation_with_fewer_points_than_the_degree() {
         close(s.coefficients(), c, 1e-10);
     }
 }
-
