@@ -515,6 +515,32 @@ impl NdSpline {
             .iter()
             .zip(nu)
             .any(|(kv, &n)| n > kv.degree());
+        // Values in two or three dimensions of one degree from 1 to 5: the kernel with the
+        // sizes as constants (the same operations, every array on the stack).
+        let degrees_equal = self
+            .dims
+            .knots
+            .iter()
+            .all(|kv| kv.degree() == self.dims.knots[0].degree());
+        if nu.iter().all(|&n| n == 0) && degrees_equal {
+            macro_rules! fixed {
+                ($d:literal) => {
+                    match self.dims.knots[0].degree() {
+                        1 => return Ok(self.eval_fixed::<$d, 2>(xi, extrapolate, out)),
+                        2 => return Ok(self.eval_fixed::<$d, 3>(xi, extrapolate, out)),
+                        3 => return Ok(self.eval_fixed::<$d, 4>(xi, extrapolate, out)),
+                        4 => return Ok(self.eval_fixed::<$d, 5>(xi, extrapolate, out)),
+                        5 => return Ok(self.eval_fixed::<$d, 6>(xi, extrapolate, out)),
+                        _ => {}
+                    }
+                };
+            }
+            match d {
+                2 => fixed!(2),
+                3 => fixed!(3),
+                _ => {}
+            }
+        }
         // Orders above the degree: zero, only the NaN rows are computed.
         let nu_used: Vec<usize> = if vanishes { vec![0; d] } else { nu.to_vec() };
         let mut work = Work::new(&self.dims, &nu_used);
@@ -617,6 +643,82 @@ impl NdSpline {
             knots[e] = line.knot_vector().clone();
         }
         Self::from_knot_vectors(knots, c, m, self.extrapolate)
+    }
+
+    /// Values in `D` dimensions of degree `N − 1` in every dimension (see
+    /// [`NdSpline::eval_into`]): basis rows and spans on the stack, the tensor sum as `N` or
+    /// `N²` dot products of `N` coefficients. Returns the number of NaN rows.
+    fn eval_fixed<const D: usize, const N: usize>(
+        &self,
+        xi: &[f64],
+        extrapolate: bool,
+        out: &mut [f64],
+    ) -> usize {
+        let dims = &self.dims;
+        let m = self.columns;
+        let c = &self.coefficients;
+        let domains: [(f64, f64); D] = std::array::from_fn(|e| dims.knots[e].domain());
+        let strides: [usize; D] = std::array::from_fn(|e| dims.strides[e]);
+        let mut hints = [usize::MAX; D];
+        let mut nan = 0;
+        for (x, row) in xi.chunks_exact(D).zip(out.chunks_exact_mut(m)) {
+            let mut basis = [[0.0; N]; D];
+            let mut first = 0;
+            let mut outside = false;
+            for e in 0..D {
+                let u = x[e];
+                let (a, b) = domains[e];
+                let kv = &dims.knots[e];
+                let span = if u >= a && u <= b {
+                    let (span, v) = dims.batches[e].eval_fixed_from::<N>(kv, u, hints[e]);
+                    basis[e] = v;
+                    span
+                } else if extrapolate && u.is_finite() {
+                    let span = kv.span_in_domain(u);
+                    basis[e] = kv.basis_values_fixed::<N>(span, u);
+                    span
+                } else {
+                    outside = true;
+                    break;
+                };
+                hints[e] = span;
+                first += (span + 1 - N) * strides[e];
+            }
+            if outside {
+                row.fill(f64::NAN);
+                nan += 1;
+                continue;
+            }
+            let inner = &basis[D - 1];
+            let line = |r: usize, p: f64, row: &mut [f64]| {
+                if m == 1 {
+                    let cs = &c[r..r + N];
+                    let dot: f64 = inner.iter().zip(cs).map(|(b, c)| b * c).sum();
+                    row[0] += p * dot;
+                } else {
+                    for (i, &bv) in inner.iter().enumerate() {
+                        let w = p * bv;
+                        for (o, &cv) in row.iter_mut().zip(&c[(r + i) * m..(r + i + 1) * m]) {
+                            *o += w * cv;
+                        }
+                    }
+                }
+            };
+            row.fill(0.0);
+            if D == 2 {
+                for (i0, &v0) in basis[0].iter().enumerate() {
+                    line(first + i0 * strides[0], v0, row);
+                }
+            } else {
+                for (i0, &v0) in basis[0].iter().enumerate() {
+                    let r0 = first + i0 * strides[0];
+                    for (i1, &v1) in basis[1].iter().enumerate() {
+                        line(r0 + i1 * strides[1], v0 * v1, row);
+                    }
+                }
+            }
+        }
+        nan
     }
 
     /// Evaluates into a new vector (see [`NdSpline::eval_into`]), with the spline's own

@@ -51,3 +51,14 @@ x3 = np.array([[0.1, 0.2, 0.3], [0.4, 0.5, 0.0], [0.9, 0.95, 1.0], [1.0, 1.0, 0.
 show("THREE_D", s3(x3))
 show("THREE_D_NU102", s3(x3, nu=(1, 0, 2)))
 show("THREE_D_NU011", s3(x3, nu=(0, 1, 1)))
+
+# Equal degrees (the fixed-size kernels): 2-D cubic with 2 columns, 3-D quadratic.
+tc = np.array([0, 0, 0, 0, 0.2, 0.5, 0.9, 1, 1, 1, 1.0])
+s4 = NdBSpline((tc, tc), coeffs((7, 7, 2)), 3)
+x4 = np.array([[0.1, 0.3], [0.5, 0.5], [1.0, 0.95], [1.2, -0.3], [0.0, 1.0]])
+show("CUBIC_2D", s4(x4))
+show("CUBIC_2D_NOEXT", s4(x4, extrapolate=False))
+tq = np.array([0, 0, 0, 0.3, 0.6, 1, 1, 1.0])
+s5 = NdBSpline((tq, tq, tq), coeffs((5, 5, 5)), 2)
+x5 = np.array([[0.1, 0.3, 0.7], [0.6, 0.6, 0.0], [1.0, 0.95, 0.2], [1.2, -0.3, 0.5]])
+show("QUAD_3D", s5(x5))
