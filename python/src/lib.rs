@@ -13,6 +13,7 @@
 
 mod columns;
 mod curve;
+mod nd;
 mod fitting;
 mod nurbs;
 mod scipy_fit;
@@ -106,6 +107,7 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("SplineError", m.py().get_type::<SplineError>())?;
     columns::register(m)?;
     curve::register(m)?;
+    nd::register(m)?;
     fitting::register(m)?;
     nurbs::register(m)?;
     scipy_fit::register(m)?;

@@ -4,13 +4,14 @@
 //! `LeastSquares`, `smoothing_spline`). `spline._bspline` validates the arguments with scipy's
 //! words and moves the axes.
 
+use crate::columns::Columns;
 use crate::{IntoPy, array, bad_input, slice};
 use numpy::{PyArray1, PyReadonlyArray1};
 use pyo3::prelude::*;
 use spline::KnotVector;
 use spline::fit::{
-    LeastSquares, LsqMethod, SmoothingParameter, interpolate_with_knots, natural_cubic,
-    smoothing_spline,
+    InterpBc, LeastSquares, LsqMethod, SmoothingParameter, interpolate_with_knots,
+    make_interp_spline, make_lsq_spline, natural_cubic, smoothing_spline,
 };
 
 /// Knots and row-major coefficients of a fitted spline.
@@ -182,9 +183,74 @@ fn not_a_knot<'py>(
     Ok(array(py, knots.knots().to_vec()))
 }
 
+/// scipy's `make_interp_spline` on every column at once (the library's
+/// `spline_fit::make_interp_spline`): `bc` is `"not-a-knot"`, `"periodic"` or `"ends"`,
+/// the last with the end conditions `left` and `right`, each a list of `(order, values)`
+/// with one value per column.
+#[pyfunction]
+#[pyo3(signature = (x, y, m, k, t, bc, left, right))]
+#[allow(clippy::too_many_arguments)]
+fn interp_spline(
+    py: Python<'_>,
+    x: PyReadonlyArray1<'_, f64>,
+    y: PyReadonlyArray1<'_, f64>,
+    m: usize,
+    k: usize,
+    t: Option<PyReadonlyArray1<'_, f64>>,
+    bc: &str,
+    left: Vec<(usize, Vec<f64>)>,
+    right: Vec<(usize, Vec<f64>)>,
+) -> PyResult<Columns> {
+    let (x, y) = (slice(&x, "x")?, slice(&y, "y")?);
+    let t = t.as_ref().map(|t| slice(t, "t")).transpose()?;
+    let bc = match bc {
+        "not-a-knot" => InterpBc::NotAKnot,
+        "periodic" => InterpBc::Periodic,
+        "ends" => InterpBc::Ends { left, right },
+        other => return Err(bad_input(format!("Unknown boundary condition: {other}"))),
+    };
+    py.detach(|| make_interp_spline(x, y, m, k, t, &bc))
+        .py()
+        .map(Columns)
+}
+
+/// scipy's `make_lsq_spline` on every column at once (the library's
+/// `spline_fit::make_lsq_spline`); `method` is `"qr"` or `"norm-eq"`.
+#[pyfunction]
+#[pyo3(signature = (x, y, m, t, k, w, method))]
+#[allow(clippy::too_many_arguments)]
+fn lsq_spline(
+    py: Python<'_>,
+    x: PyReadonlyArray1<'_, f64>,
+    y: PyReadonlyArray1<'_, f64>,
+    m: usize,
+    t: PyReadonlyArray1<'_, f64>,
+    k: usize,
+    w: Option<PyReadonlyArray1<'_, f64>>,
+    method: &str,
+) -> PyResult<Columns> {
+    let (x, y, t) = (slice(&x, "x")?, slice(&y, "y")?, slice(&t, "t")?);
+    let w = w.as_ref().map(|w| slice(w, "w")).transpose()?;
+    let method = lsq_method(method)?;
+    py.detach(|| make_lsq_spline(x, y, m, t, k, w, method))
+        .py()
+        .map(Columns)
+}
+
+/// scipy's `method` of `make_lsq_spline`.
+fn lsq_method(name: &str) -> PyResult<LsqMethod> {
+    match name {
+        "qr" => Ok(LsqMethod::Qr),
+        "norm-eq" => Ok(LsqMethod::NormalEquations),
+        other => Err(bad_input(format!("Unknown method = {other:?}."))),
+    }
+}
+
 /// Registers the functions.
 pub(crate) fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(interp_columns, m)?)?;
+    m.add_function(wrap_pyfunction!(interp_spline, m)?)?;
+    m.add_function(wrap_pyfunction!(lsq_spline, m)?)?;
     m.add_function(wrap_pyfunction!(not_a_knot, m)?)?;
     m.add_function(wrap_pyfunction!(natural_columns, m)?)?;
     m.add_function(wrap_pyfunction!(lsq_columns, m)?)?;

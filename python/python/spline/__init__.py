@@ -27,6 +27,7 @@ from ._bspline import (
     product,
     read_json,
 )
+from ._nd import NdBSpline, make_ndbspl
 from ._nurbs import NurbsCurve, NurbsSurface
 from ._fit import (
     CurvatureExtremum,
@@ -47,6 +48,8 @@ __all__ = [
     "make_smoothing_spline",
     "product",
     "read_json",
+    "NdBSpline",
+    "make_ndbspl",
     "NurbsCurve",
     "NurbsSurface",
     "CurvatureExtremum",

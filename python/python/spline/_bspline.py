@@ -451,50 +451,78 @@ def make_interp_spline(
         )
     if k < 0:
         raise _core.SplineError("Expect non-negative k.")
-    natural = (
-        isinstance(deriv_l, str) and isinstance(deriv_r, str)
-        and deriv_l == "natural" and deriv_r == "natural" and k == 3 and t is None
-    )
-    for d in (deriv_l, deriv_r):
-        if isinstance(d, str) and d not in ("clamped", "natural"):
-            raise _core.SplineError(f"Unknown boundary condition : {d}")
-    if natural:
-        if y.size == 0:
-            pass
-        else:
-            t_out = []
-
-            def solve(flat, m):
-                t_nat, c = _core.natural_columns(x, flat, m)
-                t_out.append(t_nat)
-                return c
-
-            c = _solve_columns(y, solve)
-            return BSpline.construct_fast(t_out[0], c, k, axis=axis)
-    if deriv_l is not None or deriv_r is not None or bc_type == "periodic":
-        raise NotImplementedError(
-            f"bc_type={bc_type!r}: boundary derivatives and periodic interpolation wait "
-            "for the library's column fits"
-        )
-    if t is None:
-        t = _core.not_a_knot(np.ascontiguousarray(x), k)
-    t = _as_float_array(t, check_finite)
-    if t.ndim != 1 or np.any(t[1:] < t[:-1]):
-        raise _core.SplineError("Expect t to be a 1-D sorted array_like.")
-    if t.size < x.size + k + 1:
-        raise _core.SplineError(f"Got {t.size} knots, need at least {x.size + k + 1}.")
-    if (x[0] < t[k]) or (x[-1] > t[-k]):
-        raise _core.SplineError(f"Out of bounds w/ x = {x}.")
-    nt = t.size - k - 1
-    if nt - x.size != 0:
-        raise _core.SplineError(
-            f"The number of derivatives at boundaries does not match: expected {nt - x.size}, got 0+0"
-        )
+    if t is not None:
+        t = _as_float_array(t, check_finite)
+        if t.ndim != 1 or np.any(t[1:] < t[:-1]):
+            raise _core.SplineError("Expect t to be a 1-D sorted array_like.")
+        if t.size < x.size + k + 1:
+            raise _core.SplineError(f"Got {t.size} knots, need at least {x.size + k + 1}.")
+        if (x[0] < t[k]) or (x[-1] > t[-k]):
+            raise _core.SplineError(f"Out of bounds w/ x = {x}.")
+    if bc_type == "periodic":
+        bc, left, right = "periodic", [], []
+    elif deriv_l is None and deriv_r is None:
+        bc, left, right = "not-a-knot", [], []
+    else:
+        bc = "ends"
+        left = _end_conditions(deriv_l, y, k, x[0])
+        right = _end_conditions(deriv_r, y, k, x[-1])
+        if t is not None:
+            nt = t.size - k - 1
+            if nt - x.size != len(left) + len(right):
+                raise _core.SplineError(
+                    "The number of derivatives at boundaries does not match: "
+                    f"expected {nt - x.size}, got {len(left)}+{len(right)}"
+                )
     if y.size == 0:
-        c = np.zeros((nt,) + y.shape[1:], dtype=float)
+        if t is None:
+            t = _core.not_a_knot(np.ascontiguousarray(x), k)
+        c = np.zeros((t.size - k - 1,) + y.shape[1:], dtype=float)
         return BSpline.construct_fast(t, c, k, axis=axis)
-    c = _solve_columns(y, lambda flat, m: _core.interp_columns(x, flat, m, t, k))
-    return BSpline.construct_fast(t, c, k, axis=axis)
+    out = []
+
+    def solve(flat, m):
+        core = _core.interp_spline(x, flat, m, k, t, bc, left, right)
+        out.append(core)
+        return core.coefficients()
+
+    c = _solve_columns(y, solve)
+    return BSpline.construct_fast(out[0].knots(), c, k, axis=axis)
+
+
+def _end_conditions(deriv, y: np.ndarray, k: int, where: float) -> list:
+    """scipy's end conditions (``'clamped'``, ``'natural'``, ``None`` or a list of
+    ``(order, value)``) as the library's: ``(order, values)`` with one real value per column
+    of ``y`` (complex values are two)."""
+    tail = y.shape[1:]
+    if isinstance(deriv, str):
+        if deriv == "clamped":
+            deriv = [(1, np.zeros(tail))]
+        elif deriv == "natural":
+            deriv = [(2, np.zeros(tail))]
+        else:
+            raise _core.SplineError(f"Unknown boundary condition : {deriv}")
+    if deriv is None:
+        return []
+    try:
+        ords, vals = zip(*deriv)
+    except TypeError as e:
+        raise _core.SplineError(
+            "Derivatives, `bc_type`, should be specified as a pair of iterables of pairs "
+            "of (order, value)."
+        ) from e
+    ords = np.atleast_1d(ords)
+    if not all(0 <= o <= k for o in ords):
+        raise _core.SplineError(f"Bad boundary conditions at {where}.")
+    dtype = np.result_type(y.dtype, *[np.asarray(v).dtype for v in vals])
+    conditions = []
+    for order, value in zip(ords, vals):
+        v = np.asarray(value, dtype=dtype).reshape((1,) + tail)
+        if np.iscomplexobj(y) and not np.iscomplexobj(v):
+            v = v.astype(np.complex128)
+        cc, _ = _real_columns(v)
+        conditions.append((int(order), [float(a) for a in cc.reshape(-1)]))
+    return conditions
 
 
 def make_lsq_spline(
@@ -546,7 +574,7 @@ def make_lsq_spline(
         return BSpline.construct_fast(t, np.zeros((n,) + y.shape[1:]), k, axis=axis)
     ww = np.ascontiguousarray(w, dtype=np.float64)
     c = _solve_columns(
-        y, lambda flat, m: _core.lsq_columns(x, flat, m, t, k, ww, method)
+        y, lambda flat, m: _core.lsq_spline(x, flat, m, t, k, ww, method).coefficients()
     )
     return BSpline.construct_fast(t, np.ascontiguousarray(c), k, axis=axis)
 
