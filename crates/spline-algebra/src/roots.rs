@@ -246,7 +246,21 @@ fn analyse<T: Scalar>(f: &BSpline<T, T>, accuracy: T) -> Result<Analysis<T>> {
             jumps: Vec::new(),
         });
     }
-    let tol = scale * T::default_epsilon() * from_count::<T>(16 * (d + 1));
+    // What counts as zero is relative to the coefficients where the function is evaluated
+    // (the B-spline coefficients that support the span: the Bézier coefficients of a piece
+    // are convex combinations of them), not to the largest coefficient anywhere: a function
+    // of size 1e6 on one span and 1e20 on another keeps its sign changes on the first.
+    let unit = T::default_epsilon() * from_count::<T>(16 * (d + 1));
+    let tol = scale * unit;
+    let coefficients = f.control_points();
+    let local_tol = |u: T| -> T {
+        f.knots().find_span(u).map_or(tol, |k| {
+            coefficients[k.saturating_sub(d)..=k]
+                .iter()
+                .fold(T::zero(), |m, &x| m.max(x.abs()))
+                * unit
+        })
+    };
     let mut iso = Isolator {
         tol,
         accuracy,
@@ -260,8 +274,13 @@ fn analyse<T: Scalar>(f: &BSpline<T, T>, accuracy: T) -> Result<Analysis<T>> {
     let segments: Vec<&[T]> = pieces.chunks_exact(d + 1).collect();
     for (s, coeffs) in segments.iter().enumerate() {
         let (t0, t1) = (breakpoints[s], breakpoints[s + 1]);
+        let tol = local_tol((t0 + t1) * spline_core::cast(0.5));
+        iso.tol = tol;
         if s > 0 {
             let left = segments[s - 1][d];
+            let tol = tol.max(local_tol(
+                (breakpoints[s - 1] + t0) * spline_core::cast(0.5),
+            ));
             if (left - coeffs[0]).abs() > tol {
                 jumps.push((t0, sign(left, tol), sign(coeffs[0], tol)));
             }
@@ -303,7 +322,7 @@ fn analyse<T: Scalar>(f: &BSpline<T, T>, accuracy: T) -> Result<Analysis<T>> {
         }
     }
     // Signs between consecutive zeros and discontinuities decide the crossings.
-    let sign_at = |u: T| -> i8 { f.eval(u).map_or(0, |v| sign(v, tol)) };
+    let sign_at = |u: T| -> i8 { f.eval(u).map_or(0, |v| sign(v, local_tol(u))) };
     let half = spline_core::cast::<T>(0.5);
     let mut out = Vec::with_capacity(merged.len());
     for (i, &(s, e)) in merged.iter().enumerate() {

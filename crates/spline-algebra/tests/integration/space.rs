@@ -331,3 +331,80 @@ fn space_numerator_hessians_agree_with_hyper_dual_numbers() {
         "the second derivatives checked are all zero"
     );
 }
+
+/// A random space cubic whose curvature numerator is 1e20 near one end and 1e6 in the
+/// middle (reproducer `space_cubic_extrema.json`): the zero test was relative to the largest
+/// coefficient anywhere, so two extrema of the middle (a maximum κ = 42.37 at u ≈ 0.5389,
+/// a minimum at u ≈ 0.3440) were missed. Checked against dense sampling of κ.
+#[test]
+fn extrema_where_the_numerator_is_small_against_its_largest_coefficient() {
+    use spline_geom::ParamCurve;
+    let curve = BSpline::from_knots(
+        3,
+        vec![
+            0.0,
+            0.0,
+            0.0,
+            0.0,
+            0.00814621021272166,
+            0.39983511463936516,
+            0.6268196454053702,
+            0.7457955928052529,
+            0.8129430514019474,
+            1.0,
+            1.0,
+            1.0,
+            1.0,
+        ],
+        [
+            [
+                0.1432771670085956,
+                -0.34079530431860283,
+                -0.2988362348789169,
+            ],
+            [-0.308447270562775, -0.6457669113733923, -1.188076424014336],
+            [-0.603921585887524, 1.1240688507924026, 0.9008051480098249],
+            [0.9487941399458188, 0.38271955761798154, -0.5355460157441487],
+            [
+                0.6931550193107057,
+                -0.49121344674450407,
+                -0.8030453663336368,
+            ],
+            [0.27144205690772577, 0.9109990637377727, -0.3822688931373175],
+            [0.20236196169795995, -0.11420765761408846, 1.397631012959613],
+            [1.0628706544997046, 0.3613607558620529, -0.1875892342371591],
+            [
+                -0.7365078073717658,
+                -0.8510034128648848,
+                -1.7117409925828153,
+            ],
+        ]
+        .iter()
+        .map(|p| Vector3::new(p[0], p[1], p[2]))
+        .collect(),
+    )
+    .unwrap();
+    let found = curve.space_features(1e-12).unwrap().curvature_extrema;
+    // Dense sampling: the turning points of κ on a grid of 400,001 parameters.
+    let n = 400_000;
+    let kappa: Vec<f64> = (0..=n)
+        .map(|i| {
+            curve
+                .curvature_magnitude(f64::from(i) / f64::from(n))
+                .unwrap()
+        })
+        .collect();
+    let sampled: Vec<f64> = (1..n as usize)
+        .filter(|&i| (kappa[i] - kappa[i - 1]) * (kappa[i + 1] - kappa[i]) < 0.0)
+        .map(|i| i as f64 / f64::from(n))
+        .collect();
+    assert_eq!(found.len(), 9, "{found:?}");
+    assert_eq!(
+        sampled.len(),
+        found.len(),
+        "sampled {sampled:?} found {found:?}"
+    );
+    for (s, f) in sampled.iter().zip(&found) {
+        assert!((s - f).abs() < 1e-5, "sampled {s} found {f}");
+    }
+}

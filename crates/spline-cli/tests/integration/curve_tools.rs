@@ -232,7 +232,9 @@ fn arclength_at_extreme_scales() {
     // distance used to come out 0.
     let hits = spline(&["closest", &tiny, "--points", "[[0, 1e-295]]"]).json();
     let d = num(&hits[0]["distance"]);
-    assert!((d / 1e-295 - 1.0).abs() < 1e-12, "{d}");
+    // The closest point is the segment's end (3e-300, 4e-300).
+    let expected = 3e-300f64.hypot(1e-295 - 4e-300);
+    assert!((d / expected - 1.0).abs() < 1e-12, "{d} vs {expected}");
 }
 
 #[test]
