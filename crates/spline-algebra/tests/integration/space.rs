@@ -338,7 +338,6 @@ fn space_numerator_hessians_agree_with_hyper_dual_numbers() {
 /// a minimum at u ≈ 0.3440) were missed. Checked against dense sampling of κ.
 #[test]
 fn extrema_where_the_numerator_is_small_against_its_largest_coefficient() {
-    use spline_geom::ParamCurve;
     let curve = BSpline::from_knots(
         3,
         vec![
