@@ -522,15 +522,15 @@ impl NdSpline {
             .knots
             .iter()
             .all(|kv| kv.degree() == self.dims.knots[0].degree());
-        if nu.iter().all(|&n| n == 0) && degrees_equal {
+        if !vanishes && degrees_equal {
             macro_rules! fixed {
                 ($d:literal) => {
                     match self.dims.knots[0].degree() {
-                        1 => return Ok(self.eval_fixed::<$d, 2>(xi, extrapolate, out)),
-                        2 => return Ok(self.eval_fixed::<$d, 3>(xi, extrapolate, out)),
-                        3 => return Ok(self.eval_fixed::<$d, 4>(xi, extrapolate, out)),
-                        4 => return Ok(self.eval_fixed::<$d, 5>(xi, extrapolate, out)),
-                        5 => return Ok(self.eval_fixed::<$d, 6>(xi, extrapolate, out)),
+                        1 => return Ok(self.eval_fixed::<$d, 2>(xi, nu, extrapolate, out)),
+                        2 => return Ok(self.eval_fixed::<$d, 3>(xi, nu, extrapolate, out)),
+                        3 => return Ok(self.eval_fixed::<$d, 4>(xi, nu, extrapolate, out)),
+                        4 => return Ok(self.eval_fixed::<$d, 5>(xi, nu, extrapolate, out)),
+                        5 => return Ok(self.eval_fixed::<$d, 6>(xi, nu, extrapolate, out)),
                         _ => {}
                     }
                 };
@@ -645,12 +645,14 @@ impl NdSpline {
         Self::from_knot_vectors(knots, c, m, self.extrapolate)
     }
 
-    /// Values in `D` dimensions of degree `N − 1` in every dimension (see
-    /// [`NdSpline::eval_into`]): basis rows and spans on the stack, the tensor sum as `N` or
-    /// `N²` dot products of `N` coefficients. Returns the number of NaN rows.
+    /// Values or partial derivatives of orders `nu` (each at most `N − 1`) in `D` dimensions
+    /// of degree `N − 1` in every dimension (see [`NdSpline::eval_into`]): basis rows and
+    /// spans on the stack, the tensor sum as `N` or `N²` dot products of `N` coefficients.
+    /// Returns the number of NaN rows.
     fn eval_fixed<const D: usize, const N: usize>(
         &self,
         xi: &[f64],
+        nu: &[usize],
         extrapolate: bool,
         out: &mut [f64],
     ) -> usize {
@@ -659,7 +661,9 @@ impl NdSpline {
         let c = &self.coefficients;
         let domains: [(f64, f64); D] = std::array::from_fn(|e| dims.knots[e].domain());
         let strides: [usize; D] = std::array::from_fn(|e| dims.strides[e]);
+        let orders: [usize; D] = std::array::from_fn(|e| nu[e]);
         let mut hints = [usize::MAX; D];
+        let mut scratch = [[0.0; N]; N];
         let mut nan = 0;
         for (x, row) in xi.chunks_exact(D).zip(out.chunks_exact_mut(m)) {
             let mut basis = [[0.0; N]; D];
@@ -669,7 +673,19 @@ impl NdSpline {
                 let u = x[e];
                 let (a, b) = domains[e];
                 let kv = &dims.knots[e];
-                let span = if u >= a && u <= b {
+                let inside = u >= a && u <= b;
+                let order = orders[e];
+                let span = if order > 0 && (inside || (extrapolate && u.is_finite())) {
+                    let span = if inside {
+                        dims.batches[e].span_from(kv, u, hints[e])
+                    } else {
+                        kv.span_in_domain(u)
+                    };
+                    let table = scratch.as_flattened_mut();
+                    kv.basis_derivatives(span, u, order, &mut table[..(order + 1) * N]);
+                    basis[e] = scratch[order];
+                    span
+                } else if inside {
                     let (span, v) = dims.batches[e].eval_fixed_from::<N>(kv, u, hints[e]);
                     basis[e] = v;
                     span

@@ -181,6 +181,25 @@ const QUAD_3D: [f64; 4] = [
     3.029016821038677,
 ];
 
+const CUBIC_2D_NU21: [f64; 10] = [
+    -308.8235792562206,
+    130.34147275525126,
+    135.5387169562211,
+    105.20369531130794,
+    -11458.135423227744,
+    -1231.186792590971,
+    -507123.84079256305,
+    -338691.82138045545,
+    -14285.30031292247,
+    -15154.847995898024,
+];
+const QUAD_3D_NU101: [f64; 4] = [
+    -2.0631167159110504,
+    -3.31971302500472,
+    -10.061928501931098,
+    -111.19095754249567,
+];
+
 /// `c[i] = sin(1 + 0.7 i)`, as the reference script builds them.
 fn coeffs(n: usize) -> Vec<f64> {
     (0..n).map(|i| (1.0 + 0.7 * i as f64).sin()).collect()
@@ -409,6 +428,7 @@ fn equal_degrees_use_the_fixed_kernels() {
     let s = NdSpline::new(vec![tc.clone(), tc], coeffs(98), &[3, 3], 2, true).unwrap();
     let x = [0.1, 0.3, 0.5, 0.5, 1.0, 0.95, 1.2, -0.3, 0.0, 1.0];
     close(&s.eval(&x, &[]).unwrap(), &CUBIC_2D, 1e-14);
+    close(&s.eval(&x, &[2, 1]).unwrap(), &CUBIC_2D_NU21, 1e-12);
     let mut out = [0.0; 10];
     assert_eq!(s.eval_into(&x, &[0, 0], false, &mut out).unwrap(), 1);
     close(&out, &CUBIC_2D_NOEXT, 1e-14);
@@ -423,6 +443,7 @@ fn equal_degrees_use_the_fixed_kernels() {
     .unwrap();
     let x = [0.1, 0.3, 0.7, 0.6, 0.6, 0.0, 1.0, 0.95, 0.2, 1.2, -0.3, 0.5];
     close(&s.eval(&x, &[]).unwrap(), &QUAD_3D, 1e-14);
+    close(&s.eval(&x, &[1, 0, 1]).unwrap(), &QUAD_3D_NU101, 1e-12);
     let mut out = [0.0; 2];
     let n = s
         .eval_into(
