@@ -13,10 +13,11 @@
 
 mod columns;
 mod curve;
-mod nd;
 mod fitting;
+mod nd;
 mod nurbs;
 mod scipy_fit;
+mod splrep;
 
 use numpy::{PyArray1, PyReadonlyArray1};
 use pyo3::create_exception;
@@ -111,5 +112,6 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     fitting::register(m)?;
     nurbs::register(m)?;
     scipy_fit::register(m)?;
+    splrep::register(m)?;
     Ok(())
 }

@@ -9,7 +9,7 @@ use spline::geom::{NdSpline, knot_vectors};
 
 /// A tensor-product spline with `columns` value columns (see `spline.NdBSpline`).
 #[pyclass(frozen, module = "spline._core")]
-pub(crate) struct NdColumns(NdSpline);
+pub(crate) struct NdColumns(pub(crate) NdSpline);
 
 #[pymethods]
 impl NdColumns {

@@ -15,7 +15,7 @@ use spline::fit::{
 };
 
 /// Knots and row-major coefficients of a fitted spline.
-type KnotsAndCoefficients<'py> = (Bound<'py, PyArray1<f64>>, Bound<'py, PyArray1<f64>>);
+pub(crate) type KnotsAndCoefficients<'py> = (Bound<'py, PyArray1<f64>>, Bound<'py, PyArray1<f64>>);
 
 /// Column `j` of a row-major matrix of `m` columns.
 fn column(flat: &[f64], m: usize, j: usize) -> Vec<f64> {
@@ -246,11 +246,30 @@ fn lsq_method(name: &str) -> PyResult<LsqMethod> {
     }
 }
 
+/// scipy's `make_ndbspl` (the library's): the tensor-product interpolant of values on the
+/// grid `points` (`values` flat, row-major `m_1 × … × m_d × columns`), not-a-knot in every
+/// dimension.
+#[pyfunction]
+fn make_ndbspl_columns(
+    py: Python<'_>,
+    points: Vec<Vec<f64>>,
+    values: PyReadonlyArray1<'_, f64>,
+    k: Vec<usize>,
+    columns: usize,
+) -> PyResult<crate::nd::NdColumns> {
+    let values = slice(&values, "values")?;
+    let grid: Vec<&[f64]> = points.iter().map(Vec::as_slice).collect();
+    py.detach(|| spline::fit::make_ndbspl(&grid, values, &k, columns))
+        .py()
+        .map(crate::nd::NdColumns)
+}
+
 /// Registers the functions.
 pub(crate) fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(interp_columns, m)?)?;
     m.add_function(wrap_pyfunction!(interp_spline, m)?)?;
     m.add_function(wrap_pyfunction!(lsq_spline, m)?)?;
+    m.add_function(wrap_pyfunction!(make_ndbspl_columns, m)?)?;
     m.add_function(wrap_pyfunction!(not_a_knot, m)?)?;
     m.add_function(wrap_pyfunction!(natural_columns, m)?)?;
     m.add_function(wrap_pyfunction!(lsq_columns, m)?)?;

@@ -28,6 +28,7 @@ from ._bspline import (
     read_json,
 )
 from ._nd import NdBSpline, make_ndbspl
+from ._splrep import generate_knots, make_splprep, make_splrep
 from ._nurbs import NurbsCurve, NurbsSurface
 from ._fit import (
     CurvatureExtremum,
@@ -50,6 +51,9 @@ __all__ = [
     "read_json",
     "NdBSpline",
     "make_ndbspl",
+    "generate_knots",
+    "make_splrep",
+    "make_splprep",
     "NurbsCurve",
     "NurbsSurface",
     "CurvatureExtremum",

@@ -188,7 +188,7 @@ def make_ndbspl(points, values, k=3, *, solver=None, **solver_args):
     values = np.asarray(values)
     tail = values.shape[ndim:]
     cc, is_complex = _real_columns(values.reshape(prod(xi_shape), *tail))
-    core = _core.make_ndbspl(
+    core = _core.make_ndbspl_columns(
         [list(map(float, p)) for p in points], cc.reshape(-1), [int(v) for v in k], cc.shape[1]
     )
     t = tuple(np.asarray(tt) for tt in core.knots())
