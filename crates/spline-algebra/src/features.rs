@@ -47,7 +47,9 @@ pub trait CurveFeatures<T: Scalar> {
 ///
 /// Where the function vanishes on a whole piece (a straight segment, a circular arc) and
 /// changes sign across it, the middle of the piece is reported. Zeros at the ends of the
-/// domain are not reported (the sign is known on one side only).
+/// domain are not reported (the sign is known on one side only), except at the seam of a
+/// closed curve (its end meets its start with the same unit tangent): there the signs
+/// before the end and after the start decide, and the feature is reported at the start.
 ///
 /// ```
 /// use nalgebra::Vector2;
@@ -133,11 +135,15 @@ impl<T: Scalar> CurveFeatures<T> for BSpline<T, Vector2<T>> {
         let h4 = algebra.invariant_value(Invariant::H4, &points, Form::Bernstein)?;
         let g = algebra.g_value(&points, Form::Bernstein)?;
         let constant = g.control_points().iter().all(|c| *c == T::zero());
-        Ok(PlanarFeatures {
+        let mut features = PlanarFeatures {
             inflections: sign_change_params(&h4, accuracy)?,
             curvature_extrema: sign_change_params(&g, accuracy)?,
             constant_curvature: constant.then(|| middle_curvature(self)).transpose()?,
-        })
+        };
+        if !constant {
+            add_seam_features(self, &h4, &g, &mut features)?;
+        }
+        Ok(features)
     }
 }
 
@@ -171,11 +177,15 @@ impl<T: Scalar> CurveFeatures<T> for NurbsCurve<T, 2> {
         let (det, g) = rational_planar(self, &frame, false, accuracy)?;
         let constant = g.is_zero();
         let (det, g) = (det.value, g.value);
-        Ok(PlanarFeatures {
+        let mut features = PlanarFeatures {
             inflections: sign_change_params(&det, accuracy)?,
             curvature_extrema: sign_change_params(&g, accuracy)?,
             constant_curvature: constant.then(|| middle_curvature(self)).transpose()?,
-        })
+        };
+        if !constant {
+            add_seam_features(self, &det, &g, &mut features)?;
+        }
+        Ok(features)
     }
 }
 
@@ -329,6 +339,59 @@ pub(crate) fn check_feature_degree(
 }
 
 /// The signed curvature in the middle of the domain (of a curve whose curvature is constant).
+/// The features at the seam of a closed curve: where the curve ends where it starts with
+/// the same unit tangent (a closed contour, an ellipse made of rational arcs), the sign of
+/// `κ` (`inflection`'s numerator) and of `κ′` (`extremum`'s numerator) just before the end
+/// and just after the start decide an inflection or an extremum at the start `a`, which the
+/// open-interval analysis cannot see (the sign is known on one side only there).
+fn add_seam_features<T: Scalar, C: PlanarCurve<T>>(
+    curve: &C,
+    inflection: &BSpline<T, T>,
+    extremum: &BSpline<T, T>,
+    features: &mut PlanarFeatures<T>,
+) -> Result<()> {
+    let (a, b) = curve.domain();
+    let size = curve
+        .control_polygon()
+        .iter()
+        .fold(T::zero(), |m, p| m.max(p.amax()));
+    let closes = (curve.eval(a)? - curve.eval(b)?).amax() <= size * cast::<T>(1e-12);
+    if !closes {
+        return Ok(());
+    }
+    let turn = (curve.unit_tangent(a)? - curve.unit_tangent(b)?).norm();
+    if !(turn <= cast::<T>(1e-9)) {
+        return Ok(());
+    }
+    // Signs one-sidedly: the value at `a` is the right limit, at `b` the left limit; where
+    // the numerator vanishes at the seam (an ellipse's vertex), its slope gives the sign
+    // next to it.
+    let crosses = |f: &BSpline<T, T>| -> Result<bool> {
+        let zero = f
+            .control_points()
+            .iter()
+            .fold(T::zero(), |m, c| m.max(c.abs()))
+            * cast::<T>(1e-12);
+        let side = |u: T, inward: T| -> Result<T> {
+            let d = f.derivatives(u, 1)?;
+            Ok(if d[0].abs() > zero {
+                d[0]
+            } else {
+                d[1] * inward
+            })
+        };
+        let (before, after) = (side(b, -T::one())?, side(a, T::one())?);
+        Ok(before * after < T::zero())
+    };
+    if crosses(inflection)? && features.inflections.first() != Some(&a) {
+        features.inflections.insert(0, a);
+    }
+    if crosses(extremum)? && features.curvature_extrema.first() != Some(&a) {
+        features.curvature_extrema.insert(0, a);
+    }
+    Ok(())
+}
+
 fn middle_curvature<T: Scalar, C: PlanarCurve<T>>(curve: &C) -> Result<T> {
     let (a, b) = curve.domain();
     curve.signed_curvature((a + b) * cast::<T>(0.5))

@@ -102,8 +102,8 @@ fn circles_and_straight_segments_have_no_features() {
                 f.curvature_extrema.is_empty() && f.inflections.is_empty(),
                 "{construction:?} {radius}: {f:?}"
             );
-            // Squeezed by 1e-6 in y: an ellipse, with vertices at u = 0, ¼, ½, ¾ (the
-            // interior ones found).
+            // Squeezed by 1e-6 in y: an ellipse, with vertices at u = 0, ¼, ½, ¾ (the one
+            // at the seam u = 0 found as the closed curve's: its end meets its start).
             let ellipse = NurbsCurve::from_knots(
                 2,
                 circle.knots().knots().to_vec(),
@@ -118,9 +118,10 @@ fn circles_and_straight_segments_have_no_features() {
             let f = planar_features(&ellipse, 1e-12).unwrap();
             assert_eq!(
                 f.curvature_extrema.len(),
-                3,
+                4,
                 "{construction:?} {radius}: {f:?}"
             );
+            assert_eq!(f.curvature_extrema[0], 0.0);
         }
     }
     // A rational parabola-like curve with collinear control points: a straight segment.
@@ -407,4 +408,35 @@ fn rational_numerator_hessians_agree_with_hyper_dual_numbers() {
     }
     assert_eq!(hg.nrows(), rows);
     assert!(checked > 100);
+}
+
+/// An ellipse with a vertex at the seam (a NURBS circle stretched along its first axis, as
+/// `spline make circle` then a scaling gives): the closed curve's four vertices, the one at
+/// the start included (issue 25: three were reported); an open arc of the same ellipse keeps
+/// only its interior vertices.
+#[test]
+fn a_closed_curve_has_its_feature_at_the_seam() {
+    use spline_geom::{CircleConstruction, Frame};
+    for construction in [CircleConstruction::Square, CircleConstruction::Triangle] {
+        let circle =
+            NurbsCurve::circle(&Frame::planar(Vector2::zeros()), 1.0, construction).unwrap();
+        let ellipse: NurbsCurve<f64, 2> =
+            circle.map_control_points(|p| Vector2::new(2.0 * p.x, p.y));
+        let f = planar_features(&ellipse, 1e-13).unwrap();
+        assert_eq!(f.curvature_extrema.len(), 4, "{construction:?}: {f:?}");
+        for &u in &f.curvature_extrema {
+            let p = ellipse.eval(u).unwrap();
+            // Closed form: the vertices (±2, 0) and (0, ±1).
+            let p: Vector2<f64> = p;
+            let on_x = p.y.abs() < 1e-10 && (p.x.abs() - 2.0).abs() < 1e-10;
+            let on_y = p.x.abs() < 1e-10 && (p.y.abs() - 1.0).abs() < 1e-10;
+            assert!(on_x || on_y, "{p}");
+        }
+        assert!(f.inflections.is_empty());
+        // The same ellipse cut open before its end: no seam, the vertex at u = 0 is an end.
+        let (a, b) = ellipse.domain();
+        let (open, _) = ellipse.split(a + 0.9 * (b - a)).unwrap();
+        let f = planar_features(&open, 1e-13).unwrap();
+        assert!(f.curvature_extrema.iter().all(|&u| u > a), "{f:?}");
+    }
 }
