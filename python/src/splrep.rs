@@ -3,7 +3,7 @@
 //! the arguments with scipy's words and builds the `BSpline`.
 
 use crate::{IntoPy, array, bad_input, slice};
-use numpy::PyReadonlyArray1;
+use numpy::{PyArray1, PyReadonlyArray1};
 use pyo3::prelude::*;
 use spline::ControlPoint;
 use spline::fit::{SplrepOptions, generate_knots, make_splrep};
@@ -59,7 +59,8 @@ macro_rules! by_dim {
 }
 
 /// The fit of `make_splrep` (`dim = 0`: scalar values) or `make_splprep` (`dim`
-/// coordinates, `x` the parameters): `(t, c)` with `c` row-major.
+/// coordinates, `x` the parameters): `(t, c, converged)` with `c` row-major; `converged`
+/// is false when the residual target was not met (FITPACK's `ier` 2 or 3).
 #[pyfunction]
 #[pyo3(signature = (x, y, dim, w, xb, xe, k, s, t, nest))]
 #[allow(clippy::too_many_arguments)]
@@ -75,7 +76,7 @@ fn splrep_fit<'py>(
     s: f64,
     t: Option<PyReadonlyArray1<'py, f64>>,
     nest: Option<usize>,
-) -> PyResult<crate::scipy_fit::KnotsAndCoefficients<'py>> {
+) -> PyResult<(Bound<'py, PyArray1<f64>>, Bound<'py, PyArray1<f64>>, bool)> {
     let (x, y) = (slice(&x, "x")?, slice(&y, "y")?);
     let w = w.as_ref().map(|w| slice(w, "w")).transpose()?;
     let t = t.as_ref().map(|t| slice(t, "t")).transpose()?;
@@ -88,7 +89,7 @@ fn splrep_fit<'py>(
         t,
         nest,
     };
-    let (knots, coefficients) = by_dim!(dim, P => {
+    let (knots, coefficients, converged) = by_dim!(dim, P => {
         let values: Vec<P> = points(y);
         py.detach(|| make_splrep(x, &values, &options)).py().map(|fit| {
             let flat: Vec<f64> = fit
@@ -97,10 +98,10 @@ fn splrep_fit<'py>(
                 .iter()
                 .flat_map(|p| (0..P::DIM).map(move |i| p.coord(i)))
                 .collect();
-            (fit.spline.knots().knots().to_vec(), flat)
+            (fit.spline.knots().knots().to_vec(), flat, fit.converged)
         })
     })?;
-    Ok((array(py, knots), array(py, coefficients)))
+    Ok((array(py, knots), array(py, coefficients), converged))
 }
 
 /// Every knot vector of FITPACK's first stage (`generate_knots`).

@@ -2,7 +2,8 @@
 
 Loaded before scipy's ``interpolate/tests/test_bsplines.py`` is imported, it binds
 ``spline.BSpline``, ``spline.make_interp_spline``… in ``scipy.interpolate`` and in the private
-modules the test file imports them from (``_bsplines``, ``_ndbspline``, ``_fitpack_repro``),
+modules the test file imports them from (``_bsplines``, ``_ndbspline``, ``_fitpack_repro``)
+and in ``_fitpack_py`` (whose ``splev``… recognise a ``BSpline`` by that binding),
 so the unmodified test file tests this package. A name the package does not have yet is
 bound to a stub that raises ``NotImplementedError``: its tests fail instead of silently
 running scipy's own code.
@@ -29,6 +30,11 @@ MODULES = (
     "scipy.interpolate._bsplines",
     "scipy.interpolate._ndbspline",
     "scipy.interpolate._fitpack_repro",
+    # splev, splint, sproot, insert, splder, splantider dispatch on isinstance(tck, BSpline)
+    # with this module's binding, then call the object's own methods.
+    "scipy.interpolate._fitpack_py",
+    # PPoly.from_spline likewise.
+    "scipy.interpolate._interpolate",
 )
 
 

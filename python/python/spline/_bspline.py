@@ -118,6 +118,10 @@ class BSpline:
     2.0
     """
 
+    #: scipy's functions that accept a ``BSpline`` (``PPoly.from_spline``) convert arrays
+    #: with the spline's array namespace; this package is numpy only.
+    _asarray = staticmethod(np.asarray)
+
     def __init__(self, t: ArrayLike, c: ArrayLike, k: int, extrapolate=True, axis: int = 0):
         self.k = operator.index(k)
         self._c = np.asarray(c)

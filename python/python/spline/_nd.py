@@ -133,6 +133,8 @@ class NdBSpline:
         """The tensor-product collocation matrix at the points ``xvals`` (shape
         ``(npts, ndim)``) as a ``scipy.sparse.csr_array``."""
         xvals = np.asarray(xvals, dtype=float)
+        if xvals.ndim != 2:
+            raise _core.SplineError(f"Expect xvals of shape (npts, ndim), got {xvals.shape}.")
         ndim = xvals.shape[-1]
         if len(t) != ndim:
             raise _core.SplineError(

@@ -6,6 +6,7 @@ scipy's words."""
 from __future__ import annotations
 
 import operator
+import warnings
 
 import numpy as np
 
@@ -63,6 +64,23 @@ def _validate_inputs(x, y, w, k, s, xb, xe, parametric):
     return x, np.ascontiguousarray(y), w, k, float(s), xb, xe
 
 
+def _fit(x, y, dim, w, xb, xe, k, s, t, nest):
+    """The library's fit; warns as scipy does when the residual target was not met."""
+    knots, c, converged = _core.splrep_fit(x, y, dim, w, xb, xe, k, s, t, nest)
+    if not converged:
+        warnings.warn(
+            RuntimeWarning(
+                "The maximal number of iterations for finding a smoothing spline with "
+                "fp=s has been reached, or the iteration did not decrease fp: probably s "
+                "too small. There is an approximation returned but the corresponding "
+                "weighted sum of squared residuals does not satisfy the condition "
+                "abs(fp-s)/s < tol."
+            ),
+            stacklevel=3,
+        )
+    return knots, c
+
+
 def _check_nest(nest, k, t):
     if nest is not None:
         if nest < 2 * (k + 1):
@@ -79,7 +97,11 @@ def generate_knots(x, y, *, w=None, xb=None, xe=None, k=3, s=0, nest=None, bc_ty
     if s == 0:
         if nest is not None or w is not None:
             raise _core.SplineError("s == 0 is interpolation only")
-        yield _core.not_a_knot(np.ascontiguousarray(x, dtype=float), operator.index(k))
+        k = operator.index(k)
+        t = _core.not_a_knot(np.ascontiguousarray(x, dtype=float), k)
+        x_dtype = np.asarray(x).dtype
+        # scipy's knots keep the data's dtype where they are data (odd k)
+        yield t.astype(x_dtype) if k % 2 == 1 and np.all(t == t.astype(x_dtype)) else t
         return
     parametric = np.ndim(y) == 2
     x, y, w, k, s, xb, xe = _validate_inputs(x, y, w, k, s, xb, xe, parametric=parametric)
@@ -101,7 +123,7 @@ def make_splrep(x, y, *, w=None, xb=None, xe=None, k=3, s=0, t=None, nest=None, 
     x, y, w, k, s, xb, xe = _validate_inputs(x, y, w, k, s, xb, xe, parametric=False)
     tt = None if t is None else np.ascontiguousarray(t, dtype=float)
     nest = _check_nest(nest, k, tt)
-    knots, c = _core.splrep_fit(x, y.reshape(-1), 0, w, xb, xe, k, s, tt, nest)
+    knots, c = _fit(x, y.reshape(-1), 0, w, xb, xe, k, s, tt, nest)
     return BSpline.construct_fast(knots, c, k)
 
 
@@ -123,6 +145,6 @@ def make_splprep(x, *, w=None, u=None, ub=None, ue=None, k=3, s=0, t=None, nest=
     u, x, w, k, s, ub, ue = _validate_inputs(u, x, w, k, s, ub, ue, parametric=True)
     tt = None if t is None else np.ascontiguousarray(t, dtype=float)
     nest = _check_nest(nest, k, tt)
-    knots, c = _core.splrep_fit(u, x.reshape(-1), x.shape[1], w, ub, ue, k, s, tt, nest)
+    knots, c = _fit(u, x.reshape(-1), x.shape[1], w, ub, ue, k, s, tt, nest)
     cc = c.reshape(-1, x.shape[1]).T
     return BSpline(knots, cc, k, axis=1), u
