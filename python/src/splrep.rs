@@ -12,6 +12,9 @@ use spline::nalgebra::SVector;
 /// The largest number of coordinates of `make_splprep`'s points.
 const MAX_SPLPREP_DIM: usize = 6;
 
+/// Knots, row-major coefficients and whether the residual target was met.
+type SplrepFit<'py> = (Bound<'py, PyArray1<f64>>, Bound<'py, PyArray1<f64>>, bool);
+
 /// Points of type `P` from a flat row-major array.
 fn points<P: ControlPoint<f64>>(flat: &[f64]) -> Vec<P> {
     flat.chunks_exact(P::DIM)
@@ -76,7 +79,7 @@ fn splrep_fit<'py>(
     s: f64,
     t: Option<PyReadonlyArray1<'py, f64>>,
     nest: Option<usize>,
-) -> PyResult<(Bound<'py, PyArray1<f64>>, Bound<'py, PyArray1<f64>>, bool)> {
+) -> PyResult<SplrepFit<'py>> {
     let (x, y) = (slice(&x, "x")?, slice(&y, "y")?);
     let w = w.as_ref().map(|w| slice(w, "w")).transpose()?;
     let t = t.as_ref().map(|t| slice(t, "t")).transpose()?;
