@@ -3,7 +3,9 @@
 //! A virtual environment `target/python-venv` gets numpy, scipy, pytest, maturin and
 //! dask (first run only); the package is built as a release abi3 wheel by maturin in the
 //! workspace's target directory (the library's compiled crates are shared with the other
-//! release builds) and installed into it, then pytest runs the suite.
+//! release builds) and installed into it, then pytest runs the suite — including
+//! `tests/test_scipy_suite.py`, scipy's own `test_bsplines.py` run against the package, which
+//! fails when its passes fall below the bar stored there.
 
 use crate::bench::{ensure_venv_with, target_dir};
 use std::path::{Path, PathBuf};
