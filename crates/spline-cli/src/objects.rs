@@ -133,6 +133,16 @@ pub fn classify(value: Value) -> Result<Object> {
             ),
         ));
     }
+    // The reports of the tool (`smooth`, `offset`, `reduce`, `smoothing`, `arclength
+    // --reparametrize`, `approximate-surface`) hold their object under "curve" or
+    // "surface": every reader accepts what the tool writes.
+    if value.get("knots").is_none() {
+        for key in ["curve", "surface"] {
+            if let Some(inner) = value.get(key).filter(|v| v.is_object()) {
+                return classify(inner.clone());
+            }
+        }
+    }
     if value.get("degree").is_some_and(Value::is_array) {
         return surface_from_value(value);
     }

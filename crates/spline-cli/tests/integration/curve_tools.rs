@@ -61,6 +61,27 @@ fn intersect_two_curves_and_one_with_itself() {
     assert_eq!(hits.as_array().unwrap().len(), 1, "{hits}");
 }
 
+/// Reports with an object inside (`smooth`, `offset`, `arclength --reparametrize`) are read
+/// wherever an object is: `spline smooth x.dat | spline eval - …` (issue 25: "unknown field
+/// closed").
+#[test]
+fn reports_compose_with_every_reader() {
+    let airfoil = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../../data/airfoils/clarkv.dat"
+    );
+    let run = spline(&["smooth", airfoil, "--control-points", "12"]);
+    let report = run.json();
+    let values = spline_with_stdin(&["eval", "-", "--at", "[0.5]"], &run.stdout);
+    let alone = file(&report["curve"]);
+    let expected = spline(&["eval", &alone, "--at", "[0.5]"]).json();
+    assert_eq!(values, expected);
+    let offset = spline(&["offset", &parabola(), "--distance", "0.1"]);
+    assert_eq!(offset.status, 0, "{}", offset.stderr);
+    let length = spline_with_stdin(&["arclength", "-"], &offset.stdout);
+    assert!(num(&length["length"]) > 0.0, "{length}");
+}
+
 /// Runs the tool with `input` on its standard input; its output as JSON, asserting success.
 fn spline_with_stdin(args: &[&str], input: &str) -> Value {
     use std::io::Write;
