@@ -1,7 +1,7 @@
 //! scipy's fitting functions for many columns (`make_interp_spline`, `make_lsq_spline`,
-//! `make_smoothing_spline`): each column of the row-major `len(x) × m` data goes through the
-//! library's scalar fit on the same knots (`interpolate_with_knots`, `natural_cubic`,
-//! `LeastSquares`, `smoothing_spline`). `spline._bspline` validates the arguments with scipy's
+//! `make_smoothing_spline`, `make_ndbspl`) as the library implements them; the smoothing
+//! spline runs the library's scalar fit per column of the row-major `len(x) × m` data
+//! (scipy chooses λ per column). `spline._bspline` validates the arguments with scipy's
 //! words and moves the axes.
 
 use crate::columns::Columns;
@@ -10,8 +10,7 @@ use numpy::{PyArray1, PyReadonlyArray1};
 use pyo3::prelude::*;
 use spline::KnotVector;
 use spline::fit::{
-    InterpBc, LeastSquares, LsqMethod, SmoothingParameter, interpolate_with_knots,
-    make_interp_spline, make_lsq_spline, natural_cubic, smoothing_spline,
+    InterpBc, LsqMethod, SmoothingParameter, make_interp_spline, make_lsq_spline, smoothing_spline,
 };
 
 /// Knots and row-major coefficients of a fitted spline.
@@ -41,104 +40,6 @@ fn check_rows(x: &[f64], y: &[f64], m: usize) -> PyResult<()> {
         )));
     }
     Ok(())
-}
-
-/// Interpolation of every column at `x` on the knots `t` of degree `k`: the coefficients,
-/// row-major (`len(t) − k − 1` rows × `m`).
-#[pyfunction]
-fn interp_columns<'py>(
-    py: Python<'py>,
-    x: PyReadonlyArray1<'py, f64>,
-    y: PyReadonlyArray1<'py, f64>,
-    m: usize,
-    t: PyReadonlyArray1<'py, f64>,
-    k: usize,
-) -> PyResult<Bound<'py, PyArray1<f64>>> {
-    let (x, y) = (slice(&x, "x")?, slice(&y, "y")?);
-    check_rows(x, y, m)?;
-    let knots = KnotVector::new(k, slice(&t, "t")?.to_vec()).py()?;
-    let rows = knots.num_basis();
-    let columns = py
-        .detach(|| {
-            (0..m)
-                .map(|j| {
-                    interpolate_with_knots(&knots, x, &column(y, m, j))
-                        .map(|s| s.control_points().to_vec())
-                })
-                .collect::<spline::Result<Vec<_>>>()
-        })
-        .py()?;
-    Ok(array(py, interleave(&columns, rows)))
-}
-
-/// The natural cubic interpolant of every column (knots: the abscissae, ends four times):
-/// `(t, c)` with `c` row-major.
-#[pyfunction]
-fn natural_columns<'py>(
-    py: Python<'py>,
-    x: PyReadonlyArray1<'py, f64>,
-    y: PyReadonlyArray1<'py, f64>,
-    m: usize,
-) -> PyResult<KnotsAndCoefficients<'py>> {
-    let (x, y) = (slice(&x, "x")?, slice(&y, "y")?);
-    check_rows(x, y, m)?;
-    let splines = py
-        .detach(|| {
-            (0..m)
-                .map(|j| natural_cubic(x, &column(y, m, j)))
-                .collect::<spline::Result<Vec<_>>>()
-        })
-        .py()?;
-    let t = splines[0].knots().knots().to_vec();
-    let rows = splines[0].len();
-    let columns: Vec<Vec<f64>> = splines
-        .iter()
-        .map(|s| s.control_points().to_vec())
-        .collect();
-    Ok((array(py, t), array(py, interleave(&columns, rows))))
-}
-
-/// Weighted least squares of every column on the knots `t`: minimises
-/// $\sum_i (w_i (y_{ij} - s_j(x_i)))^2$; `method` is `"qr"` or `"norm-eq"`. The
-/// coefficients, row-major.
-#[pyfunction]
-#[pyo3(signature = (x, y, m, t, k, w, method))]
-#[allow(clippy::too_many_arguments)]
-fn lsq_columns<'py>(
-    py: Python<'py>,
-    x: PyReadonlyArray1<'py, f64>,
-    y: PyReadonlyArray1<'py, f64>,
-    m: usize,
-    t: PyReadonlyArray1<'py, f64>,
-    k: usize,
-    w: Option<PyReadonlyArray1<'py, f64>>,
-    method: &str,
-) -> PyResult<Bound<'py, PyArray1<f64>>> {
-    let (x, y) = (slice(&x, "x")?, slice(&y, "y")?);
-    check_rows(x, y, m)?;
-    let w = w.as_ref().map(|w| slice(w, "w")).transpose()?;
-    let method = match method {
-        "qr" => LsqMethod::Qr,
-        "norm-eq" => LsqMethod::NormalEquations,
-        other => return Err(bad_input(format!("Unknown method = {other:?}."))),
-    };
-    let knots = KnotVector::new(k, slice(&t, "t")?.to_vec()).py()?;
-    let rows = knots.num_basis();
-    let columns = py
-        .detach(|| {
-            (0..m)
-                .map(|j| {
-                    let values = column(y, m, j);
-                    let mut problem = LeastSquares::new(&values, x, knots.clone()).method(method);
-                    if let Some(w) = w {
-                        problem = problem.weights(w);
-                    }
-                    problem.control_points()
-                })
-                .collect::<spline::Result<Vec<_>>>()
-        })
-        .py()?;
-    Ok(array(py, interleave(&columns, rows)))
 }
 
 /// scipy's `make_smoothing_spline` for every column: λ given, or chosen per column by
@@ -266,13 +167,10 @@ fn make_ndbspl_columns(
 
 /// Registers the functions.
 pub(crate) fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
-    m.add_function(wrap_pyfunction!(interp_columns, m)?)?;
     m.add_function(wrap_pyfunction!(interp_spline, m)?)?;
     m.add_function(wrap_pyfunction!(lsq_spline, m)?)?;
     m.add_function(wrap_pyfunction!(make_ndbspl_columns, m)?)?;
     m.add_function(wrap_pyfunction!(not_a_knot, m)?)?;
-    m.add_function(wrap_pyfunction!(natural_columns, m)?)?;
-    m.add_function(wrap_pyfunction!(lsq_columns, m)?)?;
     m.add_function(wrap_pyfunction!(smoothing_columns, m)?)?;
     Ok(())
 }

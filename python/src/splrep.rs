@@ -6,7 +6,7 @@ use crate::{IntoPy, array, bad_input, slice};
 use numpy::{PyArray1, PyReadonlyArray1};
 use pyo3::prelude::*;
 use spline::ControlPoint;
-use spline::fit::{SplrepOptions, generate_knots, make_splrep};
+use spline::fit::{SplrepOptions, chord_length_parameters, generate_knots, make_splrep};
 use spline::nalgebra::SVector;
 
 /// The largest number of coordinates of `make_splprep`'s points.
@@ -140,9 +140,26 @@ fn splrep_knots(
     })
 }
 
+/// scipy's default parameters of `make_splprep`: cumulative chord lengths on `[0, 1]` of
+/// the points (flat, row-major, `dim` coordinates).
+#[pyfunction]
+fn chord_lengths<'py>(
+    py: Python<'py>,
+    points: PyReadonlyArray1<'py, f64>,
+    dim: usize,
+) -> PyResult<Bound<'py, PyArray1<f64>>> {
+    let flat = slice(&points, "x")?;
+    let u = by_dim!(dim, P => {
+        let values: Vec<P> = self::points(flat);
+        chord_length_parameters(&values).py()
+    })?;
+    Ok(array(py, u))
+}
+
 /// Registers the functions.
 pub(crate) fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(splrep_fit, m)?)?;
     m.add_function(wrap_pyfunction!(splrep_knots, m)?)?;
+    m.add_function(wrap_pyfunction!(chord_lengths, m)?)?;
     Ok(())
 }

@@ -135,9 +135,7 @@ def make_splprep(x, *, w=None, u=None, ub=None, ue=None, k=3, s=0, t=None, nest=
     _validate_bc_type(bc_type)
     x = np.stack([np.asarray(xi, dtype=float) for xi in x], axis=1)
     if u is None:
-        dp = (x[1:, :] - x[:-1, :]) ** 2
-        u = np.cumsum(np.sqrt(np.sum(dp, axis=1)))
-        u = np.r_[0.0, u / u[-1]]
+        u = _core.chord_lengths(np.ascontiguousarray(x).reshape(-1), x.shape[1])
     if s == 0:
         if t is not None or w is not None or nest is not None:
             raise _core.SplineError("s==0 is for interpolation only")
