@@ -1,7 +1,10 @@
 //! `cargo xtask bench python`: 10⁶-point evaluation through the Python package against the
 //! Rust batch (criterion, `benches/curves.rs`) and scipy's `BSpline.__call__`, in the same
 //! run (`xtask/bench/eval_python.py`). The package should be within 1.5× of the Rust batch
-//! and at least 3× faster than scipy.
+//! and at least 3× faster than scipy. Then the scipy drop-in's rows (`python/bench/scipy_rows.py`):
+//! evaluation with extrapolation, `make_interp_spline`, `make_lsq_spline`,
+//! `make_smoothing_spline` and `make_splrep` through the package and through scipy on the
+//! same data (results compared before timing), medians and the ratio.
 
 use crate::bench::{self, seconds};
 use serde_json::Value;
@@ -68,5 +71,37 @@ pub(crate) fn run(root: &Path) -> Result<(), String> {
         "targets: python within 1.5× of the Rust batch, at least 3× faster than scipy: {}",
         if ok { "met" } else { "NOT met" }
     );
+    scipy_rows(root, &python)
+}
+
+/// The scipy drop-in's rows: the same calls through the package and scipy, medians.
+fn scipy_rows(root: &Path, python: &Path) -> Result<(), String> {
+    eprintln!("bench python: the scipy drop-in's rows…");
+    let rows = bench::run_python_json(python, &root.join("python/bench/scipy_rows.py"))?;
+    let rows = rows
+        .get("rows")
+        .and_then(Value::as_array)
+        .ok_or("scipy_rows.py output lacks rows")?;
+    println!();
+    println!("scipy's B-spline API through the package and through scipy: medians per call");
+    println!(
+        "{:<36} {:>11} {:>11} {:>15}",
+        "call", "spline", "scipy", "scipy / spline"
+    );
+    for row in rows {
+        let name = row.get("name").and_then(Value::as_str).unwrap_or("?");
+        let time = |key: &str| {
+            row.get(key)
+                .and_then(Value::as_f64)
+                .ok_or_else(|| format!("scipy_rows.py row {name} lacks {key}"))
+        };
+        let (ours, scipy) = (time("spline_s")?, time("scipy_s")?);
+        println!(
+            "{name:<36} {:>11} {:>11} {:>14.1}×",
+            seconds(ours),
+            seconds(scipy),
+            scipy / ours
+        );
+    }
     Ok(())
 }
