@@ -10,6 +10,7 @@
 #![allow(rustdoc::broken_intra_doc_links)]
 
 mod algebra;
+mod cad;
 mod curves;
 mod eval;
 mod fitting;
@@ -96,6 +97,10 @@ enum Command {
     Reduce(curves::ReduceArgs),
     /// Smoothing spline of data: lambda given or by GCV (scipy), or a residual target (FITPACK).
     Smoothing(curves::SmoothingArgs),
+    /// Write curves and surfaces to a CAD file: FILE.step/.stp (STEP AP214) or FILE.igs/.iges (IGES 5.3).
+    Export(cad::ExportArgs),
+    /// Read the B-spline curves and surfaces of a STEP or IGES file: [{"id", "name", "entity", "object"}].
+    Import(cad::ImportArgs),
     /// Serve the interactive curve-design page (seed 003's labs) on 127.0.0.1; prints its URL.
     #[cfg(feature = "studio")]
     Studio(studio::StudioArgs),
@@ -131,6 +136,8 @@ fn run(command: Command) -> spline_core::Result<()> {
         Command::Arclength(args) => curves::arclength(&args),
         Command::Reduce(args) => curves::reduce(&args),
         Command::Smoothing(args) => curves::smoothing(&args),
+        Command::Export(args) => cad::export(&args),
+        Command::Import(args) => cad::import(&args),
         #[cfg(feature = "studio")]
         Command::Studio(args) => studio::studio(&args),
     }

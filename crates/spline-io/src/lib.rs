@@ -9,7 +9,9 @@ pub mod iges;
 pub mod step;
 
 use nalgebra::{Vector2, Vector3};
+use spline_core::{Error, ErrorKind, Result};
 use spline_geom::{BSpline, NurbsCurve2, NurbsCurve3, NurbsSurface3, Surface};
+use std::path::Path;
 
 /// The geometry of one imported or exported entity, converted exactly to (rational) B-splines.
 #[derive(Clone, Debug, PartialEq)]
@@ -42,4 +44,56 @@ pub struct Item {
     pub entity: String,
     /// The geometry.
     pub geometry: Geometry,
+}
+
+/// The format of a CAD file, from its extension.
+fn format_of(path: &Path) -> Result<&'static str> {
+    let extension = path
+        .extension()
+        .map(|e| e.to_string_lossy().to_ascii_lowercase())
+        .unwrap_or_default();
+    match extension.as_str() {
+        "step" | "stp" | "p21" => Ok("step"),
+        "igs" | "iges" => Ok("iges"),
+        _ => Err(Error::new(
+            ErrorKind::InvalidArgument,
+            format!(
+                "{}: unknown CAD format (the extension must be .step, .stp, .igs or .iges)",
+                path.display()
+            ),
+        )),
+    }
+}
+
+/// The items of a STEP or IGES file, by its extension ([`step::read_step`],
+/// [`iges::read_iges`]).
+///
+/// # Errors
+/// [`ErrorKind::InvalidArgument`] for another extension; [`ErrorKind::Io`] when the file
+/// cannot be read; the reader's errors, prefixed with the path.
+pub fn read_file(path: &Path) -> Result<Vec<Item>> {
+    let format = format_of(path)?;
+    let bytes =
+        std::fs::read(path).map_err(|e| Error::io(format!("read {}", path.display()), e))?;
+    let items = if format == "step" {
+        step::read_step_bytes(&bytes)
+    } else {
+        iges::read_iges_bytes(&bytes)
+    };
+    items.map_err(|e| e.context(path.display()))
+}
+
+/// Writes the items to a STEP or IGES file, by its extension ([`step::write_step`],
+/// [`iges::write_iges`]).
+///
+/// # Errors
+/// [`ErrorKind::InvalidArgument`] for another extension; [`ErrorKind::Io`] when the file
+/// cannot be written; the writer's errors.
+pub fn write_file(path: &Path, items: &[Item]) -> Result<()> {
+    let text = if format_of(path)? == "step" {
+        step::write_step(items)?
+    } else {
+        iges::write_iges(items)?
+    };
+    std::fs::write(path, text).map_err(|e| Error::io(format!("write {}", path.display()), e))
 }
