@@ -2337,6 +2337,48 @@ mod tests {
     }
 
     #[test]
+    fn transformations_of_rational_curves_and_surfaces() {
+        // The quarter circle rotated by 90° about z after a shift by x: R(C(t) + (1, 0, 0)).
+        let surface = "128,1,1,1,1,0,0,0,0,0,0.,0.,1.,1.,0.,0.,1.,1.,1.,2.,1.,4.,\
+                       0.,0.,0.,1.,0.,0.,0.,1.,0.,1.,1.,1.,0.,1.,0.,1.;";
+        let text = hand_file(&[
+            Hand(124, 0, 3, "", SHIFT_X),
+            Hand(124, 0, 0, "", ROTATE_Z),
+            Hand(126, 0, 1, "Q", &QUARTER.replace("0.25,0.75", "0.,1.")),
+            Hand(128, 0, 1, "S", surface),
+        ]);
+        let items = read_iges(&text).unwrap();
+        assert_eq!(items.len(), 2);
+        let Geometry::NurbsCurve3(c) = &items[0].geometry else {
+            panic!()
+        };
+        let Geometry::NurbsSurface(s) = &items[1].geometry else {
+            panic!()
+        };
+        let r = |p: Vector3<f64>| Vector3::new(-p.y, p.x + 1.0, p.z);
+        for t in [0.0, 0.4, 1.0] {
+            let q = Vector3::new((1.0 - t * t) / (1.0 + t * t), 2.0 * t / (1.0 + t * t), 0.0);
+            assert!((c.eval(t).unwrap() - r(q)).norm() < 1e-15, "t = {t}");
+        }
+        // The patch with P(1,1) = (1, 1, 1), the other corners those of the unit square,
+        // weights W(0,0) = 1, W(1,0) = 2, W(0,1) = 1, W(1,1) = 4
+        // (listed u fastest): w(u, v) = (1 − u)(1 − v) + 2u(1 − v) + (1 − u)v + 4uv.
+        let (u, v) = (0.25, 0.5);
+        let w = (1.0 - u) * (1.0 - v) + 2.0 * u * (1.0 - v) + (1.0 - u) * v + 4.0 * u * v;
+        let q = Vector3::new(
+            (2.0 * u * (1.0 - v) + 4.0 * u * v) / w,
+            ((1.0 - u) * v + 4.0 * u * v) / w,
+            4.0 * u * v / w,
+        );
+        assert!(
+            (s.eval(u, v).unwrap() - r(q)).norm() < 1e-15,
+            "{:?} {:?}",
+            s.eval(u, v),
+            r(q)
+        );
+    }
+
+    #[test]
     fn a_name_property_names_the_entity() {
         let params = QUARTER.replace("0.,0.,1.;", "0.,0.,1.,1,3,1,5;");
         let text = hand_file(&[
