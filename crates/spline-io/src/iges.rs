@@ -641,6 +641,8 @@ struct File<'a> {
     entries: Vec<Entry>,
     parameter: Vec<&'a str>,
     delimiters: (u8, u8),
+    /// The map of each transformation matrix (124) read, with the matrices it references.
+    chains: std::cell::RefCell<std::collections::HashMap<usize, Affine>>,
 }
 
 /// The parameters of one entity, read in order.
@@ -859,10 +861,12 @@ impl File<'_> {
     /// The transformation of an entry: its matrix (124), composed with the matrices that
     /// matrix references in turn; `None` when there is none.
     fn transform(&self, entry: &Entry) -> Result<Option<Affine>> {
-        let mut total: Option<Affine> = None;
+        // The matrices of the chain not yet known, and the known rest of the chain.
+        let mut walk: Vec<(usize, Affine)> = Vec::new();
+        let mut seen = std::collections::HashSet::new();
+        let mut tail: Option<Affine> = None;
         let mut pointer = entry.transform;
         let mut from = entry;
-        let mut visited = Vec::new();
         while pointer != 0 {
             let matrix = self.entry(pointer, from, "transformation matrix pointer")?;
             if matrix.kind != 124 {
@@ -875,14 +879,17 @@ impl File<'_> {
                     ),
                 ));
             }
-            if visited.contains(&matrix.seq) {
+            if let Some(known) = self.chains.borrow().get(&matrix.seq) {
+                tail = Some(*known);
+                break;
+            }
+            if !seen.insert(matrix.seq) {
                 return Err(parse_error(
                     Section::Directory,
                     matrix.seq,
                     "the transformation matrices reference each other in a cycle",
                 ));
             }
-            visited.push(matrix.seq);
             let mut params = self.params(matrix)?;
             let mut m = Matrix3::zeros();
             let mut t = Vector3::zeros();
@@ -892,13 +899,20 @@ impl File<'_> {
                 }
                 t[r] = params.real("translation")?;
             }
-            let this = Affine { m, t };
-            total = Some(match total {
-                None => this,
-                Some(inner) => this.after(&inner),
-            });
+            walk.push((matrix.seq, Affine { m, t }));
             pointer = matrix.transform;
             from = matrix;
+        }
+        // Each matrix first, then the ones it references: remember every chain's map, so
+        // that long shared chains are composed once.
+        let mut total = tail;
+        for (seq, this) in walk.into_iter().rev() {
+            let full = match total {
+                None => this,
+                Some(outer) => outer.after(&this),
+            };
+            self.chains.borrow_mut().insert(seq, full);
+            total = Some(full);
         }
         Ok(total)
     }
@@ -1428,6 +1442,7 @@ pub fn read_iges(text: &str) -> Result<Vec<Item>> {
         entries: parse_entries(&sections.directory)?,
         parameter: sections.parameter,
         delimiters,
+        chains: std::cell::RefCell::default(),
     };
     let mut items = Vec::new();
     for entry in &file.entries {
