@@ -18,7 +18,7 @@ const GROUP: &str = "cubic_100_ctrl_1e6_params";
 /// benchmarks and prints medians per point and the ratios.
 pub(crate) fn run(root: &Path) -> Result<(), String> {
     let target = bench::target_dir(root);
-    let python = crate::test_python::prepare(root)?;
+    let python = crate::test_python::prepare(root, crate::test_python::Build::Release)?;
     eprintln!("bench python: timing the package and scipy…");
     let py = bench::run_python_json(&python, &root.join("xtask/bench/eval_python.py"))?;
     eprintln!("bench python: running cargo bench --bench curves -- batched…");

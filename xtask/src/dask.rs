@@ -120,7 +120,7 @@ pub(crate) fn run(root: &Path, args: &[String]) -> Result<(), String> {
     let database = crate::bench_airfoils::database(&target)?;
     let out = target.join("dask");
     let dir = subset(&database, &out, limit)?;
-    let python = crate::test_python::prepare(root)?;
+    let python = crate::test_python::prepare(root, crate::test_python::Build::Release)?;
     eprintln!("dask: building the release tool");
     let status = Command::new(env!("CARGO"))
         .args(["build", "--release", "--quiet", "-p", "spline-cli"])

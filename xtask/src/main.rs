@@ -62,6 +62,7 @@ mod mutate;
 mod reproduce;
 mod test_all;
 mod test_browser;
+mod test_occt;
 mod test_python;
 
 use std::path::{Path, PathBuf};
@@ -116,9 +117,9 @@ const TASKS: &[(&str, &str)] = &[
         "exactly what CI runs (.ci/run): format check, clippy -D warnings, docs, tests",
     ),
     (
-        "test [python]",
+        "test [python | occt]",
         "the whole test suite: cargo test --workspace and the suites that need more than Rust \
-         (python: only the Python package's)",
+         (python: only the Python package's; occt: only the Open CASCADE check of STEP and IGES)",
     ),
     (
         "docs",
@@ -206,6 +207,7 @@ fn main() -> ExitCode {
         Some("test") if args.get(1).is_some_and(|a| a == "python") => {
             test_python::run_suite(&root)
         }
+        Some("test") if args.get(1).is_some_and(|a| a == "occt") => test_occt::run_suite(&root),
         Some("test") => test_all::run(&root),
         Some("docs") => run_docs(&root),
         Some("demo") => demo::run(&root),

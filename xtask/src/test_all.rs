@@ -6,7 +6,9 @@
 //! 2. The browser test of `spline studio` in headless Chromium (`test_browser`), which
 //!    installs `chromium` and `chromium-driver` with apt-get when they are missing.
 //! 3. The Python package (`python/`): built as a wheel and installed into a virtual
-//!    environment under `target/`, then its pytest suite (`test_python`).
+//!    environment under `target/`, then its pytest suite (`test_python`), scipy's own
+//!    `test_bsplines.py` with the package in scipy's place among them.
+//! 4. Open CASCADE's second opinion on the STEP and IGES files (`test_occt`).
 //!
 //! Suites that need more than the Rust toolchain (a Python virtual environment, a browser)
 //! install what they need under `target/` or through the system's package manager first, so
@@ -35,6 +37,7 @@ pub(crate) fn run(root: &Path) -> Result<(), String> {
     cargo(root, "cargo test --workspace", &["test", "--workspace"])?;
     crate::test_browser::run_browser_test(root, None)?;
     crate::test_python::run_suite(root)?;
+    crate::test_occt::run_suite(root)?;
     println!("xtask test: every suite passed");
     Ok(())
 }

@@ -1,9 +1,8 @@
 //! The Python package's suite (`python/tests`, pytest), a step of `cargo xtask test`.
 //!
 //! A virtual environment `target/python-venv` gets numpy, scipy, pytest, maturin and
-//! dask (first run only); the package is built as a release abi3 wheel by maturin in the
-//! workspace's target directory (the library's compiled crates are shared with the other
-//! release builds) and installed into it, then pytest runs the suite — including
+//! dask (first run only); the package is built as an abi3 wheel by maturin in the workspace's
+//! target directory and installed into it, then pytest runs the suite — including
 //! `tests/test_scipy_suite.py`, scipy's own `test_bsplines.py` run against the package, which
 //! fails when its passes fall below the bar stored there.
 
@@ -33,8 +32,20 @@ fn run(command: &mut Command, what: &str) -> Result<(), String> {
     }
 }
 
+/// How the wheel is compiled.
+#[derive(Clone, Copy, PartialEq, Eq)]
+pub(crate) enum Build {
+    /// The release profile: what the benchmarks and the Dask example time.
+    Release,
+    /// The dev profile (`opt-level` 1, dependencies 2), whose compiled crates are those
+    /// `cargo test --workspace` built just before in the same run: the test suite then
+    /// compiles only the binding itself, not a second, optimised copy of the whole library
+    /// (the largest single cost of a cold `cargo xtask test`).
+    Test,
+}
+
 /// The virtual environment with the package built from this tree installed: its Python.
-pub(crate) fn prepare(root: &Path) -> Result<PathBuf, String> {
+pub(crate) fn prepare(root: &Path, build: Build) -> Result<PathBuf, String> {
     let target = target_dir(root);
     let python = ensure_venv_with(
         &target,
@@ -44,14 +55,19 @@ pub(crate) fn prepare(root: &Path) -> Result<PathBuf, String> {
     )?;
     let wheels = target.join("wheels");
     let _ = std::fs::remove_dir_all(&wheels);
-    eprintln!("python: building the wheel (maturin, release)");
+    let profile = if build == Build::Release {
+        "--release"
+    } else {
+        "--profile=dev"
+    };
+    eprintln!("python: building the wheel (maturin, {profile})");
     run(
         Command::new(&python)
             .args([
                 "-m",
                 "maturin",
                 "build",
-                "--release",
+                profile,
                 "--quiet",
                 "--interpreter",
             ])
@@ -84,7 +100,7 @@ pub(crate) fn prepare(root: &Path) -> Result<PathBuf, String> {
 
 /// Builds and installs the package, then runs pytest on `python/tests`.
 pub(crate) fn run_suite(root: &Path) -> Result<(), String> {
-    let python = prepare(root)?;
+    let python = prepare(root, Build::Test)?;
     run(
         Command::new(&python)
             .args(["-m", "pytest", "-q", "-p", "no:cacheprovider", "tests"])

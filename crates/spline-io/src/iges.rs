@@ -1629,9 +1629,20 @@ fn max_coordinate(geometry: &Geometry) -> f64 {
     }
 }
 
-/// The entity parameters of an item (the containers hold finite numbers only).
+/// The entity parameters of an item (the containers hold finite numbers only). Unclamped
+/// geometry is clamped first (knots inserted at the ends of the domain: the same curve or
+/// surface on the same parameters), since readers such as Open CASCADE's take the end knots
+/// of a 126 or 128 as the ends of its domain.
 fn entity_params(item: &Item) -> Vec<String> {
-    match &item.geometry {
+    let clamped = match &item.geometry {
+        Geometry::Curve2(c) => Geometry::Curve2(c.clamped()),
+        Geometry::Curve3(c) => Geometry::Curve3(c.clamped()),
+        Geometry::NurbsCurve2(c) => Geometry::NurbsCurve2(c.clamped()),
+        Geometry::NurbsCurve3(c) => Geometry::NurbsCurve3(c.clamped()),
+        Geometry::Surface(s) => Geometry::Surface(s.clamped()),
+        Geometry::NurbsSurface(s) => Geometry::NurbsSurface(s.clamped()),
+    };
+    match &clamped {
         Geometry::Curve2(c) => {
             let points: Vec<_> = c.control_points().iter().map(lift).collect();
             let (a, b) = c.domain();
@@ -1916,6 +1927,8 @@ mod tests {
                 let text = write_iges(&[item("c", Geometry::Curve3(curve.clone()))]).unwrap();
                 assert!(text.lines().all(|l| l.len() == 80));
                 let back = one(&text);
+                // Unclamped curves come back clamped: the same curve on the same parameters.
+                let curve = curve.clamped();
                 assert_eq!(back.entity, "126");
                 assert_eq!(back.id, 1);
                 assert_eq!(back.name, "c");
@@ -1942,6 +1955,7 @@ mod tests {
             let Geometry::NurbsCurve3(c) = one(&text).geometry else {
                 panic!("degree {p}: not rational");
             };
+            let curve = curve.clamped();
             assert_eq!(bits(c.knots().knots()), bits(curve.knots().knots()));
             assert_eq!(bits(c.weights()), bits(curve.weights()));
             assert_eq!(bits3(c.control_points()), bits3(curve.control_points()));
@@ -2026,6 +2040,7 @@ mod tests {
             ])
             .unwrap();
             let items = read_iges(&text).unwrap();
+            let (poly, rational) = (poly.clamped(), rational.clamped());
             assert_eq!(items[0].entity, "128");
             let Geometry::Surface(s) = &items[0].geometry else {
                 panic!()

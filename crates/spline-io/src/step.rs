@@ -15,7 +15,8 @@
 //! - [`Item::id`] is the instance number (`#17` → 17), [`Item::entity`] the entity read
 //!   (`B_SPLINE_CURVE_WITH_KNOTS`, `B_SPLINE_SURFACE_WITH_KNOTS`, …), [`Item::name`] the name
 //!   of the face or edge that holds the geometry when it has one, else the geometry's own
-//!   `name` attribute.
+//!   `name` attribute. Curves of the parameter planes (`PCURVE`s' definitional
+//!   representations) are not returned.
 //! - Curves whose points have two coordinates are 2-D, three 3-D; a rational curve or surface
 //!   whose weights are all equal is still returned as rational (the file says so).
 //!
@@ -1130,7 +1131,31 @@ pub fn read_step_bytes(bytes: &[u8]) -> Result<Vec<Item>> {
             }
         }
     }
-    let ordered: BTreeMap<u64, &Instance> = instances.iter().map(|(k, v)| (*k, v)).collect();
+    // Curves in the parameter planes of surfaces (the PCURVEs' definitional
+    // representations) are not geometry of the model.
+    let mut parametric: std::collections::HashSet<u64> = std::collections::HashSet::new();
+    // Likewise the profiles of swept surfaces, which are part of the surface's definition
+    // (an edge that runs along one has a curve of its own).
+    for instance in instances.values() {
+        for swept in ["SURFACE_OF_REVOLUTION", "SURFACE_OF_LINEAR_EXTRUSION"] {
+            if let Some([_, Param::Reference(r), ..]) = instance.record(swept) {
+                parametric.insert(*r);
+            }
+        }
+    }
+    for instance in instances.values() {
+        if let Some([_, Param::List(items), ..]) = instance.record("DEFINITIONAL_REPRESENTATION") {
+            parametric.extend(items.iter().filter_map(|i| match i {
+                Param::Reference(r) => Some(*r),
+                _ => None,
+            }));
+        }
+    }
+    let ordered: BTreeMap<u64, &Instance> = instances
+        .iter()
+        .filter(|(k, _)| !parametric.contains(k))
+        .map(|(k, v)| (*k, v))
+        .collect();
     let mut out = Vec::new();
     for (&id, instance) in &ordered {
         if let Some(parts) = curve_parts(instance)? {
