@@ -54,12 +54,15 @@
 //!
 //! # Feature flags
 //! - `serde` (default): the JSON exchange format — `Serialize`/`Deserialize` for every curve
-//!   and surface, and [`geom::exchange`].
+//!   and surface, [`geom::exchange`], and CAD items in it (`io::Geometry::to_exchange`).
+//!
+//! CAD files (STEP, IGES) are read and written by [`io`] (`spline-io`).
 
 pub use spline_algebra as algebra;
 pub use spline_core as core;
 pub use spline_fit as fit;
 pub use spline_geom as geom;
+pub use spline_io as io;
 pub use spline_shape as shape;
 
 /// The linear algebra the containers are built on (`nalgebra`), re-exported so that the

@@ -11,6 +11,7 @@
 // reference does not apply to `#[pyfunction]`s and `#[pymethods]`.
 #![allow(clippy::needless_pass_by_value)]
 
+mod cad;
 mod columns;
 mod curve;
 mod fitting;
@@ -106,6 +107,7 @@ pub(crate) fn csr<'py>(py: Python<'py>, m: &CsrMatrix<f64>) -> Csr<'py> {
 #[pymodule]
 fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("SplineError", m.py().get_type::<SplineError>())?;
+    cad::register(m)?;
     columns::register(m)?;
     curve::register(m)?;
     nd::register(m)?;

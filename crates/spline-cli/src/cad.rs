@@ -6,7 +6,6 @@ use clap::Args;
 use nalgebra::{Vector2, Vector3};
 use serde_json::{Value, json};
 use spline_core::{Error, ErrorKind, Result};
-use spline_geom::exchange::{CurveRecord, SurfaceRecord};
 use spline_io::{Geometry, Item};
 use std::path::Path;
 
@@ -89,19 +88,6 @@ pub fn export(args: &ExportArgs) -> Result<()> {
     spline_io::write_file(Path::new(&args.out), &items)
 }
 
-/// The exchange-format record of an item.
-fn record(geometry: &Geometry) -> Result<Value> {
-    let value = match geometry {
-        Geometry::Curve2(c) => serde_json::to_value(CurveRecord::from_bspline(c)),
-        Geometry::Curve3(c) => serde_json::to_value(CurveRecord::from_bspline(c)),
-        Geometry::NurbsCurve2(c) => serde_json::to_value(CurveRecord::from_nurbs(c)),
-        Geometry::NurbsCurve3(c) => serde_json::to_value(CurveRecord::from_nurbs(c)),
-        Geometry::Surface(s) => serde_json::to_value(SurfaceRecord::from_surface(s)),
-        Geometry::NurbsSurface(s) => serde_json::to_value(SurfaceRecord::from_nurbs_surface(s)),
-    };
-    value.map_err(|e| Error::new(ErrorKind::InvalidArgument, format!("cannot encode: {e}")))
-}
-
 /// `spline import FILE`: `[{"id", "name", "entity", "object"}, …]`.
 pub fn import(args: &ImportArgs) -> Result<()> {
     io::check_stdout_open()?;
@@ -109,13 +95,13 @@ pub fn import(args: &ImportArgs) -> Result<()> {
     let records = items
         .iter()
         .map(|item| {
-            Ok(json!({
+            json!({
                 "id": item.id,
                 "name": item.name,
                 "entity": item.entity,
-                "object": record(&item.geometry)?,
-            }))
+                "object": item.geometry.to_exchange(),
+            })
         })
-        .collect::<Result<Vec<Value>>>()?;
+        .collect::<Vec<Value>>();
     io::print_json(&records)
 }

@@ -5,6 +5,8 @@
 //! name and the identifier the file gives it (a STEP instance `#id`, an IGES directory-entry
 //! sequence number).
 
+#[cfg(feature = "serde")]
+mod exchange;
 pub mod iges;
 pub mod step;
 

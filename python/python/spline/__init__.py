@@ -30,6 +30,7 @@ from ._bspline import (
 from ._nd import NdBSpline, make_ndbspl
 from ._splrep import generate_knots, make_splprep, make_splrep
 from ._nurbs import NurbsCurve, NurbsSurface
+from ._cad import CadItem, read_iges, read_step, write_iges, write_step
 from ._fit import (
     CurvatureExtremum,
     CurveFit,
@@ -56,6 +57,11 @@ __all__ = [
     "make_splprep",
     "NurbsCurve",
     "NurbsSurface",
+    "CadItem",
+    "read_step",
+    "write_step",
+    "read_iges",
+    "write_iges",
     "CurvatureExtremum",
     "CurveFit",
     "SmoothedCurve",
