@@ -8,9 +8,11 @@
 //! `BEZIER_CURVE`, `UNIFORM_CURVE`, `QUASI_UNIFORM_CURVE`) and every B-spline surface (the
 //! same forms of `B_SPLINE_SURFACE`), in 2-D or 3-D. The geometry of a B-rep comes out the
 //! same way: the surfaces of the faces (`ADVANCED_FACE`, named after the face) and the curves
-//! of the edges (`EDGE_CURVE`, named after the edge); everything that is not B-spline
-//! geometry (products, contexts, units, topology, presentation, analytic curves and
-//! surfaces) is skipped.
+//! of the edges (`EDGE_CURVE`, named after the edge), analytic ones converted exactly to
+//! NURBS (module `analytic`: lines, circles, ellipses, planes, cylinders, cones, spheres,
+//! tori, surfaces of revolution and of linear extrusion); everything that is not geometry
+//! (products, contexts, units, topology, presentation) is skipped. `TRIMMED_CURVE` and
+//! `RECTANGULAR_TRIMMED_SURFACE` give their basis geometry (their trims are not applied).
 //!
 //! - [`Item::id`] is the instance number (`#17` → 17), [`Item::entity`] the entity read
 //!   (`B_SPLINE_CURVE_WITH_KNOTS`, `B_SPLINE_SURFACE_WITH_KNOTS`, …), [`Item::name`] the name
