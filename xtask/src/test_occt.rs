@@ -5,7 +5,7 @@
 //!
 //! Open CASCADE comes from the Python package index (`cadquery-ocp-novtk`, OCCT 8 with
 //! Python bindings), installed into the test virtual environment `target/python-venv` on
-//! first use; the tool is the debug binary that `cargo test --workspace` built.
+//! first use; the tool is the debug binary that `cargo test --workspace` builds.
 
 use crate::bench::{ensure_venv_with, target_dir};
 use std::path::Path;
@@ -15,7 +15,10 @@ use std::process::Command;
 pub(crate) fn run_suite(root: &Path) -> Result<(), String> {
     let cargo = std::env::var("CARGO").unwrap_or_else(|_| "cargo".into());
     let status = Command::new(cargo)
-        .args(["build", "--package", "spline-cli"])
+        // The tool as `cargo test --workspace` builds it for its integration tests (with the
+        // features a test build unifies): after that step of `cargo xtask test`, nothing is
+        // compiled again; alone, this builds the tests too.
+        .args(["test", "--workspace", "--no-run"])
         .current_dir(root)
         .status()
         .map_err(|e| format!("occt: cannot run cargo: {e}"))?;
