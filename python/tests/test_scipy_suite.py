@@ -44,16 +44,22 @@ def run_suite(tmp_path):
     env = dict(os.environ)
     env["PYTHONPATH"] = os.pathsep.join([str(HERE), env.get("PYTHONPATH", "")])
     env["PYTHONDONTWRITEBYTECODE"] = "1"
-    subprocess.run(
+    run = subprocess.run(
         [
             sys.executable, "-m", "pytest", "-q", "-p", "no:cacheprovider",
             "-p", "_scipy_swap", "-p", "scipy.conftest",
+            # scipy's conftest is loaded by name above; without the cut pytest would also
+            # load it by path when the venv and the working directory share an ancestor
+            # (both under /tmp), and refuse the same plugin under two names.
+            f"--confcutdir={test_file.parent}",
             f"--junitxml={report}", "-o", "junit_family=xunit2",
             str(test_file),
         ],
-        cwd=tmp_path, env=env, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL,
-        timeout=1800,
+        cwd=tmp_path, env=env, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE,
+        text=True, timeout=1800,
     )
+    if not report.exists():
+        pytest.fail(f"scipy's suite did not run:\n{run.stderr[-3000:]}")
     counts = collections.defaultdict(collections.Counter)
     for case in ET.parse(report).iter("testcase"):
         cls = case.get("classname", "").rsplit(".", 1)[-1]
