@@ -106,6 +106,9 @@ pub fn parse_airfoil(text: &str) -> Result<Airfoil> {
     // The header: text lines and numeric lines that are not points, before the first point.
     let mut name = None;
     let mut body = 0;
+    // The first numeric header line: a file whose every line has three numbers is points
+    // in space, not a header followed by nothing.
+    let mut numeric_header: Option<(usize, usize)> = None;
     while body < lines.len() {
         match &lines[body].1 {
             Line::Blank => {}
@@ -115,7 +118,9 @@ pub fn parse_airfoil(text: &str) -> Result<Airfoil> {
                 }
             }
             Line::Numbers(v) if v.len() == 2 => break,
-            Line::Numbers(_) => {}
+            Line::Numbers(v) => {
+                numeric_header.get_or_insert((lines[body].0, v.len()));
+            }
         }
         body += 1;
     }
@@ -167,6 +172,14 @@ pub fn parse_airfoil(text: &str) -> Result<Airfoil> {
                 break;
             }
         }
+    }
+    if let (true, Some((line, count))) = (selig.is_empty(), numeric_header) {
+        return Err(Error::new(
+            ErrorKind::Parse,
+            format!(
+                "line {line}: expected the two coordinates of a point, got {count} numbers (planar points need two columns)"
+            ),
+        ));
     }
     finish(name, selig, AirfoilFormat::Selig)
 }
@@ -254,6 +267,14 @@ mod tests {
         assert_eq!(
             parse_airfoil("").unwrap_err().kind(),
             ErrorKind::TooFewPoints
+        );
+        // Every line with three numbers: points in space, said as such (issue 25: "the file
+        // has 0 points").
+        let err = parse_airfoil("# x y z\n1 0 0\n0.5 0.1 0\n0 0 0\n").unwrap_err();
+        assert_eq!(err.kind(), ErrorKind::Parse);
+        assert!(
+            err.to_string().contains("line 2") && err.to_string().contains("3 numbers"),
+            "{err}"
         );
     }
 }
