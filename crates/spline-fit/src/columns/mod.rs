@@ -140,9 +140,8 @@ fn not_a_knot_knots(x: &[f64], k: usize) -> Result<Vec<f64>> {
 /// automatically", "Expect t to be a 1-D sorted array_like", "Got … knots, need at least
 /// …", "Out of bounds w/ x = …", "Bad boundary conditions at …", "The number of derivatives
 /// at boundaries does not match", "Colocation matrix is singular"
-/// ([`ErrorKind::SingularSystem`]). Degree 0 is [`ErrorKind::Unsupported`]: scipy's knots
-/// `[x…, x_{-1}]` repeat the last knot twice, which [`ColumnSpline`] does not represent.
-/// Degrees above [`MAX_DEGREE`] are [`ErrorKind::DegreeTooHigh`].
+/// ([`ErrorKind::SingularSystem`]). Degree 0 gives scipy's knots `[x…, x_{-1}]` (the last
+/// one twice) and the coefficients `y`. Degrees above [`MAX_DEGREE`] are [`ErrorKind::DegreeTooHigh`].
 pub fn make_interp_spline(
     x: &[f64],
     y: &[f64],
@@ -204,10 +203,11 @@ pub fn make_interp_spline(
                 "Too much info for k=0: t and bc_type can only be None.",
             ));
         }
-        return Err(Error::new(
-            ErrorKind::Unsupported,
-            "degree-0 interpolation repeats the last knot twice (scipy's t = [x, x[-1]]), which a ColumnSpline does not represent",
-        ));
+        // scipy's t = [x, x[-1]]: the last basis function is empty, the last span gives
+        // y[-1] at x[-1] and beyond.
+        let mut knots = x.to_vec();
+        knots.push(x[n - 1]);
+        return ColumnSpline::new(knots, y.to_vec(), 0, columns);
     }
     if k == 1 && t.is_none() {
         if ends_given {

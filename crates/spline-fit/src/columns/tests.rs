@@ -275,3 +275,18 @@ fn periodic_interpolation_with_fewer_points_than_the_degree() {
         close(s.coefficients(), c, 1e-10);
     }
 }
+
+/// Degree 0 (scipy: `make_interp_spline(x, y, k=0)` has `t = [x…, x[-1]]`, `c = y`, and
+/// gives `y[-1]` at `x[-1]` and beyond, `y[0]` below `x[0]`).
+#[test]
+fn degree_zero_interpolation_is_scipys_step_function() {
+    let y = yi();
+    let s = make_interp_spline(&XI, &y, 2, 0, None, &InterpBc::NotAKnot).unwrap();
+    let mut t = XI.to_vec();
+    t.push(5.0);
+    assert_eq!(s.knots(), &t[..]);
+    close(s.coefficients(), &y, 0.0);
+    close(&s.eval(&XI, 0, Extrapolate::On).unwrap(), &y, 0.0);
+    let got = s.eval(&[-1.0, 0.2, 6.0], 0, Extrapolate::On).unwrap();
+    close(&got, &[y[0], y[1], y[0], y[1], y[16], y[17]], 0.0);
+}

@@ -1,7 +1,7 @@
 //! scipy's class methods of `BSpline` that build matrices and splines from other data:
 //! `design_matrix` and `from_power_basis`.
 
-use super::{ColumnSpline, Extrapolate, check_knots};
+use super::{ColumnSpline, Extrapolate, check_scipy_knots, without_empty_basis};
 use nalgebra_sparse::CsrMatrix;
 use spline_core::{Error, ErrorKind, KnotVector, MAX_ORDER, Result};
 
@@ -54,7 +54,14 @@ impl ColumnSpline {
                 ),
             ));
         }
-        let knots = check_knots(t.to_vec(), k)?;
+        check_scipy_knots(t, k)?;
+        // Evaluation on the knots without empty basis functions; `kept` maps their columns
+        // back to the columns of `t`'s basis.
+        let (knots, kept) = match without_empty_basis(t, k) {
+            None => (KnotVector::new(k, t.to_vec())?, None),
+            Some((reduced, kept)) => (KnotVector::new(k, reduced)?, Some(kept)),
+        };
+        let n = t.len() - k - 1;
         let (a, b) = knots.domain();
         if mode == Extrapolate::Off
             && let Some(&v) = x.iter().find(|&&v| v < a || v > b)
@@ -81,10 +88,13 @@ impl ColumnSpline {
             hint = span;
             knots.basis_values(span, u, &mut basis);
             values.extend_from_slice(&basis[..width]);
-            columns.extend(span - k..=span);
+            match &kept {
+                None => columns.extend(span - k..=span),
+                Some(kept) => columns.extend(kept[span - k..=span].iter().copied()),
+            }
         }
         let offsets: Vec<usize> = (0..=x.len()).map(|i| i * width).collect();
-        CsrMatrix::try_from_csr_data(x.len(), knots.num_basis(), offsets, columns, values).map_err(
+        CsrMatrix::try_from_csr_data(x.len(), n, offsets, columns, values).map_err(
             |e| {
                 Error::new(
                     ErrorKind::InvalidArgument,

@@ -46,17 +46,32 @@ pub enum Extrapolate {
 ///
 /// $$ s_j(x) = \sum_{i=0}^{n-1} c_{ij} B_{i,k}(x; t), \qquad n = \mathrm{len}(t) - k - 1. $$
 ///
-/// **Knot vectors accepted**: at least `2k + 2` finite knots in non-decreasing order, each
-/// value repeated at most `k + 1` times (ends included, clamped or not), with
-/// $t_k < t_n$ and `k ≤ 32` ([`MAX_DEGREE`]). scipy also accepts knots repeated more than
-/// `k + 1` times; those are refused here. The coefficient matrix has `rows ≥ n` rows (scipy
+/// **Knot vectors accepted**: at least `2k + 2` finite knots in non-decreasing order with
+/// $t_k < t_n$ and `k ≤ 32` ([`MAX_DEGREE`]), as scipy accepts them. A knot may repeat more
+/// than `k + 1` times (a knot inserted at a clamped end, the degree-0 interpolant's
+/// `[x…, x[-1]]`): the basis functions whose support is then a single point are identically
+/// zero, and evaluation works on the knot vector without them ([`ColumnSpline::knot_vector`]),
+/// which is the same function. The coefficient matrix has `rows ≥ n` rows (scipy
 /// allows extra rows, and its derivative and antiderivative pad `c` to `len(t)` rows in
 /// FITPACK's convention; the extra rows are kept and never used), each of `m ≥ 1` finite
 /// values.
+///
+/// **An empty end span** ($t_{n-1} = t_n$, or $t_k = t_{k+1}$ below the base interval):
+/// scipy evaluates points at or beyond that end on the empty span, which gives zero for
+/// `k ≥ 1` and the coefficient row of the span for `k = 0`; so does this container (the
+/// spline is then discontinuous at $t_n$, as de Boor's convention has it).
 #[derive(Clone, Debug)]
 pub struct ColumnSpline {
+    /// The knots as given (scipy's `t`).
+    t: Vec<f64>,
+    /// The knots without those of identically zero basis functions: what evaluation uses.
     knots: KnotVector<f64>,
+    /// The coefficients as given (`rows × columns`, row-major).
     coefficients: Vec<f64>,
+    /// The coefficient rows of the basis functions `knots` keeps, when some were dropped.
+    reduced: Option<Vec<f64>>,
+    /// What points beyond an empty end span give (below $t_k$, from $t_n$ on).
+    empty_ends: [Option<EmptyEnd>; 2],
     rows: usize,
     columns: usize,
     /// The span and reciprocal tables, built at the first evaluation.
@@ -67,9 +82,17 @@ fn invalid(message: impl Into<String>) -> Error {
     Error::new(ErrorKind::InvalidArgument, message)
 }
 
-/// scipy's checks of a knot vector for degree `k`, with scipy's words, then the library's
-/// rules (multiplicity, degree limit) through [`KnotVector::new`].
-pub(crate) fn check_knots(t: Vec<f64>, k: usize) -> Result<KnotVector<f64>> {
+/// The value scipy gives beyond an end whose span is empty.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum EmptyEnd {
+    /// Zero (degree ≥ 1: the recursion on an empty span vanishes).
+    Zero,
+    /// The coefficient row of the empty span (degree 0).
+    Row(usize),
+}
+
+/// scipy's checks of a knot vector for degree `k`, with scipy's words (any multiplicity).
+fn check_scipy_knots(t: &[f64], k: usize) -> Result<()> {
     if k > MAX_DEGREE {
         return Err(Error::new(
             ErrorKind::DegreeTooHigh,
@@ -111,7 +134,29 @@ pub(crate) fn check_knots(t: Vec<f64>, k: usize) -> Result<KnotVector<f64>> {
             ),
         ));
     }
+    Ok(())
+}
+
+/// scipy's checks of a knot vector for degree `k`, with scipy's words, then the library's
+/// rules (multiplicity at most `k + 1`, degree limit) through [`KnotVector::new`].
+pub(crate) fn check_knots(t: Vec<f64>, k: usize) -> Result<KnotVector<f64>> {
+    check_scipy_knots(&t, k)?;
     KnotVector::new(k, t)
+}
+
+/// The knots of `t` without those of the basis functions of a single point's support
+/// ($t_i = t_{i+k+1}$, identically zero), with the indices of the basis functions kept; `None`
+/// when every basis function has a non-empty support. Dropping knot `i` of each such function
+/// leaves `k + 1` copies of every longer run, and every other basis function keeps its knots.
+fn without_empty_basis(t: &[f64], k: usize) -> Option<(Vec<f64>, Vec<usize>)> {
+    let n = t.len() - k - 1;
+    let empty = |i: usize| i < n && t[i] == t[i + k + 1];
+    if !(0..n).any(empty) {
+        return None;
+    }
+    let knots = (0..t.len()).filter(|&i| !empty(i)).map(|i| t[i]).collect();
+    let kept = (0..n).filter(|&i| !empty(i)).collect();
+    Some((knots, kept))
 }
 
 impl ColumnSpline {
@@ -126,11 +171,26 @@ impl ColumnSpline {
     /// [`ErrorKind::NonFinite`] ("Knots should not have nans or infs"),
     /// [`ErrorKind::UnsortedKnots`] ("Knots must be in a non-decreasing order"),
     /// [`ErrorKind::EmptyDomain`] ("Need at least two internal knots"),
-    /// [`ErrorKind::KnotMultiplicity`] above `k + 1` repeats, [`ErrorKind::DegreeTooHigh`]
-    /// above [`MAX_DEGREE`].
+    /// [`ErrorKind::DegreeTooHigh`] above [`MAX_DEGREE`].
     pub fn new(t: Vec<f64>, c: Vec<f64>, k: usize, columns: usize) -> Result<Self> {
-        let knots = check_knots(t, k)?;
-        Self::from_knot_vector(knots, c, columns)
+        check_scipy_knots(&t, k)?;
+        match without_empty_basis(&t, k) {
+            None => {
+                let knots = KnotVector::new(k, t)?;
+                Self::from_knot_vector(knots, c, columns)
+            }
+            Some((reduced, kept)) => {
+                let knots = KnotVector::new(k, reduced)?;
+                let mut spline = Self::assemble(t, knots, c, columns)?;
+                let m = columns;
+                let rows = kept
+                    .iter()
+                    .flat_map(|&i| spline.coefficients[i * m..(i + 1) * m].iter().copied())
+                    .collect();
+                spline.reduced = Some(rows);
+                Ok(spline)
+            }
+        }
     }
 
     /// [`ColumnSpline::new`] with a validated knot vector.
@@ -138,6 +198,13 @@ impl ColumnSpline {
     /// # Errors
     /// As [`ColumnSpline::new`] for the coefficients.
     pub fn from_knot_vector(knots: KnotVector<f64>, c: Vec<f64>, columns: usize) -> Result<Self> {
+        let t = knots.knots().to_vec();
+        Self::assemble(t, knots, c, columns)
+    }
+
+    /// The spline of knots `t` evaluated on `knots` (the same, or `t` without the knots of
+    /// empty basis functions), without reduced coefficients yet.
+    fn assemble(t: Vec<f64>, knots: KnotVector<f64>, c: Vec<f64>, columns: usize) -> Result<Self> {
         if columns == 0 {
             return Err(invalid(
                 "a spline needs at least one column of coefficients",
@@ -153,14 +220,14 @@ impl ColumnSpline {
             ));
         }
         let rows = c.len() / columns;
-        let n = knots.num_basis();
+        let k = knots.degree();
+        let n = t.len() - k - 1;
         if rows < n {
             return Err(Error::new(
                 ErrorKind::InvalidLength,
                 format!(
-                    "Knots, coefficients and degree are inconsistent: {} knots of degree {} need {n} coefficient rows, got {rows}",
-                    knots.len(),
-                    knots.degree()
+                    "Knots, coefficients and degree are inconsistent: {} knots of degree {k} need {n} coefficient rows, got {rows}",
+                    t.len(),
                 ),
             )
             .with_counts(n, rows));
@@ -177,25 +244,47 @@ impl ColumnSpline {
             )
             .with_index(i));
         }
+        let empty_end = |span: usize| {
+            (t[span] == t[span + 1]).then_some(if k == 0 {
+                EmptyEnd::Row(span)
+            } else {
+                EmptyEnd::Zero
+            })
+        };
+        let empty_ends = [empty_end(k), empty_end(n - 1)];
         Ok(Self {
+            t,
             knots,
             coefficients: c,
+            reduced: None,
+            empty_ends,
             rows,
             columns,
             batch: OnceLock::new(),
         })
     }
 
-    /// The knots `t`.
+    /// The knots `t`, as given.
     #[must_use]
     pub fn knots(&self) -> &[f64] {
-        self.knots.knots()
+        &self.t
     }
 
-    /// The knot vector with its degree.
+    /// The knot vector evaluation works on, with its degree: [`ColumnSpline::knots`] without
+    /// the knots of identically zero basis functions (the same knots unless some value repeats
+    /// more than `k + 1` times); its coefficient rows are
+    /// [`ColumnSpline::evaluation_coefficients`].
     #[must_use]
     pub fn knot_vector(&self) -> &KnotVector<f64> {
         &self.knots
+    }
+
+    /// The coefficient rows of the basis functions of [`ColumnSpline::knot_vector`]
+    /// (row-major, `columns` per row): [`ColumnSpline::coefficients`] without the rows of
+    /// identically zero basis functions.
+    #[must_use]
+    pub fn evaluation_coefficients(&self) -> &[f64] {
+        self.reduced.as_deref().unwrap_or(&self.coefficients)
     }
 
     /// The degree `k`.
@@ -213,7 +302,7 @@ impl ColumnSpline {
     /// Consumes the spline, returning knots and coefficients.
     #[must_use]
     pub fn into_parts(self) -> (Vec<f64>, Vec<f64>) {
-        (self.knots.into_knots(), self.coefficients)
+        (self.t, self.coefficients)
     }
 
     /// The number of coefficient rows (at least [`ColumnSpline::num_basis`]).
@@ -231,7 +320,7 @@ impl ColumnSpline {
     /// The number of basis functions `n = len(t) − k − 1`.
     #[must_use]
     pub fn num_basis(&self) -> usize {
-        self.knots.num_basis()
+        self.t.len() - self.degree() - 1
     }
 
     /// The base interval $[t_k, t_n]$.
@@ -363,12 +452,40 @@ impl ColumnSpline {
         }
     }
 
+    /// What scipy gives at `u` when `u` is beyond an end whose span is empty.
+    #[inline(always)]
+    fn beyond_empty_end(&self, u: f64, (a, b): (f64, f64)) -> Option<EmptyEnd> {
+        match self.empty_ends {
+            [None, None] => None,
+            [low, high] => {
+                if u < a {
+                    low
+                } else if u >= b {
+                    high
+                } else {
+                    None
+                }
+            }
+        }
+    }
+
+    /// Fills `row` with the derivative of order `nu` beyond an empty end span.
+    fn fill_empty_end(&self, end: EmptyEnd, nu: usize, row: &mut [f64]) {
+        let m = self.columns;
+        match end {
+            EmptyEnd::Row(r) if nu == 0 => {
+                row.copy_from_slice(&self.coefficients[r * m..(r + 1) * m]);
+            }
+            _ => row.fill(0.0),
+        }
+    }
+
     /// Combines rows `first ..= first + width − 1` of the coefficients with `basis` into
     /// `row` (all columns in one pass).
     #[inline(always)]
     fn combine(&self, first: usize, basis: &[f64], row: &mut [f64]) {
         let m = self.columns;
-        let c = &self.coefficients[first * m..(first + basis.len()) * m];
+        let c = &self.evaluation_coefficients()[first * m..(first + basis.len()) * m];
         if m == 1 {
             row[0] = basis.iter().zip(c).map(|(b, c)| b * c).sum();
             return;
@@ -386,7 +503,7 @@ impl ColumnSpline {
         let domain = self.domain();
         let (a, b) = domain;
         let m = self.columns;
-        let coefficients = &self.coefficients[..];
+        let coefficients = self.evaluation_coefficients();
         let batch = self.batch();
         let mut hint = usize::MAX;
         let mut nan = 0;
@@ -396,6 +513,10 @@ impl ColumnSpline {
                 nan += 1;
                 continue;
             };
+            if let Some(end) = self.beyond_empty_end(u, domain) {
+                self.fill_empty_end(end, 0, row);
+                continue;
+            }
             let (span, basis) = if u >= a && u <= b {
                 batch.eval_fixed_from::<N>(&self.knots, u, hint)
             } else {
@@ -431,6 +552,10 @@ impl ColumnSpline {
                 nan += 1;
                 continue;
             };
+            if let Some(end) = self.beyond_empty_end(u, domain) {
+                self.fill_empty_end(end, nu, row);
+                continue;
+            }
             let span = self.span_of(u, domain, hint);
             hint = span;
             if nu == 0 {

@@ -2,7 +2,7 @@
 //! splines (FITPACK's `splder`/`splantider`), definite integrals, knot insertion (FITPACK's
 //! `insert`, periodic rules included) and the basis element.
 
-use super::{ColumnSpline, Extrapolate, check_knots, invalid};
+use super::{ColumnSpline, Extrapolate, invalid};
 use spline_core::{Error, ErrorKind, Result, check_derivative_order};
 
 impl ColumnSpline {
@@ -65,8 +65,7 @@ impl ColumnSpline {
             t = t[1..len - 1].to_vec();
             k -= 1;
         }
-        let knots = check_knots(t, k)?;
-        Self::from_knot_vector(knots, c, m)
+        Self::new(t, c, k, m)
     }
 
     /// The antiderivative of order `nu` (scipy's `BSpline.antiderivative`, FITPACK's
@@ -121,8 +120,7 @@ impl ColumnSpline {
             t = tn;
             k += 1;
         }
-        let knots = check_knots(t, k)?;
-        Self::from_knot_vector(knots, c, m)
+        Self::new(t, c, k, m)
     }
 
     /// The definite integral $\int_a^b s_j(x)\,dx$ of every column (scipy's
@@ -211,8 +209,8 @@ impl ColumnSpline {
     /// [`ErrorKind::OutOfDomain`] for `x` outside $[t_k, t_n]$ or NaN ("Cannot insert a
     /// knot at …"); [`ErrorKind::InvalidArgument`] for `times == 0` ("`m` must be
     /// positive") or too few interior knots of a periodic spline ("Not enough internal
-    /// knots"); [`ErrorKind::KnotMultiplicity`] when the knot would appear more than
-    /// `k + 1` times (scipy allows that, this container does not).
+    /// knots"). A knot may be inserted more than `k + 1` times, as scipy allows (the spline
+    /// keeps its values; see [`ColumnSpline`] on repeated knots).
     pub fn insert_knot(&self, x: f64, times: usize, periodic: bool) -> Result<Self> {
         let (a, b) = self.domain();
         if !(x >= a && x <= b) {
@@ -227,24 +225,13 @@ impl ColumnSpline {
             return Err(invalid("`m` must be positive, got m = 0"));
         }
         let k = self.degree();
-        let limit = k + 1 - self.knot_vector().multiplicity(x).min(k + 1);
-        if times > limit {
-            return Err(Error::new(
-                ErrorKind::KnotMultiplicity,
-                format!(
-                    "inserting {x} {times} times would repeat it more than k + 1 = {} times",
-                    k + 1
-                ),
-            ));
-        }
         let m = self.columns;
         let mut t = self.knots().to_vec();
         let mut c = self.coefficients.clone();
         for _ in 0..times {
             insert_once(x, &mut t, &mut c, k, m, periodic)?;
         }
-        let knots = check_knots(t, k)?;
-        Self::from_knot_vector(knots, c, m)
+        Self::new(t, c, k, m)
     }
 
     /// The B-spline basis element $B(x \mid t_0, …, t_{k+1})$ of degree `k = len(t) − 2`

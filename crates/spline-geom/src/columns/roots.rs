@@ -30,11 +30,14 @@ impl ColumnSpline {
             .with_index(column));
         }
         let k = self.degree();
-        let t = self.knots();
-        let n = self.num_basis();
+        // The knots and coefficients evaluation works on (no empty basis functions).
+        let knots = self.knot_vector();
+        let coefficients = self.evaluation_coefficients();
+        let t = knots.knots();
+        let n = knots.num_basis();
         let m = self.columns;
         let scale = (0..n)
-            .map(|i| self.coefficients[i * m + column].abs())
+            .map(|i| coefficients[i * m + column].abs())
             .fold(0.0, f64::max);
         let tiny = scale * f64::EPSILON * 16.0;
         let width = k + 1;
@@ -53,8 +56,7 @@ impl ColumnSpline {
             }
             let h = x1 - x0;
             // Power coefficients in s = (x − x0)/h: q_d = s^{(d)}(x0) h^d / d!.
-            self.knot_vector()
-                .basis_derivatives(span, x0, k, &mut scratch);
+            knots.basis_derivatives(span, x0, k, &mut scratch);
             let mut q = [0.0; MAX_ORDER];
             let mut factor = 1.0;
             for d in 0..=k {
@@ -62,7 +64,7 @@ impl ColumnSpline {
                 let value: f64 = row
                     .iter()
                     .enumerate()
-                    .map(|(r, b)| b * self.coefficients[(span - k + r) * m + column])
+                    .map(|(r, b)| b * coefficients[(span - k + r) * m + column])
                     .sum();
                 q[d] = value * factor;
                 factor *= h / (d + 1) as f64;

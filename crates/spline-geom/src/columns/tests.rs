@@ -755,3 +755,101 @@ fn from_power_basis_matches_scipy() {
         close(s.coefficients(), c, 1e-11);
     }
 }
+
+/// Knots repeated more than `k + 1` times, and empty end spans: values from scipy 1.17
+/// (`BSpline(t, c, k)(x, nu)`, `design_matrix`, `integrate`, `insert_knot` on the same data).
+#[test]
+fn knots_repeated_beyond_the_order_match_scipy() {
+    // 0 five times for a cubic: basis function 0 is identically zero, and the span below
+    // t[3] = t[4] is empty, so points below 0 give 0.
+    let t = vec![0.0, 0.0, 0.0, 0.0, 0.0, 1.0, 2.0, 3.0, 3.0, 3.0, 3.0];
+    let c: Vec<f64> = (0..7).map(f64::from).collect();
+    let s = ColumnSpline::new(t.clone(), c, 3, 1).unwrap();
+    assert_eq!(s.knots(), &t[..]);
+    assert_eq!(s.num_basis(), 7);
+    assert_eq!(s.knot_vector().num_basis(), 6);
+    let x = [-0.5, 0.0, 0.5, 1.5, 3.0, 3.5];
+    let want = [0.0, 1.0, 2.1770833333333335, 3.5, 6.0, 7.927083333333334];
+    close(&s.eval(&x, 0, Extrapolate::On).unwrap(), &want, 1e-14);
+    let want = [0.0, 3.0, 1.8125, 1.125, 3.0, 4.8125];
+    close(&s.eval(&x, 1, Extrapolate::On).unwrap(), &want, 1e-13);
+    close(&s.integrate(0.0, 3.0, Extrapolate::On).unwrap(), &[10.5], 1e-13);
+    let d = ColumnSpline::design_matrix(&[0.25, 2.5], &t, 3, Extrapolate::On).unwrap();
+    let dense = nalgebra::DMatrix::from(&d);
+    let want = [
+        [0.0, 0.421875, 0.49609375, 0.07942708333333333, 0.00260416666666667, 0.0, 0.0],
+        [0.0, 0.0, 0.0, 0.02083333333333333, 0.26041666666666663, 0.59375, 0.125],
+    ];
+    for (i, row) in want.iter().enumerate() {
+        close(&dense.row(i).iter().copied().collect::<Vec<_>>(), row, 1e-15);
+    }
+
+    // de Boor's example (scipy's test_derivative_jumps): t_n = 6 is a triple knot followed
+    // by the empty span [6, 6]; at 6 and beyond scipy gives 0.
+    let t = vec![-1.0, -1.0, 0.0, 1.0, 1.0, 3.0, 4.0, 6.0, 6.0, 6.0, 7.0, 7.0];
+    let c = vec![0.0, 0.0, 1.0, 2.0, 3.0, 4.0, 5.0, 0.0, 0.0];
+    let b = ColumnSpline::new(t, c, 2, 1).unwrap();
+    let x = [5.5, 6.0 - 1e-10, 6.0, 6.5];
+    close(
+        &b.eval(&x, 0, Extrapolate::On).unwrap(),
+        &[4.520833333333333, 4.9999999999, 0.0, 0.0],
+        1e-12,
+    );
+    close(
+        &b.eval(&x, 1, Extrapolate::On).unwrap(),
+        &[0.9166666666666665, 0.9999999999833333, 0.0, 0.0],
+        1e-9,
+    );
+    let off = b.eval(&[6.0, 6.5], 0, Extrapolate::Off).unwrap();
+    assert_eq!(off[0], 0.0);
+    assert!(off[1].is_nan());
+
+    // Degree 0 with the last knot twice (the degree-0 interpolant): the empty last span
+    // gives its own coefficient.
+    let z = ColumnSpline::new(
+        vec![0.0, 1.0, 2.0, 3.0, 4.0, 4.0],
+        vec![0.0, 1.0, 4.0, 9.0, 16.0],
+        0,
+        1,
+    )
+    .unwrap();
+    let got = z.eval(&[-1.0, 0.0, 3.5, 4.0, 4.5], 0, Extrapolate::On).unwrap();
+    close(&got, &[0.0, 0.0, 9.0, 16.0, 16.0], 0.0);
+
+    // Inserting a knot at a clamped end (FITPACK's insert, as scipy's insert_knot).
+    let s = ColumnSpline::new(
+        vec![0.0, 0.0, 0.0, 0.0, 2.0, 3.0, 4.0, 5.0, 7.0, 7.0, 7.0, 7.0],
+        vec![0.1, -0.4, 0.9, 0.3, -0.2, 0.6, 0.8, -0.5],
+        3,
+        1,
+    )
+    .unwrap();
+    let i = s.insert_knot(0.0, 1, false).unwrap();
+    close(
+        i.knots(),
+        &[0.0, 0.0, 0.0, 0.0, 0.0, 2.0, 3.0, 4.0, 5.0, 7.0, 7.0, 7.0, 7.0],
+        0.0,
+    );
+    close(
+        i.coefficients(),
+        &[0.1, 0.1, -0.4, 0.9, 0.3, -0.2, 0.6, 0.8, -0.5],
+        1e-15,
+    );
+    let i = s.insert_knot(7.0, 2, false).unwrap();
+    close(
+        &i.knots()[7..],
+        &[5.0, 7.0, 7.0, 7.0, 7.0, 7.0, 7.0],
+        0.0,
+    );
+    close(
+        &i.coefficients()[7..],
+        &[-0.5, -0.5, -0.5],
+        1e-15,
+    );
+    let x = [0.0, 1.0, 6.5];
+    close(
+        &i.eval(&x, 0, Extrapolate::On).unwrap(),
+        &[0.1, 0.10694444444444444, 0.22586805555555556],
+        1e-15,
+    );
+}
