@@ -23,7 +23,7 @@
 //! # Ok::<(), spline_core::Error>(())
 //! ```
 
-use crate::columns::check_knots;
+use crate::columns::{check_knots, check_scipy_knots, without_empty_basis};
 use nalgebra_sparse::CsrMatrix;
 use spline_core::{BatchBasis, Error, ErrorKind, KnotVector, Result};
 
@@ -31,9 +31,12 @@ use spline_core::{BatchBasis, Error, ErrorKind, KnotVector, Result};
 /// container behind scipy's `NdBSpline` with the trailing dimensions of `c` flattened.
 ///
 /// **Knot vectors accepted** (per dimension, as [`crate::ColumnSpline`]): at least
-/// `2k + 2` finite knots in non-decreasing order, each value repeated at most `k + 1`
-/// times, with $t_k < t_n$ and `k ≤ 32`. scipy also accepts knots repeated more than
-/// `k + 1` times; those are refused here.
+/// `2k + 2` finite knots in non-decreasing order with $t_k < t_n$ and `k ≤ 32`. A knot
+/// repeated more than `k + 1` times is accepted by [`NdSpline::new`] as scipy accepts it: the
+/// basis functions of a single point's support are dropped with their coefficients (the
+/// same function), so [`NdSpline::knot_vectors`] and [`NdSpline::coefficients`] are those of
+/// the reduced form. Unlike [`crate::ColumnSpline`], an empty end span is not given scipy's
+/// zero beyond it (points there take the last non-empty span's polynomial).
 ///
 /// **Evaluation conventions** (scipy's): right limits at interior knots, the left limit at
 /// $t_n$; with extrapolation, points below $t_k$ (above $t_n$) use the polynomial of the
@@ -356,6 +359,57 @@ impl NdSpline {
         columns: usize,
         extrapolate: bool,
     ) -> Result<Self> {
+        if t.len() == k.len() && columns > 0 {
+            for (e, (te, &ke)) in t.iter().zip(k).enumerate() {
+                check_scipy_knots(te, ke)
+                    .map_err(|err| err.context(format_args!("dimension {e}")))?;
+            }
+            // Knots repeated more than k + 1 times (scipy accepts them): the basis functions
+            // of a single point's support are identically zero; evaluation works on the knots
+            // without them and on the coefficients of the others (see `ColumnSpline`).
+            let reduced: Vec<_> = t
+                .iter()
+                .zip(k)
+                .map(|(te, &ke)| without_empty_basis(te, ke))
+                .collect();
+            if reduced.iter().any(Option::is_some) {
+                let full: Vec<usize> = t.iter().zip(k).map(|(te, &ke)| te.len() - ke - 1).collect();
+                let rows = full.iter().try_fold(1usize, |a, &n| a.checked_mul(n));
+                if rows.and_then(|r| r.checked_mul(columns)) != Some(c.len()) {
+                    let shape: Vec<String> = full.iter().map(ToString::to_string).collect();
+                    return Err(Error::new(
+                        ErrorKind::InvalidLength,
+                        format!(
+                            "Knots, coefficients and degree are inconsistent: the knots need coefficients of shape ({}) with {columns} columns, got {} values",
+                            shape.join(", "),
+                            c.len()
+                        ),
+                    ));
+                }
+                let mut kept_rows = vec![0usize];
+                for (n, r) in full.iter().zip(&reduced) {
+                    let indices: Vec<usize> = match r {
+                        Some((_, kept)) => kept.clone(),
+                        None => (0..*n).collect(),
+                    };
+                    kept_rows = kept_rows
+                        .iter()
+                        .flat_map(|&row| indices.iter().map(move |&i| row * n + i))
+                        .collect();
+                }
+                let gathered = kept_rows
+                    .iter()
+                    .flat_map(|&row| c[row * columns..(row + 1) * columns].iter().copied())
+                    .collect();
+                let t = t
+                    .into_iter()
+                    .zip(reduced)
+                    .map(|(te, r)| r.map_or(te, |(knots, _)| knots))
+                    .collect();
+                let knots = knot_vectors(t, k)?;
+                return Self::from_knot_vectors(knots, gathered, columns, extrapolate);
+            }
+        }
         let knots = knot_vectors(t, k)?;
         Self::from_knot_vectors(knots, c, columns, extrapolate)
     }
@@ -590,10 +644,13 @@ impl NdSpline {
     ///
     /// # Errors
     /// [`ErrorKind::InvalidLength`] unless `nu` has `d` entries;
-    /// [`ErrorKind::OrderTooHigh`] for $\nu_e > k_e$ (scipy returns a zero spline of degree 0
-    /// on the same knots, which this container cannot hold: its clamped ends repeat knots
-    /// more than once); [`ErrorKind::KnotMultiplicity`] when interior knots repeated
-    /// $k_e + 1$ times make the spline non-differentiable.
+    /// [`ErrorKind::KnotMultiplicity`] when interior knots repeated $k_e + 1$ times make the
+    /// spline non-differentiable.
+    ///
+    /// Along a dimension with $\nu_e > k_e$ the derivative is zero: scipy returns the zero
+    /// spline of degree 0 on the same knots; this one is the zero spline of degree 0 on the
+    /// distinct knots (the same function on the same base interval; the repeated knots of
+    /// scipy's only add basis functions of empty support).
     pub fn derivative(&self, nu: &[usize]) -> Result<Self> {
         let d = self.ndim();
         if nu.len() != d {
@@ -611,6 +668,20 @@ impl NdSpline {
         let mut c = self.coefficients.clone();
         for (e, &order) in nu.iter().enumerate() {
             if order == 0 {
+                continue;
+            }
+            if order > knots[e].degree() {
+                // Identically zero along this dimension: scipy's zero spline of degree 0 on the
+                // same knots, whose repeated knots only add empty basis functions, is the zero
+                // spline of degree 0 on the distinct knots (the same base interval).
+                let mut distinct = knots[e].knots().to_vec();
+                distinct.dedup();
+                let new_n = distinct.len() - 1;
+                let before: usize = shape[..e].iter().product();
+                let after: usize = shape[e + 1..].iter().product::<usize>() * m;
+                c = vec![0.0; before * new_n * after];
+                shape[e] = new_n;
+                knots[e] = KnotVector::new(0, distinct)?;
                 continue;
             }
             // The array as (before, n, after): move the axis to the front, so that the

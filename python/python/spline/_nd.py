@@ -170,10 +170,31 @@ class NdBSpline:
         return NdBSpline(t, c, k, extrapolate=self.extrapolate)
 
 
+def _solve_with(solver, matrix, rhs, solver_args):
+    """scipy's way of solving the collocation system with a given solver: ``spsolve``
+    directly, an iterative solver column by column, its ``info`` checked."""
+    import scipy.sparse.linalg as ssl
+
+    if solver is ssl.spsolve:
+        return solver(matrix, rhs, **solver_args)
+    solver_args.setdefault("atol", 1e-6)
+    out = np.empty_like(rhs)
+    for j in range(rhs.shape[1]):
+        out[:, j], info = solver(matrix, rhs[:, j], **solver_args)
+        if info != 0:
+            raise _core.SplineError(f"{solver = } returns {info = } for column {j}.")
+    return out
+
+
 def make_ndbspl(points, values, k=3, *, solver=None, **solver_args):
     """The tensor-product interpolant of ``values`` on the grid ``points`` (scipy's
-    ``make_ndbspl``, not-a-knot in every dimension). ``solver`` is accepted for scipy's
-    signature; the library solves the Kronecker-structured system dimension by dimension."""
+    ``make_ndbspl``, not-a-knot in every dimension).
+
+    Without ``solver`` and solver arguments the library solves the Kronecker-structured
+    system dimension by dimension (exact, and much faster than scipy's default iterative
+    solver). With a ``solver`` (a ``scipy.sparse.linalg`` function) or solver arguments
+    (``maxiter=…``: scipy's default ``gcrotmk`` then), the sparse collocation matrix is solved
+    by that solver as scipy does, with its failure to converge raised as a ``ValueError``."""
     ndim = len(points)
     xi_shape = tuple(len(x) for x in points)
     try:
@@ -196,5 +217,15 @@ def make_ndbspl(points, values, k=3, *, solver=None, **solver_args):
     t = tuple(np.asarray(tt) for tt in core.knots())
     kk = tuple(core.degrees())
     shape = tuple(len(tt) - kd - 1 for tt, kd in zip(t, kk))
+    if solver is not None or solver_args:
+        import itertools
+
+        import scipy.sparse.linalg as ssl
+
+        xvals = np.asarray(list(itertools.product(*points)), dtype=float)
+        matrix = NdBSpline.design_matrix(xvals, t, kk)
+        flat = _solve_with(solver or ssl.gcrotmk, matrix, cc, dict(solver_args))
+        c = _from_columns(flat.reshape(-1), prod(shape), tail, is_complex).reshape(shape + tail)
+        return NdBSpline(t, c, kk)
     c = _from_columns(core.coefficients(), prod(shape), tail, is_complex).reshape(shape + tail)
     return NdBSpline(t, c, kk)

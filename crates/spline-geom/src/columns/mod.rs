@@ -92,7 +92,7 @@ enum EmptyEnd {
 }
 
 /// scipy's checks of a knot vector for degree `k`, with scipy's words (any multiplicity).
-fn check_scipy_knots(t: &[f64], k: usize) -> Result<()> {
+pub(crate) fn check_scipy_knots(t: &[f64], k: usize) -> Result<()> {
     if k > MAX_DEGREE {
         return Err(Error::new(
             ErrorKind::DegreeTooHigh,
@@ -148,7 +148,7 @@ pub(crate) fn check_knots(t: Vec<f64>, k: usize) -> Result<KnotVector<f64>> {
 /// ($t_i = t_{i+k+1}$, identically zero), with the indices of the basis functions kept; `None`
 /// when every basis function has a non-empty support. Dropping knot `i` of each such function
 /// leaves `k + 1` copies of every longer run, and every other basis function keeps its knots.
-fn without_empty_basis(t: &[f64], k: usize) -> Option<(Vec<f64>, Vec<usize>)> {
+pub(crate) fn without_empty_basis(t: &[f64], k: usize) -> Option<(Vec<f64>, Vec<usize>)> {
     let n = t.len() - k - 1;
     let empty = |i: usize| i < n && t[i] == t[i + k + 1];
     if !(0..n).any(empty) {

@@ -389,10 +389,16 @@ fn derivative_spline_evaluates_to_scipy_partials() {
     let s = two_d();
     let d = s.derivative(&[1, 2]).unwrap();
     close(&d.eval(&X2, &[]).unwrap(), &TWO_D_NU12, 1e-12);
-    assert_eq!(
-        s.derivative(&[3, 0]).unwrap_err().kind(),
-        ErrorKind::OrderTooHigh
-    );
+    // Above the degree (scipy's test_2D_derivative): zero, of degree 0 along that
+    // dimension, on the same base interval, extrapolated as zero too.
+    let d = s.derivative(&[3, 0]).unwrap();
+    assert_eq!(d.degrees()[0], 0);
+    assert_eq!(d.degrees()[1], s.degrees()[1]);
+    assert_eq!(d.knot_vectors()[0].domain(), s.knot_vectors()[0].domain());
+    let (a, b) = s.knot_vectors()[0].domain();
+    let far = [a - 1.0, X2[1], b + 1.0, X2[1]];
+    assert!(d.eval(&X2, &[]).unwrap().iter().all(|&v| v == 0.0));
+    assert!(d.eval(&far, &[]).unwrap().iter().all(|&v| v == 0.0));
     assert!(s.derivative(&[1]).is_err());
 }
 
@@ -454,4 +460,29 @@ fn equal_degrees_use_the_fixed_kernels() {
         )
         .unwrap();
     assert_eq!(n, 2);
+}
+
+/// Knots repeated more than `k + 1` times (scipy's test_2D_mixed_random has such knots):
+/// values from scipy 1.17's `NdBSpline((tx, ty), c, (2, 3))(xi)` on the same data.
+#[test]
+fn knots_repeated_beyond_the_order_match_scipy() {
+    let tx = vec![0.0, 0.0, 0.0, 0.0, 0.5, 1.2, 2.0, 3.0, 3.0, 3.0, 3.0];
+    let ty = vec![0.0, 0.0, 0.0, 0.0, 1.0, 2.5, 4.0, 4.0, 4.0, 4.0];
+    let c: Vec<f64> = (0..8)
+        .flat_map(|i| {
+            (0..6).map(move |j| {
+                let (i, j) = (f64::from(i), f64::from(j));
+                (i + 1.0) * 0.3 - j * 0.7 + 0.1 * i * j
+            })
+        })
+        .collect();
+    let s = NdSpline::new(vec![tx, ty], c, &[2, 3], 1, true).unwrap();
+    // Dimension 0 loses one empty basis function at each end.
+    assert_eq!(s.shape(), &[6, 6]);
+    let xi = [1.0, 1.1, 1.5, 1.6, 2.9, 3.9, 0.1, 0.2];
+    let want = [0.55609199, 0.73275867, 1.46668513, 0.41365872];
+    close(&s.eval(&xi, &[]).unwrap(), &want, 1e-8);
+    // The wrong number of coefficients for the knots as given is still an error.
+    let t = vec![0.0, 0.0, 0.0, 0.0, 1.0, 1.0, 1.0];
+    assert!(NdSpline::new(vec![t], vec![0.0; 3], &[2], 1, true).is_err());
 }
