@@ -40,7 +40,7 @@
 //! - [`geom`] (`spline-geom`): the containers — [`BSpline`], [`Bezier`],
 //!   [`Surface`], [`NurbsCurve`], [`NurbsSurface`] — with each structural algorithm written
 //!   once, generic over the point type; the capability traits [`ParamCurve`] and
-//!   [`ParamSurface`]; constructions, meshes, export, the exchange format.
+//!   [`ParamSurface`]; constructions, meshes.
 //! - [`fit`] (`spline-fit`): interpolation, the one least-squares path,
 //!   parameter correction, closest points, deviations both ways.
 //! - [`algebra`] (`spline-algebra`): structural operations as sparse maps
@@ -48,15 +48,19 @@
 //!   curvature invariants, root isolation, inflections and curvature extrema.
 //! - [`shape`] (`spline-shape`): interior-point solver, constrained
 //!   approximation, the selective eraser of curvature extrema, shape optimisation.
+//! - [`io`] (`spline-io`): every file format (exchange format, points, airfoils, OBJ, OFF,
+//!   SVG, gnuplot, STEP, IGES).
 //!
 //! The [`prelude`] brings the containers, the traits and the nalgebra vectors into scope;
 //! [`nalgebra`] is re-exported, so a project does not need to match its version.
 //!
 //! # Feature flags
-//! - `serde` (default): the JSON exchange format — `Serialize`/`Deserialize` for every curve
-//!   and surface, [`geom::exchange`], and CAD items in it (`io::Geometry::to_exchange`).
+//! - `serde` (default): the JSON exchange format — [`io::exchange`]: every curve and surface
+//!   to and from JSON, the records, CAD items in it (`io::Geometry::to_exchange`) — and JSON
+//!   point files.
 //!
-//! CAD files (STEP, IGES) are read and written by [`io`] (`spline-io`).
+//! Every file format — the exchange format, point files, airfoils, OBJ and OFF meshes, SVG
+//! and gnuplot pictures, STEP and IGES — is read and written by [`io`] (`spline-io`).
 
 pub use spline_algebra as algebra;
 pub use spline_core as core;

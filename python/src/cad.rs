@@ -26,7 +26,7 @@ fn write_cad(py: Python<'_>, path: &str, items: Vec<(String, String)>) -> PyResu
         .into_iter()
         .enumerate()
         .map(|(k, (name, text))| {
-            let value: serde_json::Value = serde_json::from_str(&text)
+            let value = spline::io::exchange::parse_json(&text)
                 .map_err(|e| bad_input(format!("object {k}: not JSON: {e}")))?;
             let geometry = Geometry::from_exchange(&value).py()?;
             Ok(Item {

@@ -5,7 +5,7 @@ use crate::{Csr, Features, IntoPy, array, bad_input, csr, slice};
 use numpy::{PyArray1, PyReadonlyArray1};
 use pyo3::prelude::*;
 use spline::algebra::{SplineMap, planar_features, product_with_jacobians};
-use spline::geom::exchange::CurveRecord;
+use spline::io::exchange::CurveRecord;
 use spline::nalgebra::SVector;
 use spline::{BSpline, ControlPoint, KnotVector};
 
@@ -260,14 +260,14 @@ impl Curve {
     }
 
     /// The curve in the exchange format (JSON text).
-    fn to_json(&self) -> PyResult<String> {
-        serde_json::to_string(&self.0.record()).map_err(|e| bad_input(e.to_string()))
+    fn to_json(&self) -> String {
+        self.0.record().to_json()
     }
 
     /// A curve from exchange-format JSON text (`weights` are refused: use `NurbsCurve`).
     #[staticmethod]
     fn from_json(text: &str) -> PyResult<Self> {
-        let record: CurveRecord = serde_json::from_str(text)
+        let record = CurveRecord::from_json(text)
             .map_err(|e| bad_input(format!("not an exchange-format curve: {e}")))?;
         if record.weights.is_some() {
             return Err(bad_input(

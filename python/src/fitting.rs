@@ -10,7 +10,7 @@ use spline::fit::{
     CorrectionOptions, LeastSquares, Parametrization, correct_parameters, interpolate_with_knots,
     nurbs_book_knots, parametrize,
 };
-use spline::geom::airfoil::parse_airfoil;
+use spline::io::airfoil::parse_airfoil;
 use spline::nalgebra::{SVector, Vector2};
 use spline::shape::{Extremum, Objective, SmoothingOptions, smooth as erase, smooth_to_tolerance};
 

@@ -6,8 +6,8 @@ use crate::{Features, IntoPy, array, bad_input, slice};
 use numpy::{PyArray1, PyReadonlyArray1};
 use pyo3::prelude::*;
 use spline::algebra::planar_features;
-use spline::geom::exchange::{CurveRecord, SurfaceRecord};
 use spline::geom::{CircleConstruction, Frame};
+use spline::io::exchange::{CurveRecord, SurfaceRecord};
 use spline::nalgebra::{SVector, Vector2, Vector3};
 use spline::{KnotVector, NurbsCurve, NurbsSurface};
 
@@ -201,15 +201,15 @@ impl NurbsCurveCore {
     }
 
     /// The curve in the exchange format (JSON text).
-    fn to_json(&self) -> PyResult<String> {
+    fn to_json(&self) -> String {
         let record = with!(&self.0, c => CurveRecord::from_nurbs(c));
-        serde_json::to_string(&record).map_err(|e| bad_input(e.to_string()))
+        record.to_json()
     }
 
     /// A NURBS curve from exchange-format JSON (unit weights when it has none).
     #[staticmethod]
     fn from_json(text: &str) -> PyResult<Self> {
-        let record: CurveRecord = serde_json::from_str(text)
+        let record = CurveRecord::from_json(text)
             .map_err(|e| bad_input(format!("not an exchange-format curve: {e}")))?;
         Ok(Self(match record.dimension().py()? {
             2 => Rational::N2(record.to_nurbs().py()?),
@@ -344,15 +344,14 @@ impl NurbsSurfaceCore {
     }
 
     /// The surface in the exchange format (JSON text).
-    fn to_json(&self) -> PyResult<String> {
-        serde_json::to_string(&SurfaceRecord::from_nurbs_surface(&self.0))
-            .map_err(|e| bad_input(e.to_string()))
+    fn to_json(&self) -> String {
+        SurfaceRecord::from_nurbs_surface(&self.0).to_json()
     }
 
     /// A NURBS surface from exchange-format JSON (unit weights when it has none).
     #[staticmethod]
     fn from_json(text: &str) -> PyResult<Self> {
-        let record: SurfaceRecord = serde_json::from_str(text)
+        let record = SurfaceRecord::from_json(text)
             .map_err(|e| bad_input(format!("not an exchange-format surface: {e}")))?;
         record.to_nurbs_surface().py().map(Self)
     }

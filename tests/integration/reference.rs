@@ -6,7 +6,7 @@ use nalgebra::SVector;
 use serde_json::{Value, json};
 use spline::core::KnotVector;
 use spline::geom::BSpline;
-use spline::geom::exchange::CurveRecord;
+use spline::io::exchange::{self, CurveRecord};
 use spline_testing::compare::assert_close;
 use spline_testing::reference::{assert_same_curve, cases, f64s, flatten};
 
@@ -37,7 +37,7 @@ macro_rules! with_curve {
 }
 
 fn to_json<const D: usize>(c: &BSpline<f64, SVector<f64, D>>) -> Value {
-    serde_json::to_value(c).unwrap()
+    exchange::to_value(c)
 }
 
 #[test]
@@ -169,8 +169,8 @@ fn degree_elevation() {
 fn serialisation_round_trip() {
     for case in &cases("curve_eval") {
         with_curve!(&case["curve"], |curve| {
-            let text = serde_json::to_string(&curve).unwrap();
-            let back = serde_json::from_str(&text).unwrap();
+            let text = exchange::to_json(&curve);
+            let back = exchange::from_json(&text).unwrap();
             assert_eq!(curve, back);
         });
     }

@@ -21,8 +21,8 @@ use spline::fit::{
     parametrize, two_sided_deviation,
 };
 use spline::geom::Curve2;
-use spline::geom::airfoil::parse_airfoil;
-use spline::geom::export::SvgPlot;
+use spline::io::airfoil::parse_airfoil;
+use spline::io::svg::SvgPlot;
 use spline::shape::{SmoothedCurve, SmoothingOptions, sampled_curvature_extrema, smooth};
 use std::path::Path;
 
@@ -146,10 +146,7 @@ pub(crate) fn run(root: &Path) -> Result<(), String> {
         turns.len()
     );
     println!("smoothed curve (exchange format):");
-    println!(
-        "{}",
-        serde_json::to_string(&s.curve).map_err(|e| e.to_string())?
-    );
+    println!("{}", spline::io::exchange::to_json(&s.curve));
     let out = crate::bench::target_dir(root).join("demo");
     draw(&demo, ls.curvature_extrema.len(), &out)?;
     eprintln!(

@@ -5,8 +5,9 @@
 
 use nalgebra::{Vector2, Vector3};
 use spline::fit::{LeastSquares, Parametrization, parametrize, skin, sweep};
-use spline::geom::airfoil::parse_airfoil;
-use spline::geom::{BSpline, KnotVector, MeshView, Surface};
+use spline::geom::{BSpline, KnotVector, Surface};
+use spline::io::airfoil::parse_airfoil;
+use spline::io::svg::{MeshView, mesh_svg};
 use spline::{Error, Result};
 use std::path::Path;
 
@@ -81,7 +82,7 @@ fn wing(root: &Path) -> Result<String> {
             "Wing skinned through 4 UIUC airfoils: max |S(u, v_k) − C_k(u)| = {worst:.0e}"
         )),
     };
-    Ok(skinned.surface.tessellate(80, 12)?.to_svg(&view))
+    Ok(mesh_svg(&skinned.surface.tessellate(80, 12)?, &view))
 }
 
 fn cubic(points: [[f64; 3]; 4]) -> Result<BSpline<f64, V3>> {
@@ -140,7 +141,7 @@ fn coons() -> Result<String> {
             "Coons patch of four cubic boundary curves: bicubic, max boundary error {worst:.1e}"
         )),
     };
-    Ok(patch.tessellate(24, 24)?.to_svg(&view))
+    Ok(mesh_svg(&patch.tessellate(24, 24)?, &view))
 }
 
 fn swept() -> Result<String> {
@@ -193,7 +194,7 @@ fn swept() -> Result<String> {
             "Sweep along {sections} rotation-minimising frames: profile error {worst:.0e}"
         )),
     };
-    Ok(swept.surface.tessellate(20, 64)?.to_svg(&view))
+    Ok(mesh_svg(&swept.surface.tessellate(20, 64)?, &view))
 }
 
 /// Writes `wing.svg`, `coons.svg` and `sweep.svg` into `out_dir`.

@@ -8,8 +8,8 @@ use spline::fit::{
     Parametrization, SmoothingParameter, least_squares_periodic, offset_curve, parametrize,
     smoothing_spline,
 };
-use spline::geom::export::{SvgPlot, sample_params};
 use spline::geom::{BSpline, Curve2, PeriodicBSpline};
+use spline::io::svg::SvgPlot;
 use spline::shape::{SmoothingOptions, smooth};
 use std::path::Path;
 
@@ -31,7 +31,7 @@ fn wave() -> Result<Curve2, String> {
 
 fn points(curve: &Curve2) -> Result<Vec<Vector2<f64>>, String> {
     curve
-        .eval_many(&sample_params(curve, 80))
+        .eval_many(&spline::ParamCurve::sample_params(curve, 80))
         .map_err(|e| e.to_string())
 }
 

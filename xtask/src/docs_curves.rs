@@ -3,8 +3,8 @@
 
 use nalgebra::Vector2;
 use spline::core::KnotVector;
-use spline::geom::export::{SvgPlot, sample_params};
 use spline::geom::{BSpline, Bezier, Curve2};
+use spline::io::svg::SvgPlot;
 use std::path::Path;
 
 fn write(out: &Path, name: &str, plot: &SvgPlot) -> Result<(), String> {
@@ -29,7 +29,7 @@ fn seed_curve() -> Curve2 {
 
 fn curve_points(curve: &Curve2) -> Vec<Vector2<f64>> {
     curve
-        .eval_many(&sample_params(curve, 64))
+        .eval_many(&spline::ParamCurve::sample_params(curve, 64))
         .expect("in domain")
 }
 

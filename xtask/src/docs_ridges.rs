@@ -5,8 +5,9 @@
 
 use nalgebra::Vector3;
 use spline::Error;
-use spline::algebra::{feature_overlays, surface_ridges, umbilics};
-use spline::geom::{MeshView, NurbsSurface};
+use spline::algebra::{surface_feature_lines, surface_ridges, umbilics};
+use spline::geom::NurbsSurface;
+use spline::io::svg::{MeshView, feature_overlays, mesh_svg_with};
 use std::path::Path;
 
 /// Writes `ellipsoid_ridges.svg` and `spheroid_umbilics.svg` into `out_dir`.
@@ -27,11 +28,12 @@ pub(crate) fn render(out_dir: &Path) -> std::result::Result<(), String> {
         title: Some("Ellipsoid 1.5 x 2 x 1: ridges (red κ2, blue κ1), 4 umbilics (yellow)".into()),
         ..MeshView::default()
     };
-    let overlays = feature_overlays(&ellipsoid, 16).map_err(failed)?;
-    let svg = ellipsoid
-        .tessellate(48, 64)
-        .map_err(failed)?
-        .to_svg_with(&view, &overlays);
+    let overlays = feature_overlays(&surface_feature_lines(&ellipsoid, 16).map_err(failed)?);
+    let svg = mesh_svg_with(
+        &ellipsoid.tessellate(48, 64).map_err(failed)?,
+        &view,
+        &overlays,
+    );
     crate::write_doc(out_dir, "ellipsoid_ridges.svg", &svg)?;
 
     let spheroid = sphere.map_control_points(|p| Vector3::new(1.5 * p.x, 1.5 * p.y, p.z));
@@ -49,11 +51,12 @@ pub(crate) fn render(out_dir: &Path) -> std::result::Result<(), String> {
         title: Some("Spheroid 1.5 x 1.5 x 1: umbilics at its poles, ridge at the equator".into()),
         ..MeshView::default()
     };
-    let overlays = feature_overlays(&spheroid, 16).map_err(failed)?;
-    let svg = spheroid
-        .tessellate(48, 64)
-        .map_err(failed)?
-        .to_svg_with(&view, &overlays);
+    let overlays = feature_overlays(&surface_feature_lines(&spheroid, 16).map_err(failed)?);
+    let svg = mesh_svg_with(
+        &spheroid.tessellate(48, 64).map_err(failed)?,
+        &view,
+        &overlays,
+    );
     crate::write_doc(out_dir, "spheroid_umbilics.svg", &svg)?;
     Ok(())
 }

@@ -8,8 +8,8 @@
 //! of §5.1.4 bis match the thesis (235.6 and 158.2); a uniform grid of `[0, 4π]²` for two.
 
 use nalgebra::Vector2;
-use spline::geom::export::SvgPlot;
 use spline::geom::{BSpline, Surface};
+use spline::io::svg::SvgPlot;
 use spline::shape::{FunctionApproximation, Sign, SurfaceApproximation};
 use spline::{Error, Result};
 use std::f64::consts::PI;

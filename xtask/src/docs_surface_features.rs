@@ -3,8 +3,9 @@
 //! revolution before and after the control of its parabolic circles through the meridian.
 
 use nalgebra::Vector3;
-use spline::algebra::{PARABOLIC_COLOUR, feature_overlays, parabolic_lines};
-use spline::geom::{Axis, MeshView, NurbsCurve, NurbsSurface};
+use spline::algebra::{parabolic_lines, surface_feature_lines};
+use spline::geom::{Axis, NurbsCurve, NurbsSurface};
+use spline::io::svg::{MeshView, feature_overlays, mesh_svg_with};
 use spline::shape::{ParabolicCircles, Sign, control_parabolic_circles, revolution_surface};
 use spline::{Error, Result};
 use std::path::Path;
@@ -17,14 +18,14 @@ fn picture(
     view: &MeshView,
 ) -> Result<(String, usize, usize)> {
     // Parabolic lines and umbilics only (the ridges have their own pictures, docs_ridges).
-    let overlays: Vec<_> = feature_overlays(surface, 16)?
-        .into_iter()
-        .filter(|o| o.markers || o.color == PARABOLIC_COLOUR)
-        .collect();
-    let umbilics = overlays.iter().filter(|o| o.markers).count();
+    let mut lines = surface_feature_lines(surface, 16)?;
+    lines.red_ridges.clear();
+    lines.blue_ridges.clear();
+    let overlays = feature_overlays(&lines);
+    let umbilics = lines.umbilics.len();
     let mesh = surface.tessellate(segments.0, segments.1)?;
     Ok((
-        mesh.to_svg_with(view, &overlays),
+        mesh_svg_with(&mesh, view, &overlays),
         overlays.len() - umbilics,
         umbilics,
     ))

@@ -3,14 +3,14 @@
 //! meshed, shaded NURBS spheres and tori.
 
 use nalgebra::{Vector2, Vector3};
-use spline::geom::export::{SvgPlot, sample_params};
-use spline::geom::{CircleConstruction, Frame, MeshView, NurbsCurve, NurbsSurface};
+use spline::geom::{CircleConstruction, Frame, NurbsCurve, NurbsSurface};
+use spline::io::svg::{MeshView, SvgPlot, mesh_svg};
 use spline::{Error, Result};
 use std::path::Path;
 
 /// Parameters with `per_span` steps in every knot span of the curve.
 fn samples(curve: &NurbsCurve<f64, 2>, per_span: usize) -> Vec<f64> {
-    sample_params(curve.homogeneous(), per_span)
+    spline::ParamCurve::sample_params(curve.homogeneous(), per_span)
 }
 
 /// Draws a planar NURBS curve (class `class`) with its control polygon and control points.
@@ -63,7 +63,7 @@ fn mesh_picture(
     segments: (usize, usize),
     view: &MeshView,
 ) -> Result<String> {
-    Ok(surface.tessellate(segments.0, segments.1)?.to_svg(view))
+    Ok(mesh_svg(&surface.tessellate(segments.0, segments.1)?, view))
 }
 
 /// Writes `circle_square.svg`, `circle_triangle.svg`, `conics.svg`, `sphere.svg` and

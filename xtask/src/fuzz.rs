@@ -288,7 +288,7 @@ mod tests {
     use super::*;
     use crate::mutate::scale_numbers;
     use nalgebra::Vector2;
-    use spline::geom::exchange::CurveRecord;
+    use spline::io::exchange::CurveRecord;
 
     /// The short deterministic pass that CI runs: the same generators as `cargo xtask fuzz`,
     /// a fixed seed, a few hundred cases per target.

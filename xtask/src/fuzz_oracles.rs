@@ -7,8 +7,10 @@
 use crate::mutate::Rng;
 use nalgebra::{Vector2, Vector3};
 use spline::core::KnotVector;
-use spline::geom::exchange::{CurveRecord, SurfaceRecord, parse_points};
 use spline::geom::{BSpline, NurbsCurve, NurbsSurface, Surface};
+use spline::io::airfoil::parse_airfoil;
+use spline::io::exchange::{CurveRecord, SurfaceRecord, from_json};
+use spline::io::points::parse_points;
 
 thread_local! {
     /// What the `operations` target is doing, for the report of a panic.
@@ -17,7 +19,7 @@ thread_local! {
 
 /// The exchange-format reader: every record type and every container.
 pub(crate) fn exchange(text: &str) -> Result<(), String> {
-    if let Ok(record) = serde_json::from_str::<CurveRecord>(text) {
+    if let Ok(record) = CurveRecord::from_json(text) {
         let _ = record.dimension();
         if let Ok(c) = record.to_bspline::<f64, Vector2<f64>>() {
             finite(c.control_points().iter().flat_map(|p| p.iter().copied()))?;
@@ -31,7 +33,7 @@ pub(crate) fn exchange(text: &str) -> Result<(), String> {
             }
         }
     }
-    if let Ok(record) = serde_json::from_str::<SurfaceRecord>(text) {
+    if let Ok(record) = SurfaceRecord::from_json(text) {
         let _ = record.dimension();
         let _ = record.to_surface::<f64, Vector3<f64>>();
         if let Ok(s) = record.to_nurbs_surface::<f64, 3>() {
@@ -42,12 +44,13 @@ pub(crate) fn exchange(text: &str) -> Result<(), String> {
             }
         }
     }
-    let _ = serde_json::from_str::<BSpline<f64, Vector2<f64>>>(text);
-    let _ = serde_json::from_str::<NurbsSurface<f64, 3>>(text);
+    let _ = from_json::<BSpline<f64, Vector2<f64>>>(text);
+    let _ = from_json::<NurbsSurface<f64, 3>>(text);
+    let _ = spline::io::exchange::parse_json(text).map(spline::io::exchange::Record::from_value);
     Ok(())
 }
 
-/// The point-file and `.dat` reader.
+/// The point-file and `.dat` readers.
 pub(crate) fn points(text: &str) -> Result<(), String> {
     if let Ok(rows) = parse_points(text) {
         finite(rows.iter().flatten().copied())?;
@@ -55,6 +58,9 @@ pub(crate) fn points(text: &str) -> Result<(), String> {
         if rows.iter().any(|r| r.len() != d) {
             return Err("rows of different dimensions accepted".into());
         }
+    }
+    if let Ok(airfoil) = parse_airfoil(text) {
+        finite(airfoil.points.iter().flat_map(|p| [p.x, p.y]))?;
     }
     Ok(())
 }
@@ -151,13 +157,13 @@ pub(crate) fn operations(rng: &mut Rng) -> Result<(), String> {
     CURRENT.with(|current| {
         *current.borrow_mut() = format!(
             "operation {op} at u = {u} on {}",
-            serde_json::json!(spline::geom::exchange::CurveRecord::from_bspline(&c))
+            CurveRecord::from_bspline(&c).to_json()
         );
     });
     operation(rng, op, &c, u).map_err(|e| {
         format!(
             "operation {op} at u = {u} on {}: {e}",
-            serde_json::json!(spline::geom::exchange::CurveRecord::from_bspline(&c))
+            CurveRecord::from_bspline(&c).to_json()
         )
     })
 }
@@ -287,7 +293,7 @@ fn operation(
         }
         13 => {
             let pts: Vec<Vector2<f64>> = c
-                .eval_many(&spline::geom::export::sample_params(&c, 4))
+                .eval_many(&spline::ParamCurve::sample_params(&c, 4))
                 .unwrap_or_default();
             let params = spline::fit::parametrize(&pts, &spline::fit::Parametrization::Chordal);
             if let Ok(params) = params {

@@ -11,7 +11,7 @@
 //!    diverge).
 
 use nalgebra::Vector2;
-use spline::geom::airfoil::parse_airfoil;
+use spline::io::airfoil::parse_airfoil;
 use spline::shape::{
     AdaptiveOptions, Extremum, ExtremumKind, FunctionApproximation, Sign, SmoothingOptions,
     optimise_perimeter_over_area, sampled_curvature_extrema, smooth,

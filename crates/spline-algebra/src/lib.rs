@@ -31,7 +31,8 @@
 //! - Surfaces: [`curvature_numerators`] (`K`, `H`, umbilic conditions as bivariate splines),
 //!   [`zero_set`] and [`common_zeros`] of bivariate splines, [`parabolic_lines`],
 //!   [`umbilics`] (with those at poles), [`ridges`] of functions, [`surface_ridges`] of
-//!   parametric surfaces, [`feature_overlays`] for pictures.
+//!   parametric surfaces, all of them in space by [`surface_feature_lines`] (drawn by
+//!   `spline-io`).
 //! - Roots: [`zeros`] and [`sign_change_params`] of any B-spline function.
 //! - Intersections of planar curves of any kind: [`intersect_curves`] and
 //!   [`self_intersections`] (subdivision of the Bézier pieces, Newton's method, tangential
@@ -122,8 +123,8 @@ pub use space::{
 };
 pub use sparse::kron;
 pub use surface_numerators::{
-    BLUE_RIDGE_COLOUR, CurvatureNumerators, NumeratorJacobians, PARABOLIC_COLOUR, RED_RIDGE_COLOUR,
-    curvature_numerators, curvature_numerators_with_jacobians, feature_overlays, parabolic_lines,
+    CurvatureNumerators, NumeratorJacobians, SurfaceFeatureLines, curvature_numerators,
+    curvature_numerators_with_jacobians, parabolic_lines, surface_feature_lines,
 };
 pub use tensor::{
     Partial, QuadraticFunction, TensorMap, TensorProductMap, hessian_determinant, partial,

@@ -7,6 +7,7 @@ use crate::numerator::{Tracked, cross3, dot3};
 use crate::sparse::{csr_from_rows, matmul};
 use crate::tensor::{TensorMap, partial};
 use crate::zero_set::{ZeroSet, zero_set};
+use nalgebra::Vector3;
 use nalgebra_sparse::CsrMatrix;
 use spline_core::{KnotVector, Result, Scalar};
 use spline_geom::{NurbsSurface, Surface};
@@ -338,54 +339,48 @@ pub fn parabolic_lines(surface: &NurbsSurface<f64, 3>, samples: usize) -> Result
     Ok(set)
 }
 
-/// The parabolic lines (orange), ridges (red and blue, [`crate::surface_ridges`]) and
-/// umbilics (yellow dots, those at poles included) of a surface as overlays of its picture
-/// ([`spline_geom::TriangleMesh::to_svg_with`]), the lines with `samples` points per patch
+/// The curvature features of a surface as curves and points in space, ready to be drawn over
+/// its picture (`spline_io::svg::feature_overlays`).
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct SurfaceFeatureLines {
+    /// The parabolic lines ([`parabolic_lines`]) as polylines.
+    pub parabolic: Vec<Vec<Vector3<f64>>>,
+    /// The ridges where `κ₂` is extremal ([`crate::surface_ridges`], red).
+    pub red_ridges: Vec<Vec<Vector3<f64>>>,
+    /// The ridges where `κ₁` is extremal (blue).
+    pub blue_ridges: Vec<Vec<Vector3<f64>>>,
+    /// The umbilics ([`crate::umbilics`]), those at poles included.
+    pub umbilics: Vec<Vector3<f64>>,
+}
+
+/// The parabolic lines, ridges ([`crate::surface_ridges`]) and umbilics (those at poles
+/// included) of a surface, mapped into space, the lines with `samples` points per patch
 /// width.
 ///
 /// # Errors
 /// As [`parabolic_lines`], [`crate::surface_ridges`] and [`crate::umbilics`].
-pub fn feature_overlays(
+pub fn surface_feature_lines(
     surface: &NurbsSurface<f64, 3>,
     samples: usize,
-) -> Result<Vec<spline_geom::SvgOverlay>> {
-    let mut overlays = Vec::new();
-    let line = |curve: &[[f64; 2]], color: [u8; 3], width: f64| -> Result<_> {
-        Ok(spline_geom::SvgOverlay {
-            points: curve
-                .iter()
-                .map(|p| surface.eval(p[0], p[1]))
-                .collect::<Result<_>>()?,
-            color,
-            width,
-            markers: false,
-        })
+) -> Result<SurfaceFeatureLines> {
+    let lift = |curves: &[Vec<[f64; 2]>]| -> Result<Vec<Vec<Vector3<f64>>>> {
+        curves
+            .iter()
+            .map(|curve| curve.iter().map(|p| surface.eval(p[0], p[1])).collect())
+            .collect()
     };
-    for curve in &parabolic_lines(surface, samples)?.curves {
-        overlays.push(line(curve, PARABOLIC_COLOUR, 2.5)?);
-    }
+    let parabolic = lift(&parabolic_lines(surface, samples)?.curves)?;
     let ridges = crate::surface_ridges(surface, samples)?;
-    for curve in &ridges.red {
-        overlays.push(line(curve, RED_RIDGE_COLOUR, 2.0)?);
-    }
-    for curve in &ridges.blue {
-        overlays.push(line(curve, BLUE_RIDGE_COLOUR, 2.0)?);
-    }
     let umbilics = crate::umbilics(surface)?;
-    for p in umbilics.points.iter().chain(&umbilics.poles) {
-        overlays.push(spline_geom::SvgOverlay {
-            points: vec![surface.eval(p[0], p[1])?],
-            color: [250, 220, 0],
-            width: 3.0,
-            markers: true,
-        });
-    }
-    Ok(overlays)
+    Ok(SurfaceFeatureLines {
+        parabolic,
+        red_ridges: lift(&ridges.red)?,
+        blue_ridges: lift(&ridges.blue)?,
+        umbilics: umbilics
+            .points
+            .iter()
+            .chain(&umbilics.poles)
+            .map(|p| surface.eval(p[0], p[1]))
+            .collect::<Result<_>>()?,
+    })
 }
-
-/// The colour of parabolic lines in [`feature_overlays`].
-pub const PARABOLIC_COLOUR: [u8; 3] = [235, 110, 20];
-/// The colour of red ridges (of `κ₂`) in [`feature_overlays`].
-pub const RED_RIDGE_COLOUR: [u8; 3] = [215, 30, 40];
-/// The colour of blue ridges (of `κ₁`) in [`feature_overlays`].
-pub const BLUE_RIDGE_COLOUR: [u8; 3] = [30, 80, 220];

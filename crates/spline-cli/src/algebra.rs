@@ -7,7 +7,7 @@ use serde_json::{Value, json};
 use spline_algebra::{CsrMatrix, ProductMap};
 use spline_core::{Error, ErrorKind, Result};
 use spline_geom::BSpline;
-use spline_geom::exchange::CurveRecord;
+use spline_io::exchange::CurveRecord;
 
 #[derive(Args)]
 pub struct ProductArgs {

@@ -6,7 +6,8 @@ use serde::de::DeserializeOwned;
 use serde_json::Value;
 use serde_json::value::RawValue;
 use spline_core::{Error, ErrorKind, Result};
-use spline_geom::exchange::parse_points;
+use spline_io::exchange::{parse_json, serde_message};
+use spline_io::points::parse_points;
 use std::io::{Read, Write};
 use std::sync::atomic::{AtomicBool, Ordering};
 
@@ -34,10 +35,10 @@ pub fn read_text(path: &str) -> Result<String> {
 /// Reads a JSON document from a file or `-`.
 pub fn read_json(path: &str) -> Result<Value> {
     let text = read_text(path)?;
-    serde_json::from_str(&text).map_err(|e| {
+    parse_json(&text).map_err(|e| {
         Error::new(
             ErrorKind::Parse,
-            format!("{path} is not valid JSON: {}", plain_serde(&e.to_string())),
+            format!("{path} is not valid JSON: {}", serde_message(e.message())),
         )
     })
 }
@@ -61,7 +62,7 @@ pub fn parse_arg<T: DeserializeOwned>(option: &str, text: &str) -> Result<T> {
     let mut deserializer = serde_json::Deserializer::from_str(text);
     let value: T = serde_path_to_error::deserialize(&mut deserializer).map_err(|e| {
         let place = entry_name(&e.path().to_string());
-        let what = plain_serde(&e.inner().to_string());
+        let what = serde_message(&e.inner().to_string());
         let message = if e.inner().is_syntax() || e.inner().is_eof() {
             format!("{option}: {} is not valid JSON: {what}", quote(text))
         } else if place.is_empty() {
@@ -77,7 +78,7 @@ pub fn parse_arg<T: DeserializeOwned>(option: &str, text: &str) -> Result<T> {
             format!(
                 "{option}: {} is not valid JSON: {}",
                 quote(text),
-                plain_serde(&e.to_string())
+                serde_message(&e.to_string())
             ),
         )
     })?;
@@ -95,59 +96,6 @@ fn entry_name(path: &str) -> String {
         [i, j] => format!("entry {i}, item {j}"),
         _ => format!("at {path}"),
     }
-}
-
-/// serde's words for JSON people: "expected an array, got the number 0" rather than
-/// "invalid type: floating point `0`, expected a sequence", and no line and column for
-/// one-line values.
-fn plain_serde(message: &str) -> String {
-    let mut m = message.to_string();
-    if let Some(at) = m.find(" at line 1 column") {
-        m.truncate(at);
-    }
-    let words = |text: &str| {
-        text.replace("a sequence", "an array")
-            .replace("sequence", "array")
-            .replace("a map", "an object")
-            .replace("usize", "a non-negative integer")
-            .replace("u64", "a non-negative integer")
-            .replace("f64", "a number")
-            .replace("floating point `", "the number `")
-            .replace("integer `", "the number `")
-            .replace('`', "")
-    };
-    for prefix in ["invalid type: ", "invalid value: "] {
-        if let Some(rest) = m.strip_prefix(prefix) {
-            if let Some((got, expected)) = rest.split_once(", expected ") {
-                let got = match got {
-                    "map" => "an object".to_string(),
-                    "sequence" => "an array".to_string(),
-                    "null" => "null".to_string(),
-                    other if other.starts_with("string ") || other.starts_with("boolean ") => {
-                        format!("the {}", words(other))
-                    }
-                    other => words(other),
-                };
-                return format!("expected {}, got {got}", words(expected));
-            }
-        }
-    }
-    words(&m)
-}
-
-/// Deserialises a JSON value into a record type; the message names the field
-/// (`malformed curve: control_points[0]: …`).
-pub fn from_value<T: DeserializeOwned>(what: &str, value: Value) -> Result<T> {
-    serde_path_to_error::deserialize(value).map_err(|e| {
-        let path = e.path().to_string();
-        let what_went_wrong = plain_serde(&e.inner().to_string());
-        let message = if path == "." {
-            format!("malformed {what}: {what_went_wrong}")
-        } else {
-            format!("malformed {what}: field {path}: {what_went_wrong}")
-        };
-        Error::new(ErrorKind::Parse, message)
-    })
 }
 
 /// Set when standard output turned out to be a closed pipe: the tool then ends quietly.
@@ -350,20 +298,8 @@ pub fn unpad(p: &Pt, dim: usize) -> Vec<f64> {
     p.as_slice()[..dim].to_vec()
 }
 
-/// What kind of JSON value this is, for messages.
-pub fn json_kind(value: &Value) -> &'static str {
-    match value {
-        Value::Null => "null",
-        Value::Bool(_) => "a boolean",
-        Value::Number(_) => "a number",
-        Value::String(_) => "a string",
-        Value::Array(_) => "an array",
-        Value::Object(_) => "an object",
-    }
-}
-
 /// Reads a point file (JSON array of arrays, or text; see
-/// [`spline_geom::exchange::parse_points`]).
+/// [`spline_io::points::parse_points`]).
 ///
 /// # Errors
 /// [`ErrorKind::Io`] for an unreadable file; the errors of `parse_points`, naming the file.

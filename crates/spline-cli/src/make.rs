@@ -6,8 +6,8 @@ use crate::objects::{Curve, Nurbs, NurbsSurf, Sized, Surf, read_curve};
 use clap::{Args, Subcommand, ValueEnum};
 use nalgebra::{SVector, Vector2, Vector3};
 use spline_core::{Error, ErrorKind, Result};
-use spline_geom::exchange::SurfaceRecord;
 use spline_geom::{Axis, CircleConstruction, Frame, NurbsCurve, NurbsSurface, Surface};
+use spline_io::exchange::SurfaceRecord;
 
 fn invalid(message: impl Into<String>) -> Error {
     Error::new(ErrorKind::InvalidArgument, message)

@@ -7,7 +7,8 @@ use clap::Args;
 use nalgebra::Vector3;
 use serde_json::json;
 use spline_core::{Error, ErrorKind, Result};
-use spline_geom::{MeshView, TriangleMesh};
+use spline_geom::TriangleMesh;
+use spline_io::svg::{MeshView, feature_overlays, mesh_svg, mesh_svg_with};
 
 fn invalid(message: impl Into<String>) -> Error {
     Error::new(ErrorKind::InvalidArgument, message)
@@ -95,14 +96,19 @@ pub fn mesh(args: &MeshArgs) -> Result<()> {
         Object::Curve(_) | Object::Nurbs(_) => unreachable!("checked above"),
     };
     let text = match format {
-        MeshFormat::Obj => mesh.to_obj(),
-        MeshFormat::Off => mesh.to_off(),
-        MeshFormat::Svg if args.features => mesh.to_svg_with(
+        MeshFormat::Obj => spline_io::obj::write_obj(&mesh),
+        MeshFormat::Off => spline_io::off::write_off(&mesh),
+        MeshFormat::Svg if args.features => mesh_svg_with(
+            &mesh,
             &MeshView::default(),
-            &spline_algebra::feature_overlays(&surface3(&object, &args.surface, "--features")?, 8)
-                .map_err(|e| e.context(&args.surface))?,
+            &spline_algebra::surface_feature_lines(
+                &surface3(&object, &args.surface, "--features")?,
+                8,
+            )
+            .map(|lines| feature_overlays(&lines))
+            .map_err(|e| e.context(&args.surface))?,
         ),
-        MeshFormat::Svg => mesh.to_svg(&MeshView::default()),
+        MeshFormat::Svg => mesh_svg(&mesh, &MeshView::default()),
     };
     io::write_file(file, &args.output, text.as_bytes())?;
     io::print_json(&json!({

@@ -7,8 +7,8 @@ use crate::io::{self, MAX_DIM, Pt};
 use serde::Serialize;
 use serde_json::Value;
 use spline_core::{Error, ErrorKind, KnotVector, Result};
-use spline_geom::exchange::{CurveRecord, SurfaceRecord};
 use spline_geom::{BSpline, NurbsCurve, NurbsSurface, Surface};
+use spline_io::exchange::{CurveRecord, Record, SurfaceRecord};
 
 /// A B-spline curve with padded points.
 pub type Curve = BSpline<f64, Pt>;
@@ -119,34 +119,19 @@ pub fn read_object(path: &str) -> Result<Object> {
     classify(value).map_err(|e| e.context(path))
 }
 
-/// Classifies and validates a JSON object (see [`read_object`]).
+/// Classifies and validates a JSON object (see [`read_object`];
+/// [`Record::from_value`] reads the record, reports of the tool included).
 ///
 /// # Errors
 /// As [`read_object`].
 pub fn classify(value: Value) -> Result<Object> {
-    if !value.is_object() {
-        return Err(Error::new(
-            ErrorKind::Parse,
-            format!(
-                "expected a JSON object with degree, knots and control_points, got {}",
-                io::json_kind(&value)
-            ),
-        ));
+    match Record::from_value(value)? {
+        Record::Curve(record) => curve_from_record(&record),
+        Record::Surface(record) => surface_from_record(&record),
     }
-    // The reports of the tool (`smooth`, `offset`, `reduce`, `smoothing`, `arclength
-    // --reparametrize`, `approximate-surface`) hold their object under "curve" or
-    // "surface": every reader accepts what the tool writes.
-    if value.get("knots").is_none() {
-        for key in ["curve", "surface"] {
-            if let Some(inner) = value.get(key).filter(|v| v.is_object()) {
-                return classify(inner.clone());
-            }
-        }
-    }
-    if value.get("degree").is_some_and(Value::is_array) {
-        return surface_from_value(value);
-    }
-    let record: CurveRecord = io::from_value("curve", value)?;
+}
+
+fn curve_from_record(record: &CurveRecord) -> Result<Object> {
     let dim = record.dimension()?;
     let points = record
         .control_points
@@ -154,20 +139,19 @@ pub fn classify(value: Value) -> Result<Object> {
         .map(|r| io::pad(r))
         .collect::<Result<Vec<_>>>()?;
     let knots = KnotVector::new(record.degree, record.knots.clone())?;
-    Ok(match record.weights {
+    Ok(match &record.weights {
         None => Object::Curve(Sized {
             value: BSpline::new(knots, points)?,
             dim,
         }),
         Some(weights) => Object::Nurbs(Sized {
-            value: NurbsCurve::new(knots, points, weights)?,
+            value: NurbsCurve::new(knots, points, weights.clone())?,
             dim,
         }),
     })
 }
 
-fn surface_from_value(value: Value) -> Result<Object> {
-    let record: SurfaceRecord = io::from_value("surface", value)?;
+fn surface_from_record(record: &SurfaceRecord) -> Result<Object> {
     let dim = record.dimension()?;
     let (ku, kv) = record.knot_vectors::<f64>()?;
     let net = record
@@ -175,13 +159,13 @@ fn surface_from_value(value: Value) -> Result<Object> {
         .iter()
         .map(|row| row.iter().map(|p| io::pad(p)).collect::<Result<Vec<_>>>())
         .collect::<Result<Vec<_>>>()?;
-    Ok(match record.weights {
+    Ok(match &record.weights {
         None => Object::Surface(Sized {
             value: Surface::from_net(ku, kv, net)?,
             dim,
         }),
         Some(weights) => Object::NurbsSurface(Sized {
-            value: NurbsSurface::from_net(ku, kv, net, weights)?,
+            value: NurbsSurface::from_net(ku, kv, net, weights.clone())?,
             dim,
         }),
     })

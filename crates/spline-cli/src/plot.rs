@@ -10,8 +10,8 @@ use nalgebra::{Vector2, Vector3};
 use serde_json::json;
 use spline_algebra::{CurveFeatures, PlanarFeatures, SpaceCurveFeatures, SpaceFeatures};
 use spline_core::{Error, ErrorKind, Result};
-use spline_geom::export::SvgPlot;
 use spline_geom::{BSpline, NurbsCurve, ParamCurve, PlanarCurve};
+use spline_io::svg::SvgPlot;
 
 /// Root accuracy of `features`, relative to the length of the domain.
 const RELATIVE_ACCURACY: f64 = 1e-12;

@@ -8,8 +8,8 @@ use nalgebra::Vector2;
 use rayon::prelude::*;
 use serde_json::{Value, json};
 use spline_core::{Error, ErrorKind, Result};
-use spline_geom::airfoil::parse_airfoil;
-use spline_geom::exchange::CurveRecord;
+use spline_io::airfoil::parse_airfoil;
+use spline_io::exchange::CurveRecord;
 use spline_shape::{
     AdaptiveOptions, Extremum, Objective, SmoothedCurve, SmoothingOptions,
     optimise_perimeter_over_area, smooth as erase, smooth_to_tolerance,
@@ -105,7 +105,7 @@ fn options(args: &SmoothArgs) -> Result<SmoothingOptions> {
 fn read_planar(path: &str) -> Result<Vec<Vector2<f64>>> {
     let text = io::read_text(path)?;
     if text.trim_start().starts_with('[') {
-        let rows = spline_geom::exchange::parse_points(&text).map_err(|e| e.context(path))?;
+        let rows = spline_io::points::parse_points(&text).map_err(|e| e.context(path))?;
         rows.iter()
             .enumerate()
             .map(|(i, r)| match r.as_slice() {

@@ -361,7 +361,7 @@ pub fn make_sweep(profile: &str, path: &str, sections: usize) -> Result<Json> {
 #[derive(Args)]
 pub struct ApproximateSurfaceArgs {
     /// Points in space (JSON array or text, one point per line) or a triangle mesh (`.obj`:
-    /// `v x y z` and `f i j k` lines).
+    /// `v x y z` and `f i j k` lines, read by `spline_io::obj::read_obj`).
     points: String,
     /// Control points in u and v, as JSON: `[m, n]`.
     #[arg(long)]
@@ -377,55 +377,6 @@ pub struct ApproximateSurfaceArgs {
     smoothing: f64,
 }
 
-/// The vertices and triangles of a mesh.
-type Mesh = (Vec<Vector3<f64>>, Vec<[usize; 3]>);
-
-/// Vertices and triangles of a Wavefront OBJ text (`v` and `f` lines; `f` entries may be
-/// `i`, `i/t` or `i/t/n`, 1-based; polygons are fanned into triangles).
-fn parse_obj(text: &str) -> Result<Mesh> {
-    let mut vertices = Vec::new();
-    let mut faces = Vec::new();
-    for (n, line) in text.lines().enumerate() {
-        let mut words = line.split_whitespace();
-        let bad = |what: &str| Error::new(ErrorKind::Parse, format!("line {}: {what}", n + 1));
-        match words.next() {
-            Some("v") => {
-                let c: Vec<f64> = words
-                    .take(3)
-                    .map(str::parse)
-                    .collect::<std::result::Result<_, _>>()
-                    .map_err(|_| bad("a vertex needs three numbers"))?;
-                if c.len() != 3 {
-                    return Err(bad("a vertex needs three numbers"));
-                }
-                vertices.push(Vector3::new(c[0], c[1], c[2]));
-            }
-            Some("f") => {
-                let idx: Vec<usize> = words
-                    .map(|w| {
-                        w.split('/')
-                            .next()
-                            .unwrap_or("")
-                            .parse::<usize>()
-                            .ok()
-                            .filter(|&i| i >= 1)
-                            .map(|i| i - 1)
-                    })
-                    .collect::<Option<_>>()
-                    .ok_or_else(|| bad("face indices must be positive integers"))?;
-                if idx.len() < 3 {
-                    return Err(bad("a face needs three vertices"));
-                }
-                for k in 1..idx.len() - 1 {
-                    faces.push([idx[0], idx[k], idx[k + 1]]);
-                }
-            }
-            _ => {}
-        }
-    }
-    Ok((vertices, faces))
-}
-
 /// Prints `{"surface", "max_deviation", "rms", "max_deviation_to_data", "corrections"}`.
 ///
 /// # Errors
@@ -437,9 +388,9 @@ pub fn approximate_surface(args: &ApproximateSurfaceArgs) -> Result<()> {
         None => [3, 3],
     };
     let (points, triangles) = if args.points.to_ascii_lowercase().ends_with(".obj") {
-        let (v, f) =
-            parse_obj(&io::read_text(&args.points)?).map_err(|e| e.context(&args.points))?;
-        (v, Some(f))
+        let mesh = spline_io::obj::read_obj(&io::read_text(&args.points)?)
+            .map_err(|e| e.context(&args.points))?;
+        (mesh.vertices, Some(mesh.triangles))
     } else {
         let rows = io::read_points(&args.points)?;
         let points = rows

@@ -14,8 +14,9 @@
 //! - [`NurbsCurve`] and [`NurbsSurface`]: rational views over containers of [`Homogeneous`]
 //!   points, with rational derivatives of any order and the classic constructions (conics,
 //!   circles both ways of the notes, arcs, extrusion, ruled and conical surfaces, surfaces of
-//!   revolution, sphere, torus); tessellation into a [`TriangleMesh`] (OBJ, OFF, SVG).
-//! - Exchange-format (de)serialisation and export as gnuplot `.dat` and SVG.
+//!   revolution, sphere, torus); tessellation into a [`TriangleMesh`].
+//!
+//! File formats (the JSON exchange format, OBJ, OFF, SVG, STEP, IGES…) live in `spline-io`.
 //!
 //! ```
 //! use nalgebra::Vector2;
@@ -30,7 +31,6 @@
 //! # Ok::<(), spline_core::Error>(())
 //! ```
 
-pub mod airfoil;
 mod arclength;
 mod bezier;
 mod bspline;
@@ -38,9 +38,6 @@ mod columns;
 mod construct;
 mod curve_tools;
 mod evaluator;
-#[cfg(feature = "serde")]
-pub mod exchange;
-pub mod export;
 mod homogeneous;
 mod mesh;
 mod nd;
@@ -53,7 +50,6 @@ mod param_impls;
 mod periodic;
 mod pieces;
 mod planar;
-mod point_text;
 mod structural;
 mod surface;
 mod surface_geometry;
@@ -74,7 +70,7 @@ pub use curve_tools::{
 };
 pub use evaluator::{CurveEvaluator, NurbsEvaluator};
 pub use homogeneous::Homogeneous;
-pub use mesh::{MAX_MESH_SEGMENTS, MeshView, SvgOverlay, TriangleMesh};
+pub use mesh::{MAX_MESH_SEGMENTS, TriangleMesh};
 pub use nd::{NdSpline, knot_vectors};
 pub use nurbs::{
     HomogeneousContainer, NurbsCurve, NurbsCurve2, NurbsCurve3, NurbsSurface, NurbsSurface3,

@@ -1,5 +1,5 @@
-//! Tessellation of surfaces into triangle meshes; export as OBJ, OFF (the geomview format
-//! of seed 000) and shaded SVG pictures.
+//! Tessellation of surfaces into triangle meshes (written and read as OBJ and OFF, drawn as
+//! SVG pictures by `spline-io`).
 
 use crate::nurbs::NurbsSurface;
 use crate::param::ParamSurface;
@@ -7,7 +7,6 @@ use crate::surface::Surface;
 use nalgebra::Vector3;
 use spline_core::{ControlPoint, Error, ErrorKind, Result, Scalar, from_count, to_f64};
 use std::collections::HashMap;
-use std::fmt::Write;
 
 /// A triangle mesh with per-vertex normals. Triangles are oriented counter-clockwise seen
 /// from the side the normals point to.
@@ -17,7 +16,6 @@ use std::fmt::Write;
 /// use spline_geom::NurbsSurface;
 /// let mesh = NurbsSurface::sphere(Vector3::zeros(), 1.0)?.tessellate(16, 32)?;
 /// assert_eq!(mesh.euler_characteristic(), 2); // a closed sphere: the seam and poles are welded
-/// assert!(mesh.to_off().starts_with("OFF\n"));
 /// # Ok::<(), spline_core::Error>(())
 /// ```
 #[derive(Clone, Debug, PartialEq, Default)]
@@ -28,38 +26,6 @@ pub struct TriangleMesh {
     pub normals: Vec<Vector3<f64>>,
     /// Triangles as indices into `vertices`.
     pub triangles: Vec<[usize; 3]>,
-}
-
-/// The viewpoint and style of [`TriangleMesh::to_svg`]: an orthographic view from the
-/// direction given by azimuth (about `z`, from `x`) and elevation (above the `xy` plane),
-/// in degrees.
-#[derive(Clone, Debug, PartialEq)]
-pub struct MeshView {
-    /// Azimuth of the viewer in degrees.
-    pub azimuth: f64,
-    /// Elevation of the viewer in degrees.
-    pub elevation: f64,
-    /// Width of the picture in pixels.
-    pub width: f64,
-    /// Fill colour of lit triangles, as RGB.
-    pub color: [u8; 3],
-    /// Draw the triangle edges.
-    pub wireframe: bool,
-    /// Optional caption.
-    pub title: Option<String>,
-}
-
-impl Default for MeshView {
-    fn default() -> Self {
-        Self {
-            azimuth: 30.0,
-            elevation: 25.0,
-            width: 600.0,
-            color: [70, 130, 200],
-            wireframe: true,
-            title: None,
-        }
-    }
 }
 
 impl TriangleMesh {
@@ -190,8 +156,13 @@ impl TriangleMesh {
         self.normals = normals;
     }
 
-    /// The normal of a triangle scaled by twice its area.
-    fn face_normal(&self, t: &[usize; 3]) -> Vector3<f64> {
+    /// The normal of a triangle (indices into `vertices`) scaled by twice its area, by the
+    /// right-hand rule.
+    ///
+    /// # Panics
+    /// If an index is not one of a vertex.
+    #[must_use]
+    pub fn face_normal(&self, t: &[usize; 3]) -> Vector3<f64> {
         let [a, b, c] = t.map(|k| self.vertices[k]);
         (b - a).cross(&(c - a))
     }
@@ -236,239 +207,6 @@ impl TriangleMesh {
         let count = |n: usize| i64::try_from(n).unwrap_or(i64::MAX);
         count(v) - count(self.edge_counts().len()) + count(self.triangles.len())
     }
-
-    /// The mesh in Wavefront OBJ: `v` lines, `vn` lines, then `f a//a b//b c//c` (1-based).
-    #[must_use]
-    pub fn to_obj(&self) -> String {
-        let mut out = String::with_capacity(64 * (self.vertices.len() + self.triangles.len()));
-        let _ = writeln!(
-            out,
-            "# spline mesh: {} vertices, {} triangles",
-            self.vertices.len(),
-            self.triangles.len()
-        );
-        for v in &self.vertices {
-            let _ = writeln!(out, "v {} {} {}", v.x, v.y, v.z);
-        }
-        for n in &self.normals {
-            let _ = writeln!(out, "vn {} {} {}", n.x, n.y, n.z);
-        }
-        for t in &self.triangles {
-            let [a, b, c] = t.map(|k| k + 1);
-            let _ = writeln!(out, "f {a}//{a} {b}//{b} {c}//{c}");
-        }
-        out
-    }
-
-    /// The mesh in the OFF format of geomview: `OFF`, the counts `V F 0`, the vertices, then
-    /// `3 a b c` per triangle (0-based).
-    #[must_use]
-    pub fn to_off(&self) -> String {
-        let mut out = String::with_capacity(48 * (self.vertices.len() + self.triangles.len()));
-        let _ = writeln!(
-            out,
-            "OFF\n{} {} 0",
-            self.vertices.len(),
-            self.triangles.len()
-        );
-        for v in &self.vertices {
-            let _ = writeln!(out, "{} {} {}", v.x, v.y, v.z);
-        }
-        for t in &self.triangles {
-            let _ = writeln!(out, "3 {} {} {}", t[0], t[1], t[2]);
-        }
-        out
-    }
-
-    /// An SVG picture: orthographic projection, triangles painted back to front with
-    /// Lambert shading (two-sided); back faces are skipped when the mesh is closed.
-    #[must_use]
-    pub fn to_svg(&self, view: &MeshView) -> String {
-        self.to_svg_with(view, &[])
-    }
-
-    /// [`TriangleMesh::to_svg`] with curves and points drawn over the surface (feature
-    /// lines, umbilics): each segment and point is painted in depth order with the
-    /// triangles, slightly in front of them, so that the surface hides what lies behind it.
-    #[must_use]
-    pub fn to_svg_with(&self, view: &MeshView, overlays: &[SvgOverlay]) -> String {
-        let (az, el) = (view.azimuth.to_radians(), view.elevation.to_radians());
-        let eye = Vector3::new(el.cos() * az.cos(), el.cos() * az.sin(), el.sin());
-        let right = Vector3::z().cross(&eye);
-        let right = if right.norm() > 1e-12 {
-            right.normalize()
-        } else {
-            Vector3::y()
-        };
-        let up = eye.cross(&right);
-        let light = (eye + up * 0.6 + right * 0.4).normalize();
-        let closed = self.boundary_edges() == 0 && !self.triangles.is_empty();
-        let project = |p: &Vector3<f64>| (p.dot(&right), p.dot(&up), p.dot(&eye));
-        let mut faces: Vec<Face> = self
-            .triangles
-            .iter()
-            .filter_map(|t| {
-                let n = self.face_normal(t);
-                let len = n.norm();
-                if len == 0.0 || (closed && n.dot(&eye) < 0.0) {
-                    return None;
-                }
-                let corners = t.map(|k| project(&self.vertices[k]));
-                let depth = (corners[0].2 + corners[1].2 + corners[2].2) / 3.0;
-                let shade = 0.25 + 0.75 * (n.dot(&light) / len).abs();
-                Some(Face {
-                    depth,
-                    corners: corners.map(|c| (c.0, c.1)),
-                    shade,
-                })
-            })
-            .collect();
-        // In front of every triangle it lies on: the largest depth spread of a triangle.
-        let bias = self
-            .triangles
-            .iter()
-            .map(|t| {
-                let d = t.map(|k| project(&self.vertices[k]).2);
-                d[0].max(d[1]).max(d[2]) - d[0].min(d[1]).min(d[2])
-            })
-            .fold(0.0f64, f64::max);
-        let mut strokes: Vec<Stroke> = Vec::new();
-        for (k, overlay) in overlays.iter().enumerate() {
-            for w in overlay.points.windows(2) {
-                let (a, b) = (project(&w[0]), project(&w[1]));
-                strokes.push((0.5 * (a.2 + b.2) + bias, k, [(a.0, a.1), (b.0, b.1)]));
-            }
-            if overlay.points.len() == 1 || overlay.markers {
-                for q in &overlay.points {
-                    let a = project(q);
-                    strokes.push((a.2 + bias, k, [(a.0, a.1), (a.0, a.1)]));
-                }
-            }
-        }
-        strokes.sort_by(|a, b| a.0.total_cmp(&b.0));
-        faces.sort_by(|a, b| a.depth.total_cmp(&b.depth));
-        let (mut xmin, mut xmax, mut ymin, mut ymax) = (f64::MAX, f64::MIN, f64::MAX, f64::MIN);
-        for v in &self.vertices {
-            let (x, y, _) = project(v);
-            xmin = xmin.min(x);
-            xmax = xmax.max(x);
-            ymin = ymin.min(y);
-            ymax = ymax.max(y);
-        }
-        if xmin > xmax {
-            (xmin, xmax, ymin, ymax) = (0.0, 1.0, 0.0, 1.0);
-        }
-        let margin = 10.0;
-        let extent = (xmax - xmin).max(ymax - ymin).max(1e-12);
-        let scale = (view.width - 2.0 * margin) / extent;
-        let height =
-            (ymax - ymin) * scale + 2.0 * margin + if view.title.is_some() { 20.0 } else { 0.0 };
-        let top = if view.title.is_some() { 20.0 } else { 0.0 };
-        let map = |(x, y): (f64, f64)| {
-            (
-                margin + (x - xmin) * scale,
-                top + margin + (ymax - y) * scale,
-            )
-        };
-        let mut out = String::new();
-        let _ = writeln!(
-            out,
-            r#"<svg xmlns="http://www.w3.org/2000/svg" width="{w:.0}" height="{height:.0}" viewBox="0 0 {w:.0} {height:.0}">"#,
-            w = view.width
-        );
-        out.push_str("<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n");
-        let stroke_width = if view.wireframe { 0.4 } else { 0.6 };
-        let mut pending = strokes.iter().peekable();
-        let mut draw_strokes = |out: &mut String, depth: f64| {
-            while let Some((_, k, [a, b])) = pending.next_if(|s| s.0 <= depth) {
-                let o = &overlays[*k];
-                let [r, g, bl] = o.color;
-                let ((x0, y0), (x1, y1)) = (map(*a), map(*b));
-                if a == b {
-                    let _ = writeln!(
-                        out,
-                        r#"<circle cx="{x0:.2}" cy="{y0:.2}" r="{:.1}" fill="rgb({r},{g},{bl})" stroke="black" stroke-width="0.6"/>"#,
-                        2.0 * o.width
-                    );
-                } else {
-                    let _ = writeln!(
-                        out,
-                        r#"<line x1="{x0:.2}" y1="{y0:.2}" x2="{x1:.2}" y2="{y1:.2}" stroke="rgb({r},{g},{bl})" stroke-width="{:.1}" stroke-linecap="round"/>"#,
-                        o.width
-                    );
-                }
-            }
-        };
-        for Face {
-            corners,
-            shade,
-            depth,
-        } in &faces
-        {
-            draw_strokes(&mut out, *depth);
-            let [r, g, b] = view.color.map(|c| {
-                #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]
-                let v = (f64::from(c) * shade).round().clamp(0.0, 255.0) as u8;
-                v
-            });
-            let pts: Vec<String> = corners
-                .iter()
-                .map(|&c| {
-                    let (x, y) = map(c);
-                    format!("{x:.2},{y:.2}")
-                })
-                .collect();
-            let stroke = if view.wireframe {
-                "#1b2a3a".to_owned()
-            } else {
-                format!("rgb({r},{g},{b})")
-            };
-            let _ = writeln!(
-                out,
-                r#"<polygon points="{}" fill="rgb({r},{g},{b})" stroke="{stroke}" stroke-width="{stroke_width}" stroke-linejoin="round"/>"#,
-                pts.join(" ")
-            );
-        }
-        draw_strokes(&mut out, f64::INFINITY);
-        if let Some(title) = &view.title {
-            let escaped = title
-                .replace('&', "&amp;")
-                .replace('<', "&lt;")
-                .replace('>', "&gt;");
-            let _ = writeln!(
-                out,
-                r##"<text x="{margin}" y="18" font-family="sans-serif" font-size="14" fill="#333">{escaped}</text>"##
-            );
-        }
-        out.push_str("</svg>\n");
-        out
-    }
-}
-
-/// A curve (or, with `markers`, points) drawn over a mesh by [`TriangleMesh::to_svg_with`].
-#[derive(Clone, Debug, PartialEq)]
-pub struct SvgOverlay {
-    /// The points in space: a polyline, or single points.
-    pub points: Vec<Vector3<f64>>,
-    /// The colour, as RGB.
-    pub color: [u8; 3],
-    /// The stroke width in pixels (points are drawn with twice this radius).
-    pub width: f64,
-    /// Draw every point as a dot (and the segments between them unless there is one point).
-    pub markers: bool,
-}
-
-/// A projected overlay segment (equal ends: a point): depth, overlay index, screen ends.
-type Stroke = (f64, usize, [(f64, f64); 2]);
-
-/// A projected triangle of an SVG picture.
-struct Face {
-    /// Mean distance towards the viewer.
-    depth: f64,
-    /// Screen coordinates of the corners.
-    corners: [(f64, f64); 3],
-    /// Lambert intensity.
-    shade: f64,
 }
 
 /// The largest number of equal parameter steps of a tessellation in each direction

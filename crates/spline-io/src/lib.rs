@@ -1,14 +1,41 @@
-//! CAD exchange: STEP (ISO 10303-21, AP214/AP242 geometry) and IGES 5.3 files in and out.
+//! Every file format of the `spline` library, read and written in one place: the tool, the
+//! studio and the Python package call these readers and writers and parse no file text
+//! themselves.
 //!
-//! Both formats read into and write from the same [`Item`]s: a piece of geometry
+//! | format | module | read | write |
+//! |---|---|---|---|
+//! | JSON exchange format (curves, NURBS curves, surfaces) | [`exchange`] (feature `serde`) | records, [`exchange::from_json`], [`exchange::Record`] | [`exchange::to_json`] |
+//! | point files (JSON arrays, text columns) | [`points`] | [`points::parse_points`] | — |
+//! | airfoil coordinates (Selig, Lednicer `.dat`) | [`airfoil`] | [`airfoil::parse_airfoil`] | — |
+//! | Wavefront OBJ meshes | [`obj`] | [`obj::read_obj`] | [`obj::write_obj`] |
+//! | OFF meshes (geomview) | [`off`] | [`off::read_off`] | [`off::write_off`] |
+//! | SVG pictures of planar curves and of meshes | [`svg`] | — | [`svg::SvgPlot`], [`svg::mesh_svg`] |
+//! | gnuplot data | [`gnuplot`] | — | [`gnuplot::gnuplot_curve`], [`gnuplot::gnuplot_polygon`] |
+//! | STEP (ISO 10303-21, AP214/AP242 geometry) | [`step`] | [`step::read_step`] | [`step::write_step`] |
+//! | IGES 5.3 | [`iges`] | [`iges::read_iges`] | [`iges::write_iges`] |
+//!
+//! The CAD formats read into and write from the same [`Item`]s: a piece of geometry
 //! ([`Geometry`]: a B-spline or NURBS curve in 2-D or 3-D, a B-spline or NURBS surface) with the
 //! name and the identifier the file gives it (a STEP instance `#id`, an IGES directory-entry
-//! sequence number).
+//! sequence number); [`read_file`] and [`write_file`] choose the format by the extension.
+//!
+//! The geometry itself (tessellation into a [`spline_geom::TriangleMesh`], sampling, the
+//! curvature features drawn over a surface) is computed by the lower crates; this crate only
+//! turns it into text and back.
+//!
+//! # Feature flags
+//! - `serde` (default): the JSON exchange format ([`exchange`]) and JSON point files.
 
+pub mod airfoil;
 #[cfg(feature = "serde")]
-mod exchange;
+pub mod exchange;
+pub mod gnuplot;
 pub mod iges;
+pub mod obj;
+pub mod off;
+pub mod points;
 pub mod step;
+pub mod svg;
 
 use nalgebra::{Vector2, Vector3};
 use spline_core::{Error, ErrorKind, Result};

@@ -28,7 +28,7 @@ fn airfoil(name: &str) -> Vec<nalgebra::Vector2<f64>> {
         env!("CARGO_MANIFEST_DIR")
     ))
     .expect("airfoil");
-    spline_geom::exchange::parse_points(&text)
+    spline_io::points::parse_points(&text)
         .expect("points")
         .into_iter()
         .map(|p| nalgebra::Vector2::new(p[0], p[1]))

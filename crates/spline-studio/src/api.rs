@@ -12,8 +12,8 @@ use nalgebra::Vector2;
 use serde::de::DeserializeOwned;
 use serde_json::Value;
 use spline_core::{Error, ErrorKind, Result};
-use spline_geom::exchange::CurveRecord;
 use spline_geom::{BSpline, ParamCurve};
+use spline_io::exchange::CurveRecord;
 
 /// A planar point of the studio.
 pub type Point = Vector2<f64>;

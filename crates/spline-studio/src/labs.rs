@@ -15,8 +15,8 @@ use spline_fit::{
     Parametrization, bezier_interpolate, bezier_least_squares, correct_parameters,
     correct_parameters_bezier, nurbs_book_knots, parametrize,
 };
-use spline_geom::exchange::CurveRecord;
 use spline_geom::{BSpline, Bezier, ParamCurve};
+use spline_io::exchange::CurveRecord;
 use spline_shape::{Extremum, MAX_CURVATURE_EXTREMA, SmoothingOptions, smooth};
 
 /// Samples per knot span of the drawn B-spline curves, unless the request says otherwise.
@@ -478,8 +478,7 @@ pub(crate) struct LoadRequest {
 pub(crate) fn load(request: &LoadRequest) -> Result<Value> {
     let text = request.text.trim_start();
     if text.starts_with('{') {
-        let record: CurveRecord = serde_json::from_str(text)
-            .map_err(|e| Error::new(ErrorKind::Parse, format!("JSON curve: {e}")))?;
+        let record = CurveRecord::from_json(text).map_err(|e| e.context("JSON curve"))?;
         let curve = planar(&record)?;
         return Ok(json!({
             "points": xys(curve.control_points()),
@@ -488,7 +487,7 @@ pub(crate) fn load(request: &LoadRequest) -> Result<Value> {
         }));
     }
     let loaded = if text.starts_with('[') {
-        let rows = spline_geom::exchange::parse_points(text)?;
+        let rows = spline_io::points::parse_points(text)?;
         let pts = rows
             .iter()
             .map(|r| match r.as_slice() {
@@ -501,7 +500,7 @@ pub(crate) fn load(request: &LoadRequest) -> Result<Value> {
             .collect::<Result<Vec<_>>>()?;
         json!({ "points": pts })
     } else {
-        let airfoil = spline_geom::airfoil::parse_airfoil(text)?;
+        let airfoil = spline_io::airfoil::parse_airfoil(text)?;
         json!({ "points": xys(&airfoil.points), "name": airfoil.name })
     };
     let n = loaded["points"].as_array().map_or(0, Vec::len);

@@ -704,39 +704,6 @@ fn unclamped_curves() {
     assert_eq!(c.bezier_segments().len(), 3);
 }
 
-#[test]
-fn exports_and_bezier_serialisation() {
-    let c = seed_curve();
-    let polygon = spline_geom::export::gnuplot_polygon(&c);
-    assert_eq!(polygon.lines().count(), 6);
-    assert_eq!(polygon.lines().next().unwrap(), "0.41705 0.10673");
-    let dat = spline_geom::export::gnuplot_curve(&c, 10);
-    assert_eq!(dat.lines().count(), 3 * 10 + 1);
-    let last: Vec<f64> = dat
-        .lines()
-        .last()
-        .unwrap()
-        .split(' ')
-        .map(|x| x.parse().unwrap())
-        .collect();
-    assert_eq!(last, vec![1.477, 0.13012]);
-    let b = Bezier::with_interval(
-        vec![Vector2::new(0.0, 1.0), Vector2::new(2.0, 3.0)],
-        1.0,
-        2.0,
-    )
-    .unwrap();
-    let text = serde_json::to_string(&b).unwrap();
-    assert_eq!(
-        text,
-        r#"{"degree":1,"knots":[1.0,1.0,2.0,2.0],"control_points":[[0.0,1.0],[2.0,3.0]]}"#
-    );
-    let back: Bezier<f64, Vector2<f64>> = serde_json::from_str(&text).unwrap();
-    assert_eq!(back, b);
-    let not_bezier = r#"{"degree":1,"knots":[0,0,0.5,1,1],"control_points":[[0,0],[1,1],[2,0]]}"#;
-    assert!(serde_json::from_str::<Bezier<f64, Vector2<f64>>>(not_bezier).is_err());
-}
-
 proptest! {
     #[test]
     fn clamped_curves_return_exactly_their_end_points(curve in curve_strategy(7, 8, true)) {

@@ -7,8 +7,7 @@ use num_dual::{Dual2_64, Dual64, HyperDual64};
 use proptest::prelude::*;
 use spline_core::{ErrorKind, KnotVector, Scalar, cast, to_f64};
 use spline_geom::StructuralSurface;
-use spline_geom::exchange::{CurveRecord, SurfaceRecord};
-use spline_geom::{BSpline, Direction, Homogeneous, NurbsCurve, NurbsSurface, Surface};
+use spline_geom::{BSpline, Direction, Homogeneous, NurbsCurve, NurbsSurface};
 use spline_testing::strategies::knot_vector;
 
 type N3 = NurbsCurve<f64, 3>;
@@ -407,27 +406,6 @@ fn bad_weights_are_errors() {
                 .kind(),
             ErrorKind::InvalidWeight
         );
-        // Through the exchange format.
-        let record = CurveRecord {
-            degree: 1,
-            knots: vec![0.0, 0.0, 1.0, 1.0],
-            control_points: vec![vec![0.0, 0.0], vec![1.0, 0.0]],
-            weights: Some(vec![w, 1.0]),
-        };
-        assert_eq!(
-            record.to_nurbs::<f64, 2>().unwrap_err().kind(),
-            ErrorKind::InvalidWeight
-        );
-        let record = SurfaceRecord {
-            degree: [1, 1],
-            knots: [vec![0.0, 0.0, 1.0, 1.0], vec![0.0, 0.0, 1.0, 1.0]],
-            control_points: vec![vec![vec![0.0, 0.0, 0.0]; 2]; 2],
-            weights: Some(vec![vec![1.0, 1.0], vec![1.0, w]]),
-        };
-        assert_eq!(
-            record.to_nurbs_surface::<f64, 3>().unwrap_err().kind(),
-            ErrorKind::InvalidWeight
-        );
     }
     // Wrong numbers of weights.
     assert_eq!(
@@ -447,42 +425,6 @@ fn bad_weights_are_errors() {
         .kind(),
         ErrorKind::InvalidLength
     );
-    let record = SurfaceRecord {
-        degree: [1, 1],
-        knots: [vec![0.0, 0.0, 1.0, 1.0], vec![0.0, 0.0, 1.0, 1.0]],
-        control_points: vec![vec![vec![0.0, 0.0, 0.0]; 2]; 2],
-        weights: Some(vec![vec![1.0, 1.0], vec![1.0]]),
-    };
-    let e = record.to_nurbs_surface::<f64, 3>().unwrap_err();
-    assert_eq!(e.kind(), ErrorKind::InvalidLength);
-    assert!(e.message().contains("weights"), "{e}");
-    // Mismatched net sizes.
-    let record = SurfaceRecord {
-        weights: None,
-        control_points: vec![vec![vec![0.0, 0.0, 0.0]; 3]; 2],
-        ..record
-    };
-    assert_eq!(
-        record.to_surface::<f64, Vector3<f64>>().unwrap_err().kind(),
-        ErrorKind::InvalidLength
-    );
-    let record = SurfaceRecord {
-        control_points: vec![vec![vec![0.0, 0.0, 0.0]; 2], vec![vec![0.0, 0.0]; 2]],
-        ..record
-    };
-    assert_eq!(
-        record.dimension().unwrap_err().kind(),
-        ErrorKind::DimensionMismatch
-    );
-    // A record with weights is not a plain surface, and serde refuses bad weights.
-    let json = r#"{"degree": [1, 1], "knots": [[0,0,1,1],[0,0,1,1]], "control_points": [[[0,0,0],[0,1,0]],[[1,0,0],[1,1,0]]], "weights": [[1,1],[1,0]]}"#;
-    assert!(
-        serde_json::from_str::<NS3>(json)
-            .unwrap_err()
-            .to_string()
-            .contains("weights must be positive")
-    );
-    assert!(serde_json::from_str::<Surface<f64, Vector3<f64>>>(json).is_err());
 }
 
 #[test]
@@ -680,46 +622,4 @@ fn derivative_with_respect_to_a_weight() {
             assert!((Vector2::new(got.x.eps, got.y.eps) - expected).norm() < 1e-14);
         }
     }
-}
-
-#[test]
-fn records_round_trip() {
-    let c = NurbsCurve::from_knots(
-        2,
-        vec![0.0, 0.0, 0.0, 1.0, 1.0, 1.0],
-        vec![
-            Vector3::new(1.0, 0.0, 0.5),
-            Vector3::new(1.0, 1.0, 0.0),
-            Vector3::new(0.0, 1.0, -0.5),
-        ],
-        vec![1.0, 0.25, 3.0],
-    )
-    .unwrap();
-    let json = serde_json::to_value(&c).unwrap();
-    assert_eq!(json["weights"], serde_json::json!([1.0, 0.25, 3.0]));
-    assert_eq!(
-        json["control_points"][1],
-        serde_json::json!([1.0, 1.0, 0.0])
-    );
-    assert_eq!(serde_json::from_value::<N3>(json).unwrap(), c);
-    // A record without weights reads as unit weights.
-    let plain = r#"{"degree": 1, "knots": [0, 0, 1, 1], "control_points": [[0, 0], [1, 2]]}"#;
-    assert_eq!(
-        serde_json::from_str::<NurbsCurve<f64, 2>>(plain)
-            .unwrap()
-            .weights(),
-        vec![1.0, 1.0]
-    );
-    let s = NurbsSurface::extrusion(&c, Vector3::new(0.0, 0.0, 2.0)).unwrap();
-    let json = serde_json::to_value(&s).unwrap();
-    assert_eq!(json["degree"], serde_json::json!([2, 1]));
-    assert_eq!(
-        json["weights"],
-        serde_json::json!([[1.0, 1.0], [0.25, 0.25], [3.0, 3.0]])
-    );
-    let back: NS3 = serde_json::from_value(json).unwrap();
-    for (p, q) in back.control_points().iter().zip(s.control_points()) {
-        assert!((p - q).norm() < 1e-15);
-    }
-    let _: Surface<f64, Homogeneous<f64, 3>> = s.homogeneous().clone();
 }

@@ -158,10 +158,6 @@ fn the_cache_is_not_part_of_the_value() {
     assert_eq!(cold, warmed);
     assert_eq!(format!("{cold:?}"), format!("{warmed:?}"));
     assert!(!format!("{warmed:?}").contains("pieces"));
-    assert_eq!(
-        serde_json::to_string(&cold).unwrap(),
-        serde_json::to_string(&warmed).unwrap()
-    );
     // A clone of a warm curve, then changed, does not see the other's cache.
     let mut changed = warmed.clone();
     changed.control_points_mut()[10] = Vector2::new(5.0, 5.0);

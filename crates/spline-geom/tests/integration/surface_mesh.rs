@@ -1,46 +1,10 @@
 //! Tessellation: closed surfaces give closed meshes of the right topology, vertices lie on
-//! the surface, normals point outwards, and the OBJ, OFF and SVG outputs are well formed.
+//! the surface, normals point outwards (the OBJ, OFF and SVG outputs are spline-io's).
 
 use nalgebra::Vector3;
 use spline_core::ErrorKind;
-use spline_geom::{BSpline, MeshView, NurbsSurface, Surface, TriangleMesh};
+use spline_geom::{BSpline, NurbsSurface, Surface, TriangleMesh};
 use std::f64::consts::PI;
-
-fn parse_off(text: &str) -> (Vec<Vector3<f64>>, Vec<[usize; 3]>) {
-    let mut lines = text.lines();
-    assert_eq!(lines.next(), Some("OFF"));
-    let counts: Vec<usize> = lines
-        .next()
-        .unwrap()
-        .split_whitespace()
-        .map(|x| x.parse().unwrap())
-        .collect();
-    let vertices = (0..counts[0])
-        .map(|_| {
-            let c: Vec<f64> = lines
-                .next()
-                .unwrap()
-                .split_whitespace()
-                .map(|x| x.parse().unwrap())
-                .collect();
-            Vector3::new(c[0], c[1], c[2])
-        })
-        .collect();
-    let faces = (0..counts[1])
-        .map(|_| {
-            let c: Vec<usize> = lines
-                .next()
-                .unwrap()
-                .split_whitespace()
-                .map(|x| x.parse().unwrap())
-                .collect();
-            assert_eq!(c[0], 3);
-            [c[1], c[2], c[3]]
-        })
-        .collect();
-    assert_eq!(lines.next(), None);
-    (vertices, faces)
-}
 
 #[test]
 fn sphere_mesh_is_a_closed_sphere() {
@@ -67,9 +31,6 @@ fn sphere_mesh_is_a_closed_sphere() {
         area < 4.0 * PI * 4.0 && area > 0.99 * 4.0 * PI * 4.0,
         "area {area}"
     );
-    let (vertices, faces) = parse_off(&mesh.to_off());
-    assert_eq!(vertices.len(), mesh.vertices.len());
-    assert_eq!(faces, mesh.triangles);
 }
 
 #[test]
@@ -78,26 +39,6 @@ fn torus_mesh_has_euler_characteristic_zero() {
     let mesh = t.tessellate(20, 40).unwrap();
     assert_eq!(mesh.boundary_edges(), 0);
     assert_eq!(mesh.euler_characteristic(), 0);
-    let obj = mesh.to_obj();
-    let v = obj.lines().filter(|l| l.starts_with("v ")).count();
-    let vn = obj.lines().filter(|l| l.starts_with("vn ")).count();
-    let f: Vec<&str> = obj.lines().filter(|l| l.starts_with("f ")).collect();
-    assert_eq!(
-        (v, vn, f.len()),
-        (
-            mesh.vertices.len(),
-            mesh.vertices.len(),
-            mesh.triangles.len()
-        )
-    );
-    for line in f {
-        for corner in line.split_whitespace().skip(1) {
-            let (a, b) = corner.split_once("//").unwrap();
-            assert_eq!(a, b);
-            let k: usize = a.parse().unwrap();
-            assert!(k >= 1 && k <= v);
-        }
-    }
     // Area of the torus 4π² R r within 1%.
     let area = mesh.area();
     assert!(
@@ -165,25 +106,7 @@ fn open_surfaces_give_open_meshes() {
 }
 
 #[test]
-fn svg_pictures_and_errors() {
-    let mesh = NurbsSurface::sphere(Vector3::zeros(), 1.0)
-        .unwrap()
-        .tessellate(8, 16)
-        .unwrap();
-    let svg = mesh.to_svg(&MeshView {
-        title: Some("sphere <1>".into()),
-        ..MeshView::default()
-    });
-    assert!(svg.starts_with("<svg"));
-    assert!(svg.trim_end().ends_with("</svg>"));
-    assert!(svg.contains("sphere &lt;1&gt;"));
-    let polygons = svg.matches("<polygon").count();
-    // Back faces of a closed mesh are culled: about half the triangles are drawn.
-    assert!(
-        polygons > mesh.triangles.len() / 4 && polygons < mesh.triangles.len(),
-        "{polygons}"
-    );
-    assert!(!svg.contains("NaN"));
+fn bad_tessellations_are_errors() {
     let s = NurbsSurface::sphere(Vector3::zeros(), 1.0).unwrap();
     assert_eq!(
         s.tessellate(0, 4).unwrap_err().kind(),

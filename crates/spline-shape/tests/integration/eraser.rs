@@ -5,7 +5,7 @@
 use nalgebra::Vector2;
 use spline_core::ErrorKind;
 use spline_geom::Curve2;
-use spline_geom::exchange::parse_points;
+use spline_io::points::parse_points;
 use spline_shape::{
     Extremum, ExtremumKind, MAX_CURVATURE_EXTREMA, Objective, SmoothingOptions,
     sampled_curvature_extrema, smooth,

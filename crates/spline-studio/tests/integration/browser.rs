@@ -491,7 +491,7 @@ async fn labs(c: &Client, addr: SocketAddr) -> TestResult {
         .send_keys(&file.display().to_string())
         .await?;
     idle(c, before + 1).await?;
-    let airfoil = spline_geom::airfoil::parse_airfoil(&std::fs::read_to_string(&file)?)?;
+    let airfoil = spline_io::airfoil::parse_airfoil(&std::fs::read_to_string(&file)?)?;
     assert_eq!(
         state_points(c).await?,
         airfoil.points,

@@ -1,11 +1,11 @@
-//! [`Geometry`] in the JSON exchange format (`spline_geom::exchange`), the form in which the
-//! tool and the Python package pass CAD items on (feature `serde`).
+//! [`Geometry`] in the JSON exchange format, the form in which the tool and the Python
+//! package pass CAD items on.
 
+use super::{CurveRecord, SurfaceRecord};
 use crate::Geometry;
 use nalgebra::{Vector2, Vector3};
 use serde_json::Value;
 use spline_core::{Error, ErrorKind, Result};
-use spline_geom::exchange::{CurveRecord, SurfaceRecord};
 
 impl Geometry {
     /// The geometry as a record of the exchange format: a curve

@@ -52,8 +52,8 @@ fn classify(line: &str) -> Line {
     if line.is_empty() {
         return Line::Blank;
     }
-    let tokens = crate::point_text::tokens(line);
-    match crate::point_text::numbers(&tokens) {
+    let tokens = crate::points::tokens(line);
+    match crate::points::numbers(&tokens) {
         Some(v) => Line::Numbers(v),
         // A placeholder such as `0.0000     ......` holds no point.
         None if tokens.len() >= 2
@@ -80,7 +80,7 @@ fn quote(text: &str) -> String {
 /// Reads an airfoil coordinate file (Selig or Lednicer; see the module documentation).
 ///
 /// ```
-/// use spline_geom::airfoil::{AirfoilFormat, parse_airfoil};
+/// use spline_io::airfoil::{AirfoilFormat, parse_airfoil};
 /// let selig = "NACA 0012\n1.0 0.0013\n0.5 0.0529\n0.0 0.0\n0.5 -0.0529\n1.0 -0.0013\n";
 /// let a = parse_airfoil(selig)?;
 /// assert_eq!(a.name.as_deref(), Some("NACA 0012"));

@@ -1,13 +1,10 @@
-//! The JSON exchange format (`docs/exchange-format.md`): serde for the containers.
-//!
-//! A curve is `{"degree": p, "knots": [...], "control_points": [[x, ...], ...]}`; a NURBS
-//! curve adds `"weights"` (control points stay Cartesian). Deserialisation validates
-//! everything the constructors validate and reports the first problem.
+//! The records of the exchange format: curves and surfaces as they appear in the JSON, before
+//! validation, and their conversions to and from the containers.
 
-use crate::bezier::Bezier;
-use crate::bspline::BSpline;
-use serde::{Deserialize, Deserializer, Serialize, Serializer};
+use nalgebra::SVector;
+use serde::{Deserialize, Serialize};
 use spline_core::{ControlPoint, Error, ErrorKind, KnotVector, Result, Scalar, cast, to_f64};
+use spline_geom::{BSpline, Bezier, Homogeneous, NurbsCurve, NurbsSurface, Surface};
 
 /// A curve as it appears in the exchange format, before validation (the dimension `d ≥ 1` of
 /// the points is only known at run time).
@@ -98,6 +95,72 @@ impl CurveRecord {
     }
 }
 
+impl CurveRecord {
+    /// The record of a Bézier curve: the clamped B-spline of one segment, knots `p + 1`
+    /// copies of `a`, then `p + 1` copies of `b`.
+    pub fn from_bezier<T: Scalar, P: ControlPoint<T>>(curve: &Bezier<T, P>) -> Self {
+        let n = curve.degree();
+        let (a, b) = curve.interval();
+        Self {
+            degree: n,
+            knots: std::iter::repeat_n(to_f64(a), n + 1)
+                .chain(std::iter::repeat_n(to_f64(b), n + 1))
+                .collect(),
+            control_points: curve.control_points().iter().map(row_of::<T, P>).collect(),
+            weights: None,
+        }
+    }
+
+    /// Validates the record as a Bézier curve: `p + 1` control points on the knots
+    /// `[a; p + 1] + [b; p + 1]`.
+    ///
+    /// # Errors
+    /// As [`CurveRecord::to_bspline`]; [`ErrorKind::InvalidLength`] unless there are `p + 1`
+    /// control points; [`ErrorKind::InvalidArgument`] unless the knots are clamped at both ends.
+    pub fn to_bezier<T: Scalar, P: ControlPoint<T>>(&self) -> Result<Bezier<T, P>> {
+        let curve: BSpline<T, P> = self.to_bspline()?;
+        let p = curve.degree();
+        if curve.control_points().len() != p + 1 {
+            return Err(Error::new(
+                ErrorKind::InvalidLength,
+                format!(
+                    "a Bézier curve of degree {p} has {} control points and knots [a; p+1] + [b; p+1], got {} control points",
+                    p + 1,
+                    curve.control_points().len()
+                ),
+            ));
+        }
+        let knots = curve.knots().knots();
+        let (a, b) = curve.domain();
+        if knots[..=p].iter().any(|&k| k != a) || knots[p + 1..].iter().any(|&k| k != b) {
+            return Err(Error::new(
+                ErrorKind::InvalidArgument,
+                "a Bézier curve has the knots [a; p+1] + [b; p+1]",
+            ));
+        }
+        Bezier::with_interval(curve.control_points().to_vec(), a, b)
+    }
+}
+
+impl CurveRecord {
+    /// Reads a record from JSON text (no validation beyond the fields; see
+    /// [`CurveRecord::dimension`], [`CurveRecord::to_bspline`], [`CurveRecord::to_nurbs`]).
+    ///
+    /// # Errors
+    /// [`ErrorKind::Parse`] with serde_json's message (missing or unknown fields, wrong types,
+    /// syntax), which the caller completes with what was read.
+    pub fn from_json(text: &str) -> Result<Self> {
+        serde_json::from_str(text).map_err(|e| Error::new(ErrorKind::Parse, e.to_string()))
+    }
+
+    /// The record as compact JSON text.
+    #[must_use]
+    pub fn to_json(&self) -> String {
+        // A record holds numbers, vectors and options only: serialising cannot fail.
+        serde_json::to_string(self).unwrap_or_default()
+    }
+}
+
 /// Converts rows of coordinates into points of type `P`, checking dimensions.
 ///
 /// # Errors
@@ -122,127 +185,8 @@ pub fn points_from_rows<T: Scalar, P: ControlPoint<T>>(rows: &[Vec<f64>]) -> Res
         .collect()
 }
 
-/// In the exchange format a Bézier curve is the clamped B-spline of one segment: knots
-/// `p + 1` copies of `a`, then `p + 1` copies of `b`.
-impl<T: Scalar, P: ControlPoint<T>> Serialize for Bezier<T, P> {
-    fn serialize<S: Serializer>(&self, serializer: S) -> std::result::Result<S::Ok, S::Error> {
-        let n = self.degree();
-        CurveRecord {
-            degree: n,
-            knots: std::iter::repeat_n(to_f64(self.interval().0), n + 1)
-                .chain(std::iter::repeat_n(to_f64(self.interval().1), n + 1))
-                .collect(),
-            control_points: self
-                .control_points()
-                .iter()
-                .map(|p| (0..P::DIM).map(|i| to_f64(p.coord(i))).collect())
-                .collect(),
-            weights: None,
-        }
-        .serialize(serializer)
-    }
-}
-
-impl<'de, T: Scalar, P: ControlPoint<T>> Deserialize<'de> for Bezier<T, P> {
-    fn deserialize<D: Deserializer<'de>>(deserializer: D) -> std::result::Result<Self, D::Error> {
-        use serde::de::Error as _;
-        let curve: BSpline<T, P> = BSpline::deserialize(deserializer)?;
-        let (a, b) = curve.domain();
-        if curve.control_points().len() != curve.degree() + 1 {
-            return Err(D::Error::custom(format!(
-                "a Bézier curve of degree {} has {} control points and knots [a; p+1] + [b; p+1], got {} control points",
-                curve.degree(),
-                curve.degree() + 1,
-                curve.control_points().len()
-            )));
-        }
-        Self::with_interval(curve.control_points().to_vec(), a, b).map_err(D::Error::custom)
-    }
-}
-
-impl<T: Scalar, P: ControlPoint<T>> Serialize for BSpline<T, P> {
-    fn serialize<S: Serializer>(&self, serializer: S) -> std::result::Result<S::Ok, S::Error> {
-        CurveRecord::from_bspline(self).serialize(serializer)
-    }
-}
-
-impl<'de, T: Scalar, P: ControlPoint<T>> Deserialize<'de> for BSpline<T, P> {
-    fn deserialize<D: Deserializer<'de>>(deserializer: D) -> std::result::Result<Self, D::Error> {
-        let record = CurveRecord::deserialize(deserializer)?;
-        record.to_bspline().map_err(serde::de::Error::custom)
-    }
-}
-
-/// Parses a point file: a JSON array of arrays, or text with one point per line whose
-/// coordinates are separated by whitespace or commas. Lines starting with `#` and lines
-/// that are not all numbers (headers, notes, placeholders such as `......` in some UIUC
-/// airfoil files) are skipped; a number in parentheses, `(0.0022)`, is read as the number.
-///
-/// ```
-/// let points = spline_geom::exchange::parse_points("NACA 0012\n1.0 0.0\n0.5, 0.06\n# note\n0 0")?;
-/// assert_eq!(points, vec![vec![1.0, 0.0], vec![0.5, 0.06], vec![0.0, 0.0]]);
-/// # Ok::<(), spline_core::Error>(())
-/// ```
-///
-/// # Errors
-/// [`ErrorKind::Parse`] for malformed JSON; [`ErrorKind::DimensionMismatch`] if points differ
-/// in dimension (the message names the line); [`ErrorKind::NonFinite`];
-/// [`ErrorKind::TooFewPoints`] if no point was found.
-pub fn parse_points(text: &str) -> Result<Vec<Vec<f64>>> {
-    let points: Vec<(usize, Vec<f64>)> = if text.trim_start().starts_with('[') {
-        let rows: Vec<Vec<f64>> = serde_json::from_str(text).map_err(|e| {
-            Error::new(
-                ErrorKind::Parse,
-                format!("points are not a JSON array of number arrays: {e}"),
-            )
-        })?;
-        rows.into_iter()
-            .enumerate()
-            .map(|(i, r)| (i + 1, r))
-            .collect()
-    } else {
-        text.lines()
-            .enumerate()
-            .filter_map(|(i, line)| {
-                let line = line.trim();
-                if line.is_empty() || line.starts_with('#') {
-                    return None;
-                }
-                crate::point_text::numbers(&crate::point_text::tokens(line)).map(|v| (i + 1, v))
-            })
-            .collect()
-    };
-    let Some((_, first)) = points.first() else {
-        return Err(Error::new(ErrorKind::TooFewPoints, "no points found"));
-    };
-    let d = first.len();
-    for (line, p) in &points {
-        if p.len() != d || d == 0 {
-            return Err(Error::new(
-                ErrorKind::DimensionMismatch,
-                format!(
-                    "point on line {line} has {} coordinates, the first point has {d}",
-                    p.len()
-                ),
-            ));
-        }
-        if p.iter().any(|x| !x.is_finite()) {
-            return Err(Error::new(
-                ErrorKind::NonFinite,
-                format!("point on line {line} is not finite"),
-            ));
-        }
-    }
-    Ok(points.into_iter().map(|(_, p)| p).collect())
-}
-
 // ---------------------------------------------------------------------------------------
 // NURBS curves and tensor-product surfaces.
-
-use crate::homogeneous::Homogeneous;
-use crate::nurbs::{NurbsCurve, NurbsSurface};
-use crate::surface::Surface;
-use nalgebra::SVector;
 
 fn row_of<T: Scalar, P: ControlPoint<T>>(p: &P) -> Vec<f64> {
     (0..P::DIM).map(|i| to_f64(p.coord(i))).collect()
@@ -448,45 +392,22 @@ impl SurfaceRecord {
     }
 }
 
-impl<T: Scalar, P: ControlPoint<T>> Serialize for Surface<T, P> {
-    fn serialize<S: Serializer>(&self, serializer: S) -> std::result::Result<S::Ok, S::Error> {
-        SurfaceRecord::from_surface(self).serialize(serializer)
+impl SurfaceRecord {
+    /// Reads a record from JSON text (no validation beyond the fields; see
+    /// [`SurfaceRecord::dimension`], [`SurfaceRecord::to_surface`],
+    /// [`SurfaceRecord::to_nurbs_surface`]).
+    ///
+    /// # Errors
+    /// [`ErrorKind::Parse`] with serde_json's message, which the caller completes with what
+    /// was read.
+    pub fn from_json(text: &str) -> Result<Self> {
+        serde_json::from_str(text).map_err(|e| Error::new(ErrorKind::Parse, e.to_string()))
     }
-}
 
-impl<'de, T: Scalar, P: ControlPoint<T>> Deserialize<'de> for Surface<T, P> {
-    fn deserialize<D: Deserializer<'de>>(deserializer: D) -> std::result::Result<Self, D::Error> {
-        let record = SurfaceRecord::deserialize(deserializer)?;
-        record.to_surface().map_err(serde::de::Error::custom)
-    }
-}
-
-impl<T: Scalar, const D: usize> Serialize for NurbsCurve<T, D> {
-    fn serialize<S: Serializer>(&self, serializer: S) -> std::result::Result<S::Ok, S::Error> {
-        CurveRecord::from_nurbs(self).serialize(serializer)
-    }
-}
-
-impl<'de, T: Scalar, const D: usize> Deserialize<'de> for NurbsCurve<T, D> {
-    fn deserialize<De: Deserializer<'de>>(
-        deserializer: De,
-    ) -> std::result::Result<Self, De::Error> {
-        let record = CurveRecord::deserialize(deserializer)?;
-        record.to_nurbs().map_err(serde::de::Error::custom)
-    }
-}
-
-impl<T: Scalar, const D: usize> Serialize for NurbsSurface<T, D> {
-    fn serialize<S: Serializer>(&self, serializer: S) -> std::result::Result<S::Ok, S::Error> {
-        SurfaceRecord::from_nurbs_surface(self).serialize(serializer)
-    }
-}
-
-impl<'de, T: Scalar, const D: usize> Deserialize<'de> for NurbsSurface<T, D> {
-    fn deserialize<De: Deserializer<'de>>(
-        deserializer: De,
-    ) -> std::result::Result<Self, De::Error> {
-        let record = SurfaceRecord::deserialize(deserializer)?;
-        record.to_nurbs_surface().map_err(serde::de::Error::custom)
+    /// The record as compact JSON text.
+    #[must_use]
+    pub fn to_json(&self) -> String {
+        // A record holds numbers, vectors and options only: serialising cannot fail.
+        serde_json::to_string(self).unwrap_or_default()
     }
 }

@@ -1,46 +1,9 @@
-//! Export: gnuplot `.dat` files (seed 000's `drawCurve` and `drawPoly`) and SVG pictures of
-//! planar curves with their control polygons, curvature combs and marked points.
+//! SVG pictures of planar curves with their control polygons, curvature combs and marked
+//! points.
 
-use crate::param::{ParamCurve, PlanarCurve};
 use nalgebra::Vector2;
-use spline_core::{ControlPoint, Scalar, to_f64};
+use spline_geom::PlanarCurve;
 use std::fmt::Write;
-
-/// Parameters covering the domain: `per_span` equal steps in every piece, so that every
-/// knot is a sample ([`ParamCurve::sample_params`]).
-#[must_use]
-pub fn sample_params<T: Scalar, C: ParamCurve<T>>(curve: &C, per_span: usize) -> Vec<T> {
-    curve.sample_params(per_span)
-}
-
-fn row<T: Scalar, P: ControlPoint<T>>(p: &P) -> String {
-    (0..P::DIM)
-        .map(|i| format!("{}", to_f64(p.coord(i))))
-        .collect::<Vec<_>>()
-        .join(" ")
-}
-
-/// The curve sampled for gnuplot: one point per line, coordinates separated by spaces
-/// (`per_span` samples per knot span).
-///
-/// # Panics
-/// Never: the samples lie in the domain.
-#[must_use]
-pub fn gnuplot_curve<T: Scalar, C: ParamCurve<T>>(curve: &C, per_span: usize) -> String {
-    let params = curve.sample_params(per_span);
-    let points = curve.eval_many(&params).expect("samples lie in the domain");
-    points.iter().map(|p| row(p) + "\n").collect()
-}
-
-/// The control polygon for gnuplot: one control point per line.
-#[must_use]
-pub fn gnuplot_polygon<T: Scalar, C: ParamCurve<T>>(curve: &C) -> String {
-    curve
-        .control_polygon()
-        .iter()
-        .map(|p| row(p) + "\n")
-        .collect()
-}
 
 #[derive(Clone, Debug)]
 enum Element {
@@ -62,7 +25,8 @@ enum Element {
 ///
 /// ```
 /// use nalgebra::Vector2;
-/// use spline_geom::{BSpline, export::SvgPlot};
+/// use spline_geom::BSpline;
+/// use spline_io::svg::SvgPlot;
 /// let c = BSpline::from_knots(2, vec![0.0, 0.0, 0.0, 1.0, 1.0, 1.0],
 ///     vec![Vector2::new(0.0, 0.0), Vector2::new(0.5, 1.0), Vector2::new(1.0, 0.0)])?;
 /// let mut plot = SvgPlot::new();

@@ -1,0 +1,293 @@
+//! The JSON exchange format (`docs/exchange-format.md`; feature `serde`).
+//!
+//! A curve is `{"degree": p, "knots": [...], "control_points": [[x, ...], ...]}`; a NURBS
+//! curve adds `"weights"` (control points stay Cartesian). A surface has two degrees, two knot
+//! vectors and a net of control points (`control_points[i][j]`, `i` along `u`), and for NURBS
+//! a net of weights. Reading validates everything the constructors validate and reports the
+//! first problem.
+//!
+//! - [`CurveRecord`] and [`SurfaceRecord`]: the records as they appear in the JSON, with their
+//!   conversions to and from every container of any point type.
+//! - [`Exchange`]: the containers with a record ([`BSpline`], [`Bezier`], [`Surface`],
+//!   [`NurbsCurve`], [`NurbsSurface`]), written and read by [`to_json`], [`to_value`],
+//!   [`from_json`] and [`from_value`].
+//! - [`Record`]: an object of either kind read as the tool reads its files, reports of the
+//!   tool (an object under `"curve"` or `"surface"`) included.
+//! - [`crate::Geometry::to_exchange`] and [`crate::Geometry::from_exchange`]: CAD items.
+//!
+//! ```
+//! use nalgebra::Vector2;
+//! use spline_geom::BSpline;
+//! use spline_io::exchange::{from_json, to_json};
+//! let curve = BSpline::from_knots(1, vec![0.0, 0.0, 1.0, 1.0],
+//!     vec![Vector2::new(0.0, 0.0), Vector2::new(1.0, 2.0)])?;
+//! let text = to_json(&curve);
+//! assert_eq!(text, r#"{"degree":1,"knots":[0.0,0.0,1.0,1.0],"control_points":[[0.0,0.0],[1.0,2.0]]}"#);
+//! assert_eq!(from_json::<BSpline<f64, Vector2<f64>>>(&text)?, curve);
+//! # Ok::<(), spline_core::Error>(())
+//! ```
+
+mod geometry;
+mod records;
+
+pub use records::{CurveRecord, SurfaceRecord, points_from_rows};
+
+use serde::Serialize;
+use serde::de::DeserializeOwned;
+use serde_json::Value;
+use spline_core::{ControlPoint, Error, ErrorKind, Result, Scalar};
+use spline_geom::{BSpline, Bezier, NurbsCurve, NurbsSurface, Surface};
+
+/// A container with a record in the exchange format.
+pub trait Exchange: Sized {
+    /// The record: [`CurveRecord`] or [`SurfaceRecord`].
+    type Record: Serialize + DeserializeOwned;
+    /// What the record holds (`curve` or `surface`), for messages.
+    const NAME: &'static str;
+
+    /// The record of the container.
+    fn to_record(&self) -> Self::Record;
+
+    /// Validates a record as a container of this type.
+    ///
+    /// # Errors
+    /// The validation errors of the record's conversion (dimensions, knots, weights,
+    /// counts).
+    fn from_record(record: &Self::Record) -> Result<Self>;
+}
+
+impl<T: Scalar, P: ControlPoint<T>> Exchange for BSpline<T, P> {
+    type Record = CurveRecord;
+    const NAME: &'static str = "curve";
+
+    fn to_record(&self) -> CurveRecord {
+        CurveRecord::from_bspline(self)
+    }
+
+    fn from_record(record: &CurveRecord) -> Result<Self> {
+        record.to_bspline()
+    }
+}
+
+/// In the exchange format a Bézier curve is the clamped B-spline of one segment: knots
+/// `p + 1` copies of `a`, then `p + 1` copies of `b`.
+impl<T: Scalar, P: ControlPoint<T>> Exchange for Bezier<T, P> {
+    type Record = CurveRecord;
+    const NAME: &'static str = "curve";
+
+    fn to_record(&self) -> CurveRecord {
+        CurveRecord::from_bezier(self)
+    }
+
+    fn from_record(record: &CurveRecord) -> Result<Self> {
+        record.to_bezier()
+    }
+}
+
+impl<T: Scalar, const D: usize> Exchange for NurbsCurve<T, D> {
+    type Record = CurveRecord;
+    const NAME: &'static str = "curve";
+
+    fn to_record(&self) -> CurveRecord {
+        CurveRecord::from_nurbs(self)
+    }
+
+    fn from_record(record: &CurveRecord) -> Result<Self> {
+        record.to_nurbs()
+    }
+}
+
+impl<T: Scalar, P: ControlPoint<T>> Exchange for Surface<T, P> {
+    type Record = SurfaceRecord;
+    const NAME: &'static str = "surface";
+
+    fn to_record(&self) -> SurfaceRecord {
+        SurfaceRecord::from_surface(self)
+    }
+
+    fn from_record(record: &SurfaceRecord) -> Result<Self> {
+        record.to_surface()
+    }
+}
+
+impl<T: Scalar, const D: usize> Exchange for NurbsSurface<T, D> {
+    type Record = SurfaceRecord;
+    const NAME: &'static str = "surface";
+
+    fn to_record(&self) -> SurfaceRecord {
+        SurfaceRecord::from_nurbs_surface(self)
+    }
+
+    fn from_record(record: &SurfaceRecord) -> Result<Self> {
+        record.to_nurbs_surface()
+    }
+}
+
+/// The container's record as a JSON value.
+#[must_use]
+pub fn to_value<X: Exchange>(object: &X) -> Value {
+    // A record holds numbers, vectors and options only: serialising cannot fail (NaN and
+    // infinities become `null`).
+    serde_json::to_value(object.to_record()).unwrap_or(Value::Null)
+}
+
+/// The container's record as compact JSON text.
+#[must_use]
+pub fn to_json<X: Exchange>(object: &X) -> String {
+    // As in `to_value`: serialising a record cannot fail.
+    serde_json::to_string(&object.to_record()).unwrap_or_default()
+}
+
+/// A container from its record as a JSON value.
+///
+/// # Errors
+/// [`ErrorKind::Parse`] when the value is not a record, naming the field
+/// (`malformed curve: field control_points[0]: expected an array, got the number 0.0`); the
+/// errors of [`Exchange::from_record`].
+pub fn from_value<X: Exchange>(value: Value) -> Result<X> {
+    X::from_record(&deserialize(X::NAME, value)?)
+}
+
+/// A container from its record as JSON text.
+///
+/// # Errors
+/// [`ErrorKind::Parse`] for text that is not JSON (`not valid JSON: …`); the errors of
+/// [`from_value`].
+pub fn from_json<X: Exchange>(text: &str) -> Result<X> {
+    let value = parse_json(text).map_err(|e| {
+        Error::new(
+            ErrorKind::Parse,
+            format!("not valid JSON: {}", serde_message(e.message())),
+        )
+    })?;
+    from_value(value)
+}
+
+/// Parses JSON text into a value.
+///
+/// # Errors
+/// [`ErrorKind::Parse`] with serde_json's message (with its line and column), which the
+/// caller completes with what was read (a file, an argument) or rewords with
+/// [`serde_message`].
+pub fn parse_json(text: &str) -> Result<Value> {
+    serde_json::from_str(text).map_err(|e| Error::new(ErrorKind::Parse, e.to_string()))
+}
+
+/// An object of the exchange format, curve or surface, before validation.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Record {
+    /// A curve (a NURBS curve if it has weights).
+    Curve(CurveRecord),
+    /// A tensor-product surface (a NURBS surface if it has weights).
+    Surface(SurfaceRecord),
+}
+
+impl Record {
+    /// Reads an object of the exchange format: a surface has a pair of degrees, anything
+    /// else is read as a curve. The reports of the tool (`spline smooth`, `offset`,
+    /// `reduce`, …) hold their object under `"curve"` or `"surface"`: an object without
+    /// `"knots"` that has one of these fields is read as that field, so every reader accepts
+    /// what the tool writes.
+    ///
+    /// # Errors
+    /// [`ErrorKind::Parse`] for a value that is not a JSON object
+    /// (`expected a JSON object with degree, knots and control_points, got an array`) or not
+    /// a record (the message names the field: `malformed curve: field knots: …`).
+    pub fn from_value(value: Value) -> Result<Self> {
+        if !value.is_object() {
+            return Err(Error::new(
+                ErrorKind::Parse,
+                format!(
+                    "expected a JSON object with degree, knots and control_points, got {}",
+                    json_kind(&value)
+                ),
+            ));
+        }
+        if value.get("knots").is_none() {
+            for key in ["curve", "surface"] {
+                if let Some(inner) = value.get(key).filter(|v| v.is_object()) {
+                    return Self::from_value(inner.clone());
+                }
+            }
+        }
+        if value.get("degree").is_some_and(Value::is_array) {
+            Ok(Self::Surface(deserialize("surface", value)?))
+        } else {
+            Ok(Self::Curve(deserialize("curve", value)?))
+        }
+    }
+}
+
+/// What kind of JSON value this is, for messages.
+fn json_kind(value: &Value) -> &'static str {
+    match value {
+        Value::Null => "null",
+        Value::Bool(_) => "a boolean",
+        Value::Number(_) => "a number",
+        Value::String(_) => "a string",
+        Value::Array(_) => "an array",
+        Value::Object(_) => "an object",
+    }
+}
+
+/// Deserialises a JSON value into a record; the message names the field
+/// (`malformed curve: field control_points[0]: …`).
+fn deserialize<R: DeserializeOwned>(what: &str, value: Value) -> Result<R> {
+    serde_path_to_error::deserialize(value).map_err(|e| {
+        let path = e.path().to_string();
+        let what_went_wrong = serde_message(&e.inner().to_string());
+        let message = if path == "." {
+            format!("malformed {what}: {what_went_wrong}")
+        } else {
+            format!("malformed {what}: field {path}: {what_went_wrong}")
+        };
+        Error::new(ErrorKind::Parse, message)
+    })
+}
+
+/// serde's words for JSON people: "expected an array, got the number 0" rather than
+/// "invalid type: floating point `0`, expected a sequence", and no line and column for
+/// one-line values.
+///
+/// ```
+/// use spline_io::exchange::serde_message;
+/// assert_eq!(
+///     serde_message("invalid type: floating point `0`, expected a sequence at line 1 column 1"),
+///     "expected an array, got the number 0"
+/// );
+/// ```
+#[must_use]
+pub fn serde_message(message: &str) -> String {
+    let mut m = message.to_string();
+    if let Some(at) = m.find(" at line 1 column") {
+        m.truncate(at);
+    }
+    let words = |text: &str| {
+        text.replace("a sequence", "an array")
+            .replace("sequence", "array")
+            .replace("a map", "an object")
+            .replace("usize", "a non-negative integer")
+            .replace("u64", "a non-negative integer")
+            .replace("f64", "a number")
+            .replace("floating point `", "the number `")
+            .replace("integer `", "the number `")
+            .replace('`', "")
+    };
+    for prefix in ["invalid type: ", "invalid value: "] {
+        if let Some(rest) = m.strip_prefix(prefix) {
+            if let Some((got, expected)) = rest.split_once(", expected ") {
+                let got = match got {
+                    "map" => "an object".to_string(),
+                    "sequence" => "an array".to_string(),
+                    "null" => "null".to_string(),
+                    other if other.starts_with("string ") || other.starts_with("boolean ") => {
+                        format!("the {}", words(other))
+                    }
+                    other => words(other),
+                };
+                return format!("expected {}, got {got}", words(expected));
+            }
+        }
+    }
+    words(&m)
+}

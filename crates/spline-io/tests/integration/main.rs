@@ -1,0 +1,9 @@
+//! The integration tests of spline-io, one module per format family, linked into one test
+//! binary.
+
+#![allow(unreachable_pub)]
+
+mod exchange;
+mod meshes;
+mod pictures;
+mod points;
