@@ -34,6 +34,7 @@ pub mod iges;
 pub mod obj;
 pub mod off;
 pub mod points;
+mod real;
 pub mod step;
 pub mod svg;
 

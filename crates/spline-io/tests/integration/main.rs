@@ -4,6 +4,8 @@
 #![allow(unreachable_pub)]
 
 mod exchange;
+mod iges;
 mod meshes;
 mod pictures;
 mod points;
+mod step;

@@ -1,4 +1,4 @@
-"""Reads the file our writer produced (`IGES_OUT=dir cargo test -p spline-io --lib
+"""Reads the file our writer produced (`IGES_OUT=dir cargo test -p spline-io --test integration
 write_files_for_occt -- --ignored`) with Open CASCADE and compares poles, knots and weights
 with the values the test wrote next to it (ours.json).
 

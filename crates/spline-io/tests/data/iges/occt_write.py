@@ -1,5 +1,5 @@
 """Writes the IGES files of this folder with Open CASCADE (OCP, cadquery-ocp-novtk) and prints
-the values the Rust tests compare against (crates/spline-io/src/iges.rs, `occt_*` tests).
+the values the Rust tests compare against (crates/spline-io/tests/integration/iges/occt.rs, `occt_*` tests).
 
     target/python-venv/bin/python crates/spline-io/tests/data/iges/occt_write.py crates/spline-io/tests/data/iges
 """
