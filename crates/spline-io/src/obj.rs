@@ -65,9 +65,9 @@ struct Corner {
 ///
 /// # Errors
 /// [`ErrorKind::Parse`] for a vertex or normal without three numbers, a face with fewer than
-/// three corners or an entry that is not an index, an index of a vertex or normal the file
-/// does not have; [`ErrorKind::NonFinite`] for a vertex that is not finite. Every message
-/// names the line.
+/// three corners or an entry that does not start with a vertex index, an index of a vertex
+/// the file does not have; [`ErrorKind::NonFinite`] for a vertex that is not finite. Every
+/// message names the line.
 pub fn read_obj(text: &str) -> Result<TriangleMesh> {
     let mut vertices = Vec::new();
     let mut normals = Vec::new();
@@ -121,20 +121,9 @@ pub fn read_obj(text: &str) -> Result<TriangleMesh> {
                     ),
                 ));
             }
-            match c.normal {
-                Some(k) if k >= normals.len() => {
-                    return Err(Error::new(
-                        ErrorKind::Parse,
-                        format!(
-                            "line {line_number}: normal {} of a file with {} normals",
-                            k + 1,
-                            normals.len()
-                        ),
-                    ));
-                }
-                Some(k) => file_normals &= k == c.vertex,
-                None => file_normals = false,
-            }
+            // A normal the file does not have (or a face without normals) leaves the normals
+            // to be computed.
+            file_normals &= c.normal == Some(c.vertex) && c.vertex < normals.len();
         }
         for k in 1..corners.len() - 1 {
             triangles.push([corners[0].vertex, corners[k].vertex, corners[k + 1].vertex]);
@@ -173,14 +162,13 @@ fn index(text: &str, count: usize) -> Option<usize> {
     }
 }
 
-/// A face entry `i`, `i/t`, `i//n` or `i/t/n`.
+/// A face entry `i`, `i/t`, `i//n` or `i/t/n`: `None` unless the vertex index is one. The
+/// texture index is not used, nor a normal index that is not one (the normals are then
+/// computed).
 fn corner(word: &str, vertices: usize, normals: usize) -> Option<Corner> {
     let mut parts = word.split('/');
     let vertex = index(parts.next()?, vertices)?;
     let _texture = parts.next();
-    let normal = match parts.next() {
-        Some(n) => Some(index(n, normals)?),
-        None => None,
-    };
+    let normal = parts.next().and_then(|n| index(n, normals));
     Some(Corner { vertex, normal })
 }
