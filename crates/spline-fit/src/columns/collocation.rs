@@ -44,22 +44,31 @@ impl<const N: usize> FixedStaircase<N> {
             return None;
         }
         let scale = row.iter().fold(0.0_f64, |s, v| s.max(v.abs()));
-        self.rhs.extend_from_slice(b);
+        if m == 1 {
+            self.rhs.push(b[0]);
+        } else {
+            self.rhs.extend_from_slice(b);
+        }
         let (done, current) = self.rhs.split_at_mut(i * m);
         for k in first..i {
             let l = row[k - first];
             if l == 0.0 {
                 continue;
             }
-            // Row k of U (unit diagonal) covers columns k .. first_k + N.
+            // Row k of U (unit diagonal) covers columns k .. first_k + N: in this row's
+            // window, from offset k + 1 − first, the entries of U's row from k + 1 − first_k.
             let fk = self.first[k];
-            let upper = &self.upper[k];
-            for c in k + 1..fk + N {
-                row[c - first] -= l * upper[c - fk];
+            let upper = &self.upper[k][k + 1 - fk..];
+            for (r, &u) in row[k + 1 - first..].iter_mut().zip(upper) {
+                *r -= l * u;
             }
-            let bk = &done[k * m..(k + 1) * m];
-            for (o, &v) in current.iter_mut().zip(bk) {
-                *o -= l * v;
+            if m == 1 {
+                current[0] -= l * done[k];
+            } else {
+                let bk = &done[k * m..(k + 1) * m];
+                for (o, &v) in current.iter_mut().zip(bk) {
+                    *o -= l * v;
+                }
             }
         }
         let pivot = row[i - first];
@@ -90,6 +99,14 @@ impl<const N: usize> FixedStaircase<N> {
             let row = self.upper[i];
             let (head, tail) = self.rhs.split_at_mut((i + 1) * m);
             let target = &mut head[i * m..];
+            if m == 1 {
+                let mut acc = target[0];
+                for (&u, &v) in row[i + 1 - fi..end - fi].iter().zip(tail.iter()) {
+                    acc -= u * v;
+                }
+                target[0] = acc;
+                continue;
+            }
             for j in i + 1..end {
                 let u = row[j - fi];
                 for (o, &v) in target.iter_mut().zip(&tail[(j - i - 1) * m..(j - i) * m]) {
