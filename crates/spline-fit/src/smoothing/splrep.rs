@@ -1,10 +1,12 @@
 //! scipy 1.17's FITPACK replicas with their full signatures: `make_splrep(x, y, w, xb, xe,
 //! k, s, t, nest)`, `make_splprep(x, w, u, ub, ue, k, s, t, nest)` and
-//! `generate_knots(x, y, w, xb, xe, k, s, nest)` (scipy/interpolate/_fitpack_repro.py,
-//! not periodic). The algorithm is [`super::residual`]'s (FITPACK's `curfit`); this module
-//! adds the interval $[x_b, x_e]$, given knots, the cap `nest`, the sequence of knot
+//! `generate_knots(x, y, w, xb, xe, k, s, nest)` (scipy/interpolate/_fitpack_repro.py), with
+//! scipy's `bc_type="periodic"` as [`SplrepOptions::periodic`]. The algorithm is
+//! [`super::residual`]'s (FITPACK's `curfit`) and [`super::periodic`]'s (`percur`); this
+//! module adds the interval $[x_b, x_e]$, given knots, the cap `nest`, the sequence of knot
 //! vectors and scipy's parameters of curves.
 
+use super::periodic;
 use super::residual::{Data, ResidualFit};
 use crate::interpolate::interpolate_with_knots;
 use crate::params::check_strict;
@@ -21,7 +23,8 @@ pub struct SplrepOptions<'a, T> {
     pub xb: Option<T>,
     /// The end $x_e$ of the interval (`None`: the last abscissa); at least `x[m − 1]`.
     pub xe: Option<T>,
-    /// The degree `k` (FITPACK's 1 to 5 when `s > 0`).
+    /// The degree `k` (FITPACK's 1 to 5 when `s > 0`; periodic: 1 to
+    /// [`spline_core::MAX_DEGREE`]).
     pub k: usize,
     /// The smoothing condition `s ≥ 0`; `0` is not-a-knot interpolation.
     pub s: T,
@@ -29,8 +32,15 @@ pub struct SplrepOptions<'a, T> {
     /// smoothing stage runs on them.
     pub t: Option<&'a [T]>,
     /// The cap on the number of knots placed (at least `2(k + 1)`); `None`: scipy's
-    /// $\max(m + k + 1, 2k + 3)$.
+    /// $\max(m + k + 1, 2k + 3)$ ($\max(m + 2k, 2k + 3)$ when periodic).
     pub nest: Option<usize>,
+    /// scipy's `bc_type="periodic"` (FITPACK's `percur`): the spline of period
+    /// $x_e - x_b$ whose values and first `k − 1` derivatives agree at $x_b$ and $x_e$. The
+    /// first and last values must agree (as `numpy.allclose` with `atol=1e-15`); the last
+    /// datum is the first one a period later and does not count in the residual. The
+    /// knots are wrapped ($t_{k-j} = t_{n-k-1-j} - T$, $t_{n-k-1+j} = t_{k+j} + T$) and the
+    /// last `k` coefficients repeat the first `k`. `false`: scipy's `"not-a-knot"`.
+    pub periodic: bool,
 }
 
 impl<T: Scalar> Default for SplrepOptions<'_, T> {
@@ -44,6 +54,7 @@ impl<T: Scalar> Default for SplrepOptions<'_, T> {
             s: T::zero(),
             t: None,
             nest: None,
+            periodic: false,
         }
     }
 }
@@ -54,7 +65,7 @@ fn invalid(message: impl Into<String>) -> Error {
 
 impl<T: Scalar> SplrepOptions<'_, T> {
     /// For `s = 0`: scipy refuses `t`, `w` and `nest`.
-    fn check_interpolation(&self) -> Result<()> {
+    pub(super) fn check_interpolation(&self) -> Result<()> {
         if self.t.is_some() || self.weights.is_some() || self.nest.is_some() {
             return Err(invalid(
                 "s == 0 is for interpolation only: t, w and nest must not be given",
@@ -64,7 +75,7 @@ impl<T: Scalar> SplrepOptions<'_, T> {
     }
 
     /// The interval $[x_b, x_e]$ for sorted abscissae `x` (validated already).
-    fn bounds(&self, x: &[T]) -> Result<(T, T)> {
+    pub(super) fn bounds(&self, x: &[T]) -> Result<(T, T)> {
         let m = x.len();
         let xb = self.xb.unwrap_or(x[0]);
         let xe = self.xe.unwrap_or(x[m - 1]);
@@ -91,7 +102,7 @@ impl<T: Scalar> SplrepOptions<'_, T> {
     }
 
     /// scipy's check of `nest`: at least `2(k + 1)`, and not together with `t`.
-    fn check_nest(&self) -> Result<()> {
+    pub(super) fn check_nest(&self) -> Result<()> {
         if let Some(nest) = self.nest {
             let k = self.k;
             if nest < 2 * (k + 1) {
@@ -203,6 +214,9 @@ pub fn make_splrep<T: Scalar, P: ControlPoint<T>>(
     y: &[P],
     options: &SplrepOptions<'_, T>,
 ) -> Result<ResidualFit<T, P>> {
+    if options.periodic {
+        return periodic::make_splrep(x, y, options);
+    }
     let k = options.k;
     if options.s == T::zero() {
         options.check_interpolation()?;
@@ -320,6 +334,9 @@ pub fn generate_knots<T: Scalar, P: ControlPoint<T>>(
         return Err(invalid(
             "generate_knots places the knots: t must not be given",
         ));
+    }
+    if options.periodic {
+        return periodic::generate_knots(x, y, options);
     }
     if options.s == T::zero() {
         options.check_interpolation()?;
