@@ -18,7 +18,9 @@
 //! residual target.
 
 use super::profile::ProfileCholesky;
-use super::residual::{ResidualFit, TOL, add_knot, check_data, jump_rows, knots_to_add, root_rati};
+use super::residual::{
+    ResidualFit, TOL, add_knot, check_data, check_degree, jump_rows, knots_to_add, root_rati,
+};
 use super::splrep::SplrepOptions;
 use crate::interpolate::interpolate_with_knots;
 use crate::lsq::LeastSquares;
@@ -32,9 +34,11 @@ use spline_geom::BSpline;
 /// The periodic least-squares spline on a knot vector.
 struct Lsq<T, P> {
     spline: BSpline<T, P>,
-    /// $(w_i \lVert y_i - g(x_i) \rVert)^2$ for the data but the last.
+    /// $(w_i \lVert y_i - g(x_i) \rVert)^2$ for every datum, the last one included (scipy
+    /// 1.17 places knots with it; FITPACK counts the first one twice instead: the same
+    /// when the knots are wrapped and the end weights equal).
     residuals: Vec<T>,
-    /// Their sum.
+    /// Their sum over the data but the last: the residual.
     fp: T,
     /// The sum of the diagonal of the triangular factor (FITPACK's start of `p`).
     diagonal: T,
@@ -72,17 +76,6 @@ fn check_periodic_ends<T: Scalar, P: ControlPoint<T>>(y: &[P]) -> Result<()> {
                     .map(|c| to_f64(last.coord(c)))
                     .collect::<Vec<_>>()
             ),
-        ))
-    }
-}
-
-fn check_periodic_degree(k: usize) -> Result<()> {
-    if (1..=MAX_DEGREE).contains(&k) {
-        Ok(())
-    } else {
-        Err(Error::new(
-            ErrorKind::InvalidArgument,
-            format!("periodic smoothing takes degrees 1 to {MAX_DEGREE}, got {k}"),
         ))
     }
 }
@@ -145,7 +138,7 @@ fn interpolation<T: Scalar, P: ControlPoint<T>>(
     y: &[P],
     k: usize,
 ) -> Result<ResidualFit<T, P>> {
-    check_periodic_degree(k)?;
+    check_degree(k, MAX_DEGREE)?;
     if y.len() != x.len() {
         return Err(Error::invalid_length(
             "one value per abscissa",
@@ -276,7 +269,7 @@ impl<'a, T: Scalar, P: ControlPoint<T>> PeriodicData<'a, T, P> {
         degree: usize,
         s: T,
     ) -> Result<Self> {
-        check_periodic_degree(degree)?;
+        check_degree(degree, MAX_DEGREE)?;
         check_data(x, y, weights, s, (2, "periodic smoothing"))?;
         check_periodic_ends(y)?;
         Ok(Self {
@@ -324,25 +317,24 @@ impl<'a, T: Scalar, P: ControlPoint<T>> PeriodicData<'a, T, P> {
     }
 
     /// The spline of the free coefficients `free` on `knots` (coefficient `i` is
-    /// `free[i mod n₇]`), its residuals and their sum.
+    /// `free[i mod n₇]`), its residual at every datum and their sum over all but the last.
     fn spline(&self, knots: &KnotVector<T>, free: &[P]) -> Result<(BSpline<T, P>, Vec<T>, T)> {
         let n7 = free.len();
         let control = (0..knots.num_basis()).map(|i| free[i % n7]).collect();
         let spline = BSpline::new(knots.clone(), control)?;
-        let m1 = self.used();
-        let values = spline.eval_many(&self.x[..m1])?;
-        let mut fp = T::zero();
-        let residuals = values
+        let values = spline.eval_many(self.x)?;
+        let residuals: Vec<T> = values
             .iter()
             .zip(self.y)
             .enumerate()
             .map(|(i, (g, y))| {
                 let w = self.weights.map_or_else(T::one, |w| w[i]);
-                let r = (*g - *y).length_squared() * w * w;
-                fp += r;
-                r
+                (*g - *y).length_squared() * w * w
             })
             .collect();
+        let fp = residuals[..self.used()]
+            .iter()
+            .fold(T::zero(), |acc, &r| acc + r);
         Ok((spline, residuals, fp))
     }
 
@@ -418,7 +410,7 @@ impl<'a, T: Scalar, P: ControlPoint<T>> PeriodicData<'a, T, P> {
                 knots_to_add(nplus, fpold - fp, fpms, acc)
             };
             for j in 0..nplus {
-                knots = add_knot(self.x, &knots, &residuals, true)?;
+                knots = add_knot(self.x, &knots, &residuals)?;
                 let n = knots.len();
                 if n >= nmax {
                     let knots = periodic_interpolation_knots(self.x, k)?;
@@ -530,7 +522,7 @@ pub(super) fn generate_knots<T: Scalar, P: ControlPoint<T>>(
     let k = options.k;
     if options.s == T::zero() {
         options.check_interpolation()?;
-        check_periodic_degree(k)?;
+        check_degree(k, MAX_DEGREE)?;
         let knots = if k == 1 {
             KnotVector::not_a_knot(1, x)?
         } else {

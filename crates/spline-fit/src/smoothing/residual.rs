@@ -14,11 +14,11 @@
 
 use crate::banded::BandCholesky;
 use crate::interpolate::interpolate_with_knots;
-use crate::lsq::LeastSquares;
+use crate::lsq::{LeastSquares, LsqMethod};
 use crate::params::{Parametrization, check_points, parametrize};
 use spline_core::{
-    ControlPoint, Error, ErrorKind, KnotVector, Result, Scalar, cast, check_params, from_count,
-    to_f64,
+    ControlPoint, Error, ErrorKind, KnotVector, MAX_DEGREE, Result, Scalar, cast, check_params,
+    from_count, to_f64,
 };
 use spline_geom::BSpline;
 
@@ -77,6 +77,7 @@ pub fn smoothing_to_residual<T: Scalar, P: ControlPoint<T>>(
     degree: usize,
     s: T,
 ) -> Result<ResidualFit<T, P>> {
+    check_degree(degree, 5)?;
     let data = Data::new(x, y, weights, degree, s)?;
     if s == T::zero() {
         let knots = KnotVector::not_a_knot(degree, x)?;
@@ -89,7 +90,7 @@ pub fn smoothing_to_residual<T: Scalar, P: ControlPoint<T>>(
         });
     }
     let knots = data.generate_knots()?;
-    let (lsq, _, fp) = data.least_squares(&knots)?;
+    let (lsq, _, fp) = data.least_squares_qr(&knots)?;
     if knots.len() == 2 * (degree + 1) {
         return Ok(ResidualFit {
             spline: lsq,
@@ -116,6 +117,19 @@ pub fn smoothing_curve_to_residual<T: Scalar, P: ControlPoint<T>>(
     let params = parametrize(points, &Parametrization::Chordal)?;
     let fit = smoothing_to_residual(&params, points, weights, degree, s)?;
     Ok((fit, params))
+}
+
+/// Degrees `1 ..= max`: FITPACK's 1 to 5 ([`smoothing_to_residual`]), any supported one
+/// for scipy's replicas (`make_splrep` has no limit).
+pub(super) fn check_degree(degree: usize, max: usize) -> Result<()> {
+    if (1..=max).contains(&degree) {
+        Ok(())
+    } else {
+        Err(Error::new(
+            ErrorKind::InvalidArgument,
+            format!("smoothing to a residual target takes degrees 1 to {max}, got {degree}"),
+        ))
+    }
 }
 
 /// The checks of the data shared by the fits to a residual target: `s` finite and
@@ -192,12 +206,7 @@ impl<'a, T: Scalar, P: ControlPoint<T>> Data<'a, T, P> {
         degree: usize,
         s: T,
     ) -> Result<Self> {
-        if !(1..=5).contains(&degree) {
-            return Err(Error::new(
-                ErrorKind::InvalidArgument,
-                format!("smoothing to a residual target takes degrees 1 to 5, got {degree}"),
-            ));
-        }
+        check_degree(degree, MAX_DEGREE)?;
         check_data(x, y, weights, s, (degree + 1, &format!("degree {degree}")))?;
         Ok(Self {
             x,
@@ -230,12 +239,31 @@ impl<'a, T: Scalar, P: ControlPoint<T>> Data<'a, T, P> {
         Ok((residuals, fp))
     }
 
-    /// The weighted least-squares spline on `knots`, its residuals and their sum.
+    /// The weighted least-squares spline on `knots`, its residuals and their sum: by the
+    /// banded normal equations while knots are placed (only the residuals count).
     pub(super) fn least_squares(
         &self,
         knots: &KnotVector<T>,
     ) -> Result<(BSpline<T, P>, Vec<T>, T)> {
-        let mut lsq = LeastSquares::new(self.y, self.x, knots.clone());
+        self.least_squares_by(knots, LsqMethod::NormalEquations)
+    }
+
+    /// [`Data::least_squares`] by Givens QR as FITPACK's (the condition number not squared):
+    /// for the least-squares spline that is returned (a linear function fits to `1e-16`,
+    /// not `1e-15`).
+    pub(super) fn least_squares_qr(
+        &self,
+        knots: &KnotVector<T>,
+    ) -> Result<(BSpline<T, P>, Vec<T>, T)> {
+        self.least_squares_by(knots, LsqMethod::Qr)
+    }
+
+    fn least_squares_by(
+        &self,
+        knots: &KnotVector<T>,
+        method: LsqMethod,
+    ) -> Result<(BSpline<T, P>, Vec<T>, T)> {
+        let mut lsq = LeastSquares::new(self.y, self.x, knots.clone()).method(method);
         if let Some(w) = self.weights {
             lsq = lsq.weights(w);
         }
@@ -283,7 +311,7 @@ impl<'a, T: Scalar, P: ControlPoint<T>> Data<'a, T, P> {
                 knots_to_add(nplus, fpold - fp, fpms, acc)
             };
             for j in 0..nplus {
-                t = add_knot(self.x, &t, &residuals, false)?;
+                t = add_knot(self.x, &t, &residuals)?;
                 let n = t.len();
                 if n >= nmax {
                     let t = KnotVector::not_a_knot(k, self.x)?;
@@ -485,15 +513,11 @@ fn fprati<T: Scalar>(p1: T, f1: T, p2: T, f2: T, p3: Option<T>, f3: T) -> T {
 /// FITPACK's new knot (`fpknot`, as scipy's `_dierckx.fpknot`): the data are split into
 /// runs between consecutive knots (a datum on a knot shares its residual between the two
 /// runs); in the run with the largest residual sum among those with more than one interior
-/// step, the datum in the middle becomes a knot. `residuals` holds one residual per datum,
-/// or for a periodic spline (`periodic`, FITPACK's `fpperi`) one per datum but the last,
-/// which is the first one a period later: the first residual then also counts in the last
-/// run, as it does in FITPACK.
+/// step, the datum in the middle becomes a knot.
 pub(super) fn add_knot<T: Scalar>(
     x: &[T],
     t: &KnotVector<T>,
     residuals: &[T],
-    periodic: bool,
 ) -> Result<KnotVector<T>> {
     let k = t.degree();
     let knots = t.knots();
@@ -515,9 +539,6 @@ pub(super) fn add_knot<T: Scalar>(
         }
     }
     ix.push(x.len() - 1);
-    if periodic && let Some(&first) = residuals.first() {
-        part += first;
-    }
     parts.push(part);
     let mut best: Option<(usize, T)> = None;
     for (i, &f) in parts.iter().enumerate() {

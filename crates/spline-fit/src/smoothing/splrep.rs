@@ -23,8 +23,8 @@ pub struct SplrepOptions<'a, T> {
     pub xb: Option<T>,
     /// The end $x_e$ of the interval (`None`: the last abscissa); at least `x[m − 1]`.
     pub xe: Option<T>,
-    /// The degree `k` (FITPACK's 1 to 5 when `s > 0`; periodic: 1 to
-    /// [`spline_core::MAX_DEGREE`]).
+    /// The degree `k`: 1 to [`spline_core::MAX_DEGREE`] when `s > 0` (scipy's replicas
+    /// set no limit; FITPACK's `curfit` and `percur` take 1 to 5, odd ones recommended).
     pub k: usize,
     /// The smoothing condition `s ≥ 0`; `0` is not-a-knot interpolation.
     pub s: T,
@@ -190,6 +190,11 @@ fn check_given_knots<T: Scalar>(x: &[T], t: &[T], k: usize) -> Result<KnotVector
 /// subject to $\sum_i (w_i \lVert y_i - g(x_i) \rVert)^2 = s$. Vector values `y` give
 /// scipy's `make_splprep` with given parameters `x`.
 ///
+/// With [`SplrepOptions::periodic`] (scipy's `bc_type="periodic"`, FITPACK's `percur`): the
+/// spline of period $x_e - x_b$, on wrapped knots, whose residual over the data but the
+/// last meets `s`; knots are placed from the least-squares constant, and `s = 0` is scipy's
+/// periodic interpolation (`make_interp_spline(x, y, k, bc_type="periodic")`).
+///
 /// ```
 /// use spline_fit::{SplrepOptions, make_splrep};
 /// let x: Vec<f64> = (0..40).map(|i| f64::from(i) / 39.0).collect();
@@ -201,14 +206,23 @@ fn check_given_knots<T: Scalar>(x: &[T], t: &[T], k: usize) -> Result<KnotVector
 ///
 /// # Errors
 /// [`ErrorKind::InvalidArgument`] for `t`, `w` or `nest` with `s = 0`, `nest < 2(k + 1)`,
-/// `t` and `nest` together, and the errors of [`crate::smoothing_to_residual`] (degrees 1
-/// to 5, `s` finite and non-negative, lengths, sorted finite data, positive weights);
+/// `t` and `nest` together, and the errors of [`crate::smoothing_to_residual`] (but
+/// degrees 1 to [`spline_core::MAX_DEGREE`]; `s` finite and non-negative, lengths, sorted
+/// finite data, positive weights);
 /// [`ErrorKind::OutOfDomain`] when $[x_b, x_e]$ does not contain the data or the given
 /// knots' base interval does not; for given knots [`ErrorKind::InvalidLength`] unless
 /// `k + 1 ≤ n − k − 1 ≤ m`, [`ErrorKind::KnotMultiplicity`] for repeated interior knots and
 /// the errors of [`KnotVector::new`]; [`ErrorKind::SchoenbergWhitney`] or
 /// [`ErrorKind::SingularSystem`] when a system cannot be solved. For `s = 0` the errors of
 /// [`crate::interpolate_with_knots`] (strictly increasing `x`).
+///
+/// Periodic: at least 2 data ([`ErrorKind::TooFewPoints`]);
+/// [`ErrorKind::InvalidArgument`] when the first and last values differ (beyond
+/// `numpy.allclose(y[0], y[-1], atol=1e-15)`); for given knots
+/// [`ErrorKind::InvalidLength`] unless `k + 1 ≤ n − k − 1 ≤ m + k − 1` and
+/// [`ErrorKind::SchoenbergWhitney`] unless some cyclic shift of the data satisfies the
+/// Schoenberg–Whitney conditions (FITPACK's `fpchep`); for `s = 0` the errors of
+/// [`crate::interpolate_periodic`].
 pub fn make_splrep<T: Scalar, P: ControlPoint<T>>(
     x: &[T],
     y: &[P],
@@ -229,7 +243,7 @@ pub fn make_splrep<T: Scalar, P: ControlPoint<T>>(
         Some(t) => check_given_knots(x, t, k)?,
         None => data.generate_knots_with(bounds, options.nest, &mut |_| {})?,
     };
-    let (lsq, _, fp) = data.least_squares(&knots)?;
+    let (lsq, _, fp) = data.least_squares_qr(&knots)?;
     if knots.len() == 2 * (k + 1) {
         return Ok(ResidualFit {
             spline: lsq,
@@ -289,6 +303,9 @@ pub fn chord_length_parameters<T: Scalar, P: ControlPoint<T>>(points: &[P]) -> R
 /// curve through `points` (scipy's `x` transposed: one point per datum): the parameters are
 /// `u` or [`chord_length_parameters`], then [`make_splrep`] with the points as values
 /// (`options.xb`, `options.xe` are `ub`, `ue`). Returns the fit and the parameters.
+/// Periodic (a closed curve, the last point equal to the first) with `s = 0` is the
+/// periodic interpolation here; scipy's `make_splprep` ignores `bc_type` when `s = 0` and
+/// interpolates with not-a-knot ends (the Python package keeps scipy's behaviour).
 ///
 /// # Errors
 /// As [`chord_length_parameters`] (when `u` is `None`) and [`make_splrep`];
@@ -321,7 +338,10 @@ pub fn make_splprep<T: Scalar, P: ControlPoint<T>>(
 /// the knots added; it ends when the residual meets `s` (the last vector is the one that
 /// met it), when `nest` knots are reached, or with the not-a-knot knots of interpolation
 /// when `m + k + 1` would be. For `s = 0` the one vector is the not-a-knot one.
-/// `options.t` must be `None`.
+/// Periodic: the least-squares constant's first (one period `x[0] … x[m − 1]` and `k` more
+/// knots each side), then from one interior knot at the middle datum the wrapped vectors,
+/// ending with scipy's periodic interpolation knots when `m + 2k` would be reached; for
+/// `s = 0` those (the not-a-knot ones for `k = 1`, as scipy). `options.t` must be `None`.
 ///
 /// # Errors
 /// [`ErrorKind::InvalidArgument`] for `options.t`, and as [`make_splrep`].
