@@ -157,8 +157,10 @@ fn interpolation<T: Scalar, P: ControlPoint<T>>(
         let knots = KnotVector::not_a_knot(1, x)?;
         interpolate_with_knots(&knots, x, &values)?
     } else {
+        // scipy's knots (the wrapped ones extended by its spacings, not by the period).
         let periodic = interpolate_periodic(x, &values, k)?;
-        periodic.wrapped().clone()
+        let control = periodic.wrapped().control_points().to_vec();
+        BSpline::new(periodic_interpolation_knots(x, k)?, control)?
     };
     Ok(ResidualFit {
         spline,

@@ -230,6 +230,8 @@ fn large_target_gives_the_weighted_mean() {
 #[test]
 fn zero_target_interpolates_periodically() {
     let fit = make_splrep(&X, &Y, &periodic(0.0, 3)).unwrap();
+    // The knots are generate_knots' (scipy's _periodic_knots), bit for bit.
+    assert_eq!(fit.spline.knots().knots(), &INTERP_KNOTS_K3);
     close(
         fit.spline.control_points(),
         &INTERP_COEF_K3,
