@@ -15,11 +15,15 @@
 
 use spline_core::KnotVector;
 
-/// Rows of width `N` reduced one at a time against the previous ones (the unit upper factor
-/// kept), with `m` right-hand-side columns.
+/// Rows of width `N` reduced one at a time against the previous ones, with `m`
+/// right-hand-side columns. Row `i` of the unit upper factor is stored aligned on its
+/// diagonal: `upper[i][c]` is the entry at column `i + c` (its non-zeros end before column
+/// `first_i + N ≤ i + N`), so elimination and back substitution are fixed-length loops.
 struct FixedStaircase<const N: usize> {
-    first: Vec<usize>,
+    /// Rows pushed so far.
+    rows: usize,
     upper: Vec<[f64; N]>,
+    /// The reduced right-hand sides, then the solution; `N` zero rows of padding at the end.
     rhs: Vec<f64>,
     m: usize,
 }
@@ -27,93 +31,99 @@ struct FixedStaircase<const N: usize> {
 impl<const N: usize> FixedStaircase<N> {
     fn with_capacity(n: usize, m: usize) -> Self {
         Self {
-            first: Vec::with_capacity(n),
-            upper: Vec::with_capacity(n),
-            rhs: Vec::with_capacity(n * m),
+            rows: 0,
+            upper: vec![[0.0; N]; n],
+            rhs: vec![0.0; (n + N) * m],
             m,
         }
     }
 
     /// Appends row `row` at columns `first …` with right-hand side `b`; `None` on a pivot that
-    /// is not finite or not above `4 N ε` times the row's largest entry.
+    /// is not finite or not above `4 N ε` times the row's largest entry, or more rows than
+    /// allocated.
     #[inline]
-    fn push(&mut self, first: usize, mut row: [f64; N], b: &[f64]) -> Option<()> {
+    fn push(&mut self, first: usize, row: [f64; N], b: &[f64]) -> Option<()> {
         let m = self.m;
-        let i = self.first.len();
-        if first > i || i >= first + N {
+        let i = self.rows;
+        if first > i || i >= first + N || i >= self.upper.len() {
             return None;
         }
         let scale = row.iter().fold(0.0_f64, |s, v| s.max(v.abs()));
-        if m == 1 {
-            self.rhs.push(b[0]);
-        } else {
-            self.rhs.extend_from_slice(b);
-        }
+        // The row at columns first …, with room for the tail of an upper row.
+        let mut w = [0.0; 16];
+        w[..N].copy_from_slice(&row);
         let (done, current) = self.rhs.split_at_mut(i * m);
+        let current = &mut current[..m];
+        if m == 1 {
+            current[0] = b[0];
+        } else {
+            current.copy_from_slice(b);
+        }
         for k in first..i {
-            let l = row[k - first];
+            let j = k - first;
+            let l = w[j];
             if l == 0.0 {
                 continue;
             }
-            // Row k of U (unit diagonal) covers columns k .. first_k + N: in this row's
-            // window, from offset k + 1 − first, the entries of U's row from k + 1 − first_k.
-            let fk = self.first[k];
-            let upper = &self.upper[k][k + 1 - fk..];
-            for (r, &u) in row[k + 1 - first..].iter_mut().zip(upper) {
-                *r -= l * u;
+            let upper = &self.upper[k];
+            for c in 1..N {
+                w[j + c] -= l * upper[c];
             }
             if m == 1 {
                 current[0] -= l * done[k];
             } else {
-                let bk = &done[k * m..(k + 1) * m];
-                for (o, &v) in current.iter_mut().zip(bk) {
+                for (o, &v) in current.iter_mut().zip(&done[k * m..(k + 1) * m]) {
                     *o -= l * v;
                 }
             }
         }
-        let pivot = row[i - first];
+        let d = i - first;
+        let pivot = w[d];
         #[allow(clippy::cast_precision_loss)]
         let tiny = f64::EPSILON * (4 * N) as f64 * scale;
         if !(pivot.abs() > tiny) || !pivot.is_finite() {
             return None;
         }
         let inverse = 1.0 / pivot;
-        for v in &mut row[i + 1 - first..] {
-            *v *= inverse;
+        let upper = &mut self.upper[i];
+        upper[0] = 1.0;
+        for c in 1..N {
+            upper[c] = w[d + c] * inverse;
         }
         for o in current.iter_mut() {
             *o *= inverse;
         }
-        self.first.push(first);
-        self.upper.push(row);
+        self.rows += 1;
         Some(())
     }
 
     /// Back substitution: the solution, row-major with `m` columns.
     fn solve(mut self) -> Vec<f64> {
-        let n = self.first.len();
+        let n = self.rows;
         let m = self.m;
-        for i in (0..n).rev() {
-            let fi = self.first[i];
-            let end = (fi + N).min(n);
-            let row = self.upper[i];
-            let (head, tail) = self.rhs.split_at_mut((i + 1) * m);
-            let target = &mut head[i * m..];
-            if m == 1 {
-                let mut acc = target[0];
-                for (&u, &v) in row[i + 1 - fi..end - fi].iter().zip(tail.iter()) {
-                    acc -= u * v;
+        if m == 1 {
+            let x = &mut self.rhs;
+            for i in (0..n).rev() {
+                let u = &self.upper[i];
+                let mut acc = x[i];
+                for c in 1..N {
+                    acc -= u[c] * x[i + c];
                 }
-                target[0] = acc;
-                continue;
+                x[i] = acc;
             }
-            for j in i + 1..end {
-                let u = row[j - fi];
-                for (o, &v) in target.iter_mut().zip(&tail[(j - i - 1) * m..(j - i) * m]) {
-                    *o -= u * v;
+        } else {
+            for i in (0..n).rev() {
+                let u = self.upper[i];
+                let (head, tail) = self.rhs.split_at_mut((i + 1) * m);
+                let target = &mut head[i * m..];
+                for c in 1..N {
+                    for (o, &v) in target.iter_mut().zip(&tail[(c - 1) * m..c * m]) {
+                        *o -= u[c] * v;
+                    }
                 }
             }
         }
+        self.rhs.truncate(n * m);
         self.rhs
     }
 }
@@ -170,7 +180,7 @@ fn solve_fixed<const N: usize>(
             }
         }
     }
-    (system.first.len() == nt).then(|| system.solve())
+    (system.rows == nt).then(|| system.solve())
 }
 
 /// [`solve_fixed`] for degrees 1 to 5 (`None` for other degrees, derivative orders above 9,
