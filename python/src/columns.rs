@@ -8,6 +8,10 @@ use numpy::{PyArray1, PyReadonlyArray1};
 use pyo3::prelude::*;
 use spline::geom::{ColumnSpline, Extrapolate, PowerBasisKnots};
 
+/// Output values from which an evaluation runs on every core (below, threads cost more than
+/// they save).
+const PARALLEL_MIN_VALUES: usize = 1 << 16;
+
 /// scipy's `extrapolate` argument by name: `"on"`, `"off"` or `"periodic"`.
 fn mode(name: &str) -> PyResult<Extrapolate> {
     match name {
@@ -63,7 +67,19 @@ impl Columns {
     ) -> PyResult<Bound<'py, PyArray1<f64>>> {
         let mode = self::mode(mode)?;
         let x = slice(&x, "x")?;
-        let out = py.detach(|| self.0.eval(x, nu, mode)).py()?;
+        let columns = self.0.columns();
+        let out = py
+            .detach(|| {
+                let mut out = vec![0.0; x.len().saturating_mul(columns)];
+                // Large batches on every core (the same values bit for bit).
+                if out.len() >= PARALLEL_MIN_VALUES {
+                    self.0.par_eval_into(x, nu, mode, &mut out)?;
+                } else {
+                    self.0.eval_into(x, nu, mode, &mut out)?;
+                }
+                Ok::<_, spline::core::Error>(out)
+            })
+            .py()?;
         Ok(array(py, out))
     }
 

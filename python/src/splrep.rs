@@ -1,6 +1,7 @@
 //! scipy's FITPACK replicas (`make_splrep`, `make_splprep`, `generate_knots`) as the library
-//! implements them (`spline_fit::make_splrep`, `generate_knots`). `spline._splrep` validates
-//! the arguments with scipy's words and builds the `BSpline`.
+//! implements them (`spline_fit::make_splrep`, `generate_knots`; `periodic` is scipy's
+//! `bc_type="periodic"`). `spline._splrep` validates the arguments with scipy's words and
+//! builds the `BSpline`.
 
 use crate::{IntoPy, array, bad_input, slice};
 use numpy::{PyArray1, PyReadonlyArray1};
@@ -65,7 +66,7 @@ macro_rules! by_dim {
 /// coordinates, `x` the parameters): `(t, c, converged)` with `c` row-major; `converged`
 /// is false when the residual target was not met (FITPACK's `ier` 2 or 3).
 #[pyfunction]
-#[pyo3(signature = (x, y, dim, w, xb, xe, k, s, t, nest))]
+#[pyo3(signature = (x, y, dim, w, xb, xe, k, s, t, nest, periodic=false))]
 #[allow(clippy::too_many_arguments)]
 fn splrep_fit<'py>(
     py: Python<'py>,
@@ -79,6 +80,7 @@ fn splrep_fit<'py>(
     s: f64,
     t: Option<PyReadonlyArray1<'py, f64>>,
     nest: Option<usize>,
+    periodic: bool,
 ) -> PyResult<SplrepFit<'py>> {
     let (x, y) = (slice(&x, "x")?, slice(&y, "y")?);
     let w = w.as_ref().map(|w| slice(w, "w")).transpose()?;
@@ -91,6 +93,7 @@ fn splrep_fit<'py>(
         s,
         t,
         nest,
+        periodic,
     };
     let (knots, coefficients, converged) = by_dim!(dim, P => {
         let values: Vec<P> = points(y);
@@ -107,9 +110,10 @@ fn splrep_fit<'py>(
     Ok((array(py, knots), array(py, coefficients), converged))
 }
 
-/// Every knot vector of FITPACK's first stage (`generate_knots`).
+/// Every knot vector of FITPACK's first stage (`generate_knots`; for `s = 0` the one
+/// vector of interpolation, `y` unused).
 #[pyfunction]
-#[pyo3(signature = (x, y, dim, w, xb, xe, k, s, nest))]
+#[pyo3(signature = (x, y, dim, w, xb, xe, k, s, nest, periodic=false))]
 #[allow(clippy::too_many_arguments)]
 fn splrep_knots(
     py: Python<'_>,
@@ -122,6 +126,7 @@ fn splrep_knots(
     k: usize,
     s: f64,
     nest: Option<usize>,
+    periodic: bool,
 ) -> PyResult<Vec<Vec<f64>>> {
     let (x, y) = (slice(&x, "x")?, slice(&y, "y")?);
     let w = w.as_ref().map(|w| slice(w, "w")).transpose()?;
@@ -133,6 +138,7 @@ fn splrep_knots(
         s,
         t: None,
         nest,
+        periodic,
     };
     by_dim!(dim, P => {
         let values: Vec<P> = points(y);

@@ -31,8 +31,8 @@ CORE = (
 
 #: Passes that must not be lost (core classes, whole file); missing names are stubs, so
 #: these count only what the package does. The issue's goal: 183 and 505.
-BAR_CORE = 176
-BAR_ALL = 398
+BAR_CORE = 187
+BAR_ALL = 520
 
 HERE = Path(__file__).resolve().parent
 

@@ -512,6 +512,64 @@ pub fn intersect_curves<T: Scalar, A: PlanarCurve<T>, B: PlanarCurve<T>>(
     Ok(deduplicate(found, merge_u, merge_v))
 }
 
+/// The size of a planar curve for relative tolerances: the largest side of the box of its
+/// (projected) Bézier control points, which contains the curve. Computed without squaring,
+/// so it is finite for coordinates up to the largest float.
+///
+/// # Errors
+/// The curve's conversion to Bézier pieces (never for a valid curve).
+pub fn planar_extent<T: Scalar, C: PlanarCurve<T>>(curve: &C) -> Result<T> {
+    let pieces = pieces_of(curve)?;
+    let Some(first) = pieces.first() else {
+        return Ok(T::zero());
+    };
+    let (lo, hi) = pieces.iter().fold((first.lo, first.hi), |(lo, hi), p| {
+        (lo.inf(&p.lo), hi.sup(&p.hi))
+    });
+    Ok((hi.x - lo.x).max(hi.y - lo.y))
+}
+
+/// [`intersect_curves`] with a tolerance relative to the curves' size: `relative` times the
+/// larger [`planar_extent`] of the two (the absolute tolerance when both are points). The
+/// answer to a scaled pair is then the scaled answer: the same crossings at 1e-60 and 1e60
+/// as at 1 (tested). Sizes much beyond that range are not covered yet: the search squares
+/// and multiplies coordinates, which leave the normal range of `f64` there.
+///
+/// # Errors
+/// As [`intersect_curves`].
+pub fn intersect_curves_relative<T: Scalar, A: PlanarCurve<T>, B: PlanarCurve<T>>(
+    a: &A,
+    b: &B,
+    relative: T,
+) -> Result<Vec<CurveIntersection<T>>> {
+    check_tolerance(relative)?;
+    let size = planar_extent(a)?.max(planar_extent(b)?);
+    let tolerance = if size > T::zero() && (relative * size) > T::zero() {
+        relative * size
+    } else {
+        relative
+    };
+    intersect_curves(a, b, tolerance)
+}
+
+/// [`self_intersections`] with a tolerance relative to the curve's [`planar_extent`].
+///
+/// # Errors
+/// As [`self_intersections`].
+pub fn self_intersections_relative<T: Scalar, C: PlanarCurve<T>>(
+    curve: &C,
+    relative: T,
+) -> Result<Vec<CurveIntersection<T>>> {
+    check_tolerance(relative)?;
+    let size = planar_extent(curve)?;
+    let tolerance = if size > T::zero() && (relative * size) > T::zero() {
+        relative * size
+    } else {
+        relative
+    };
+    self_intersections(curve, tolerance)
+}
+
 /// The self-intersections of a planar curve of any kind: pairs `u < v` with
 /// $C(u) = C(v)$ within `tolerance`, refined and flagged as in [`intersect_curves`].
 ///

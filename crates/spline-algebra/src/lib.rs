@@ -94,7 +94,7 @@ pub use bilinear::SparseBilinear;
 pub use bounds::tight_box;
 pub use curve_intersection::{
     CurveIntersection, MAX_INTERSECTION_PAIRS, TANGENTIAL_SINE, intersect_curves,
-    self_intersections,
+    intersect_curves_relative, planar_extent, self_intersections, self_intersections_relative,
 };
 pub use curves::{Differentiated, Form, Invariant, PlanarInvariants};
 pub use features::{

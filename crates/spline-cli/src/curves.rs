@@ -10,7 +10,10 @@ use crate::plot::{Planar, planar_of, read_planar};
 use clap::Args;
 use nalgebra::Vector2;
 use serde_json::{Value, json};
-use spline_algebra::{CurveIntersection, intersect_curves, offset_cusps, self_intersections};
+use spline_algebra::{
+    CurveIntersection, intersect_curves, intersect_curves_relative, offset_cusps,
+    self_intersections, self_intersections_relative,
+};
 use spline_core::{Error, ErrorKind, Result};
 use spline_fit::{
     SmoothingParameter, offset_curve, reduce_degree, reparametrize_by_arc_length, smoothing_spline,
@@ -99,10 +102,23 @@ fn hits_json(hits: &[CurveIntersection<f64>]) -> Value {
     )
 }
 
-fn pair<A: PlanarCurve<f64>>(a: &A, b: &Planar, tol: f64) -> Result<Vec<CurveIntersection<f64>>> {
-    match b {
-        Planar::Polynomial(b) => intersect_curves(a, b, tol),
-        Planar::Rational(b) => intersect_curves(a, b, tol),
+/// A contact tolerance as given (`--tolerance`, absolute) or by default (relative to size).
+#[derive(Clone, Copy)]
+enum Contact {
+    Absolute(f64),
+    Relative(f64),
+}
+
+fn pair<A: PlanarCurve<f64>>(
+    a: &A,
+    b: &Planar,
+    contact: Contact,
+) -> Result<Vec<CurveIntersection<f64>>> {
+    match (b, contact) {
+        (Planar::Polynomial(b), Contact::Absolute(t)) => intersect_curves(a, b, t),
+        (Planar::Rational(b), Contact::Absolute(t)) => intersect_curves(a, b, t),
+        (Planar::Polynomial(b), Contact::Relative(t)) => intersect_curves_relative(a, b, t),
+        (Planar::Rational(b), Contact::Relative(t)) => intersect_curves_relative(a, b, t),
     }
 }
 
@@ -117,25 +133,32 @@ pub fn intersect_curve_objects(
     b: Option<(Object, &str)>,
     tolerance: Option<f64>,
 ) -> Result<()> {
-    let tolerance = tolerance.unwrap_or(CURVE_CONTACT_TOLERANCE);
+    // Without --tolerance: relative to the curves' size (the same answer at every scale).
+    let contact = match tolerance {
+        Some(t) => Contact::Absolute(t),
+        None => Contact::Relative(CURVE_CONTACT_TOLERANCE),
+    };
     let first = planar_of(a.0, a.1, "intersect")?;
     let hits = match b {
         Some((object, path)) => {
             let second = planar_of(object, path, "intersect")?;
             match &first {
-                Planar::Polynomial(x) => pair(x, &second, tolerance)?,
-                Planar::Rational(x) => pair(x, &second, tolerance)?,
+                Planar::Polynomial(x) => pair(x, &second, contact)?,
+                Planar::Rational(x) => pair(x, &second, contact)?,
             }
         }
-        None => match &first {
-            Planar::Polynomial(x) => self_intersections(x, tolerance)?,
-            Planar::Rational(x) => self_intersections(x, tolerance)?,
+        None => match (&first, contact) {
+            (Planar::Polynomial(x), Contact::Absolute(t)) => self_intersections(x, t)?,
+            (Planar::Rational(x), Contact::Absolute(t)) => self_intersections(x, t)?,
+            (Planar::Polynomial(x), Contact::Relative(t)) => self_intersections_relative(x, t)?,
+            (Planar::Rational(x), Contact::Relative(t)) => self_intersections_relative(x, t)?,
         },
     };
     print_json(&hits_json(&hits))
 }
 
-/// The distance under which two curves touch, unless `--tolerance` says otherwise.
+/// The distance under which two curves touch, relative to their size (the larger side of
+/// the box of their control points), unless `--tolerance` gives an absolute one.
 pub const CURVE_CONTACT_TOLERANCE: f64 = 1e-9;
 
 fn padded(p: &Vector2<f64>) -> Pt {

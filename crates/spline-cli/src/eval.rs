@@ -32,6 +32,10 @@ pub struct EvalArgs {
     /// Highest derivative order K.
     #[arg(long, default_value_t = 0)]
     derivatives: usize,
+    /// Curves: evaluate outside the domain as scipy does (on: the end pieces continue; off:
+    /// NaN there; periodic: the spline repeats). Without it, parameters outside are an error.
+    #[arg(long, value_enum)]
+    extrapolate: Option<crate::functions::Mode>,
 }
 
 pub fn basis(args: &BasisArgs) -> Result<()> {
@@ -114,7 +118,11 @@ pub fn eval(args: &EvalArgs) -> Result<()> {
     let order = args.derivatives;
     let curve_params = || io::parse_arg::<Vec<f64>>("--at", &args.at);
     let surface_params = || io::parse_arg::<Vec<[f64; 2]>>("--at", &args.at);
-    match read_object(&args.object)? {
+    let object = read_object(&args.object)?;
+    if let Some(mode) = args.extrapolate {
+        return crate::functions::eval_extrapolated(object, &curve_params()?, order, mode);
+    }
+    match object {
         Object::Curve(c) => io::print_json(&eval_curve(&c.value, c.dim, &curve_params()?, order)?),
         Object::Nurbs(c) => io::print_json(&eval_curve(&c.value, c.dim, &curve_params()?, order)?),
         Object::Surface(s) => {

@@ -14,6 +14,7 @@ mod cad;
 mod curves;
 mod eval;
 mod fitting;
+mod functions;
 mod io;
 mod make;
 mod mesh;
@@ -57,6 +58,16 @@ enum Command {
     Bezier(structural::ObjectArgs),
     /// The derivative curve of order K (degree p - K).
     Derivative(structural::DerivativeArgs),
+    /// The antiderivative of order K of a curve or function (degree p + K, zero at the first knot; scipy's splantider).
+    Antiderivative(functions::AntiderivativeArgs),
+    /// The definite integral of every coordinate over [FROM, TO] (scipy's BSpline.integrate).
+    Integrate(functions::IntegrateArgs),
+    /// The zeros of a scalar function in its domain (scipy's sproot / PPoly.roots).
+    Roots(functions::RootsArgs),
+    /// Evaluate an N-dimensional tensor-product spline (scipy's NdBSpline): [point][coord].
+    NdEval(functions::NdEvalArgs),
+    /// Interpolate values on a grid by an N-dimensional spline (scipy's make_ndbspl).
+    NdInterpolate(functions::NdInterpolateArgs),
     /// Draw curves with their control polygons as SVG.
     Plot(plot::PlotArgs),
     /// Product of two B-spline functions, optionally with Jacobians.
@@ -117,6 +128,11 @@ fn run(command: Command) -> spline_core::Result<()> {
         Command::Split(args) => structural::split(&args),
         Command::Bezier(args) => structural::bezier(&args),
         Command::Derivative(args) => structural::derivative(&args),
+        Command::Antiderivative(args) => functions::antiderivative(&args),
+        Command::Integrate(args) => functions::integrate(&args),
+        Command::Roots(args) => functions::roots(&args),
+        Command::NdEval(args) => functions::nd_eval(&args),
+        Command::NdInterpolate(args) => functions::nd_interpolate(&args),
         Command::Plot(args) => plot::plot(&args),
         Command::Product(args) => algebra::product(&args),
         Command::Curvature(args) => plot::curvature(&args),

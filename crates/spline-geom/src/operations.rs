@@ -4,8 +4,6 @@
 //! ([`StructuralSurface`]) and returns an [`Outcome`] to print.
 
 use crate::bspline::BSpline;
-#[cfg(doc)]
-use crate::nurbs::{NurbsCurve, NurbsSurface};
 use crate::surface::{Direction, Surface};
 use spline_core::{ControlPoint, Error, ErrorKind, Result, Scalar};
 

@@ -3,10 +3,10 @@
 //! [`NurbsCurve::eval_many_into`], [`Surface::eval_grid_into`]), so the results are the
 //! same bit for bit. The thread count is rayon's (`RAYON_NUM_THREADS`).
 
-use crate::{BSpline, NurbsCurve, Surface};
+use crate::{BSpline, ColumnSpline, Extrapolate, NurbsCurve, Surface};
 use nalgebra::SVector;
 use rayon::prelude::*;
-use spline_core::{ControlPoint, Result, Scalar};
+use spline_core::{ControlPoint, Error, ErrorKind, Result, Scalar};
 
 /// Parameters per task: enough to hide rayon's overhead (a few microseconds per task).
 const MIN_CHUNK: usize = 4096;
@@ -83,5 +83,50 @@ impl<T: Scalar, P: ControlPoint<T> + Send + Sync> Surface<T, P> {
         us.par_chunks(rows)
             .zip(out.par_chunks_mut(rows * vs.len()))
             .try_for_each(|(u, o)| self.eval_grid_into(u, vs, o))
+    }
+}
+
+impl ColumnSpline {
+    /// [`ColumnSpline::eval_into`] on every core: the points cut into chunks, each evaluated
+    /// by the sequential kernel, so the rows are the same bit for bit; returns the number of
+    /// NaN rows.
+    ///
+    /// ```
+    /// use spline_geom::{ColumnSpline, Extrapolate};
+    /// let s = ColumnSpline::new(vec![0.0, 0.0, 1.0, 2.0, 2.0], vec![0.0, 1.0, 1.0, 1.0, 2.0, 1.0], 1, 2)?;
+    /// let x: Vec<f64> = (0..20_000).map(|i| f64::from(i) / 9999.0 - 0.5).collect();
+    /// let (mut a, mut b) = (vec![0.0; 40_000], vec![0.0; 40_000]);
+    /// s.par_eval_into(&x, 0, Extrapolate::On, &mut a)?;
+    /// s.eval_into(&x, 0, Extrapolate::On, &mut b)?;
+    /// assert_eq!(a, b);
+    /// # Ok::<(), spline_core::Error>(())
+    /// ```
+    ///
+    /// # Errors
+    /// As [`ColumnSpline::eval_into`].
+    pub fn par_eval_into(
+        &self,
+        x: &[f64],
+        nu: usize,
+        mode: Extrapolate,
+        out: &mut [f64],
+    ) -> Result<usize> {
+        let m = self.columns();
+        if x.len().checked_mul(m) != Some(out.len()) {
+            return Err(Error::new(
+                ErrorKind::InvalidLength,
+                format!(
+                    "the output holds {} values; {} points of {m} columns need {}",
+                    out.len(),
+                    x.len(),
+                    x.len().saturating_mul(m)
+                ),
+            ));
+        }
+        let chunk = chunk_len(x.len().saturating_mul(m)).div_ceil(m).max(1);
+        x.par_chunks(chunk)
+            .zip(out.par_chunks_mut(chunk * m))
+            .map(|(p, o)| self.eval_into(p, nu, mode, o))
+            .try_reduce(|| 0, |a, b| Ok(a + b))
     }
 }

@@ -17,11 +17,11 @@
 //! as the convexity of functions.
 
 use crate::barrier::{BarrierOptions, BarrierReport};
-use crate::constrained_surface::normalized_forms;
 use crate::problem::{
     ApproximationProblem, LeastSquaresObjective, Sign, furthest_feasible, normalized_rows, solve,
     strictly_feasible, vstack,
 };
+use crate::problem::{check_grid, normalized_forms};
 use nalgebra::{DMatrix, Vector2, Vector3};
 use nalgebra_sparse::CsrMatrix;
 use spline_algebra::{SparseBilinear, curvature_numerators_with_jacobians};
@@ -235,36 +235,4 @@ impl ParametricConvexity {
             .collect::<Result<_>>()?;
         self.fit_grid(&us, &vs, &values)
     }
-}
-
-/// Checks samples on a grid of parameters: `us.len() · vs.len() > 0` of them (`count`), each
-/// finite (`finite(j)`; `what` names one in the message).
-///
-/// # Errors
-/// [`ErrorKind::InvalidLength`] for another count or an empty grid; [`ErrorKind::NonFinite`]
-/// naming the first sample that is not finite.
-pub(crate) fn check_grid(
-    us: &[f64],
-    vs: &[f64],
-    count: usize,
-    finite: impl Fn(usize) -> bool,
-    what: &str,
-) -> Result<()> {
-    if us.is_empty() || vs.is_empty() || count != us.len() * vs.len() {
-        return Err(Error::new(
-            ErrorKind::InvalidLength,
-            format!(
-                "a grid of {} × {} parameters needs as many samples (at least one), got {count}",
-                us.len(),
-                vs.len()
-            ),
-        ));
-    }
-    if let Some(j) = (0..count).find(|&j| !finite(j)) {
-        return Err(Error::new(
-            ErrorKind::NonFinite,
-            format!("{what} {j} is not finite"),
-        ));
-    }
-    Ok(())
 }

@@ -34,13 +34,13 @@
 
 use crate::barrier::{BarrierOptions, BarrierReport};
 use crate::constrained::{ConstraintCheck, span_samples, uniform_samples};
-use crate::constrained_parametric::check_grid;
 use crate::problem::{
     ApproximationProblem, LeastSquaresObjective, Sign, check_interval, check_samples, derived_map,
     furthest_feasible, normalized_rows, refined, solve, strictly_feasible, vstack,
 };
+use crate::problem::{check_grid, normalized_forms};
 use nalgebra::{DVector, Matrix2, Matrix6, Vector6};
-use nalgebra_sparse::{CooMatrix, CsrMatrix};
+
 use spline_algebra::{SparseBilinear, SplineMap, TensorMap, hessian_determinant};
 use spline_core::{Error, ErrorKind, KnotVector, Result};
 use spline_geom::Surface;
@@ -515,22 +515,6 @@ impl SurfaceApproximation {
         }
         Ok(out)
     }
-}
-
-/// The quadratic constraints `−½ xᵀ H_k x / c_k < 0` from forms `H_k` (row `k`), with
-/// `c_k` the largest entry of `H_k` in absolute value; identically zero rows are dropped.
-pub(crate) fn normalized_forms(forms: &SparseBilinear<f64>) -> Result<SparseBilinear<f64>> {
-    let kept: Vec<(usize, f64)> = (0..forms.nrows())
-        .filter_map(|k| {
-            let c = forms.row(k).iter().fold(0.0f64, |m, e| m.max(e.2.abs()));
-            (c > 0.0).then_some((k, -1.0 / c))
-        })
-        .collect();
-    let mut coo = CooMatrix::new(kept.len(), forms.nrows());
-    for (r, &(k, w)) in kept.iter().enumerate() {
-        coo.push(r, k, w);
-    }
-    forms.then(&CsrMatrix::from(&coo))
 }
 
 /// Two families of forms, one after the other.

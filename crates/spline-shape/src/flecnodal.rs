@@ -15,7 +15,7 @@
 
 use crate::barrier::BarrierOptions;
 use crate::constrained::{FunctionFit, uniform_samples};
-use crate::constrained_surface::normalized_forms;
+use crate::problem::normalized_forms;
 use crate::problem::{
     ApproximationProblem, LeastSquaresObjective, Sign, derived_map, normalized_rows, refined,
     solve, vstack,

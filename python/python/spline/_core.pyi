@@ -202,6 +202,7 @@ def splrep_fit(
     s: float,
     t: Optional[_F],
     nest: Optional[int],
+    periodic: bool = ...,
 ) -> Tuple[_F, _F, bool]: ...
 def splrep_knots(
     x: _F,
@@ -213,6 +214,7 @@ def splrep_knots(
     k: int,
     s: float,
     nest: Optional[int],
+    periodic: bool = ...,
 ) -> List[List[float]]: ...
 def chord_lengths(points: _F, dim: int) -> _F: ...
 def read_cad(path: str) -> List[Tuple[int, str, str, str]]: ...

@@ -1,7 +1,7 @@
 """scipy's FITPACK replicas with their signatures: ``make_splrep``, ``make_splprep`` and
-``generate_knots`` (``scipy.interpolate``, not periodic). The fits run in the library
-(``spline_fit::make_splrep``, FITPACK's ``curfit``); this module validates the arguments with
-scipy's words."""
+``generate_knots`` (``scipy.interpolate``, ``bc_type`` ``"not-a-knot"`` or ``"periodic"``).
+The fits run in the library (``spline_fit::make_splrep``: FITPACK's ``curfit`` and, periodic,
+``percur``); this module validates the arguments with scipy's words."""
 
 from __future__ import annotations
 
@@ -22,8 +22,6 @@ def _validate_bc_type(bc_type):
             "Only 'not-a-knot' and 'periodic' boundary conditions are recognised, "
             f"found {bc_type}"
         )
-    if bc_type == "periodic":
-        raise NotImplementedError("bc_type='periodic': the library's FITPACK replica is not periodic")
     return bc_type
 
 
@@ -64,9 +62,9 @@ def _validate_inputs(x, y, w, k, s, xb, xe, parametric):
     return x, np.ascontiguousarray(y), w, k, float(s), xb, xe
 
 
-def _fit(x, y, dim, w, xb, xe, k, s, t, nest):
+def _fit(x, y, dim, w, xb, xe, k, s, t, nest, periodic):
     """The library's fit; warns as scipy does when the residual target was not met."""
-    knots, c, converged = _core.splrep_fit(x, y, dim, w, xb, xe, k, s, t, nest)
+    knots, c, converged = _core.splrep_fit(x, y, dim, w, xb, xe, k, s, t, nest, periodic)
     if not converged:
         warnings.warn(
             RuntimeWarning(
@@ -93,12 +91,17 @@ def _check_nest(nest, k, t):
 def generate_knots(x, y, *, w=None, xb=None, xe=None, k=3, s=0, nest=None, bc_type=None):
     """Yields the knot vectors of FITPACK's knot placement, ending with the one whose
     least-squares residual meets ``s`` (scipy's ``generate_knots``)."""
-    _validate_bc_type(bc_type)
+    periodic = _validate_bc_type(bc_type) == "periodic"
     if s == 0:
         if nest is not None or w is not None:
             raise _core.SplineError("s == 0 is interpolation only")
         k = operator.index(k)
-        t = _core.not_a_knot(np.ascontiguousarray(x, dtype=float), k)
+        xf = np.ascontiguousarray(x, dtype=float)
+        if periodic and k > 1:
+            # scipy's _periodic_knots: floats whatever the data
+            yield np.asarray(_core.splrep_knots(xf, xf, 0, None, None, None, k, 0.0, None, True)[0])
+            return
+        t = _core.not_a_knot(xf, k)
         x_dtype = np.asarray(x).dtype
         # scipy's knots keep the data's dtype where they are data (odd k)
         yield t.astype(x_dtype) if k % 2 == 1 and np.all(t == t.astype(x_dtype)) else t
@@ -107,7 +110,7 @@ def generate_knots(x, y, *, w=None, xb=None, xe=None, k=3, s=0, nest=None, bc_ty
     x, y, w, k, s, xb, xe = _validate_inputs(x, y, w, k, s, xb, xe, parametric=parametric)
     nest = _check_nest(nest, k, None)
     dim = y.shape[1] if parametric else 0
-    for t in _core.splrep_knots(x, y.reshape(-1), dim, w, xb, xe, k, s, nest):
+    for t in _core.splrep_knots(x, y.reshape(-1), dim, w, xb, xe, k, s, nest, periodic):
         yield np.asarray(t)
 
 
@@ -123,7 +126,7 @@ def make_splrep(x, y, *, w=None, xb=None, xe=None, k=3, s=0, t=None, nest=None, 
     x, y, w, k, s, xb, xe = _validate_inputs(x, y, w, k, s, xb, xe, parametric=False)
     tt = None if t is None else np.ascontiguousarray(t, dtype=float)
     nest = _check_nest(nest, k, tt)
-    knots, c = _fit(x, y.reshape(-1), 0, w, xb, xe, k, s, tt, nest)
+    knots, c = _fit(x, y.reshape(-1), 0, w, xb, xe, k, s, tt, nest, bc_type == "periodic")
     return BSpline.construct_fast(knots, c, k)
 
 
@@ -131,8 +134,8 @@ def make_splprep(x, *, w=None, u=None, ub=None, ue=None, k=3, s=0, t=None, nest=
     """The parametric smoothing spline through the points ``x`` (a list of coordinate
     arrays; scipy's ``make_splprep``): returns the spline (coefficients of shape
     ``(ndim, n)``, ``axis=1``) and the parameters ``u`` (chord lengths on ``[0, 1]`` unless
-    given)."""
-    _validate_bc_type(bc_type)
+    given; for ``s = 0`` scipy's not-a-knot interpolation, whatever ``bc_type``)."""
+    periodic = _validate_bc_type(bc_type) == "periodic"
     x = np.stack([np.asarray(xi, dtype=float) for xi in x], axis=1)
     if u is None:
         u = _core.chord_lengths(np.ascontiguousarray(x).reshape(-1), x.shape[1])
@@ -143,6 +146,6 @@ def make_splprep(x, *, w=None, u=None, ub=None, ue=None, k=3, s=0, t=None, nest=
     u, x, w, k, s, ub, ue = _validate_inputs(u, x, w, k, s, ub, ue, parametric=True)
     tt = None if t is None else np.ascontiguousarray(t, dtype=float)
     nest = _check_nest(nest, k, tt)
-    knots, c = _fit(u, x.reshape(-1), x.shape[1], w, ub, ue, k, s, tt, nest)
+    knots, c = _fit(u, x.reshape(-1), x.shape[1], w, ub, ue, k, s, tt, nest, periodic)
     cc = c.reshape(-1, x.shape[1]).T
     return BSpline(knots, cc, k, axis=1), u

@@ -4,7 +4,10 @@
 
 use nalgebra::Vector2;
 use proptest::prelude::*;
-use spline_algebra::{CurveIntersection, intersect_curves, self_intersections};
+use spline_algebra::{
+    CurveIntersection, intersect_curves, intersect_curves_relative, self_intersections,
+    self_intersections_relative,
+};
 use spline_core::ErrorKind;
 use spline_geom::{BSpline, NurbsCurve, ParamCurve, PlanarCurve};
 use spline_testing::strategies::{planar_curve, two_planar_curves};
@@ -562,4 +565,67 @@ fn cusps_and_turns_back_end_quickly() {
     }
     let _: spline_core::Result<Vec<CurveIntersection<f64>>> = self_intersections(&point, 1e-9);
     assert!(started.elapsed().as_secs_f64() < 10.0);
+}
+
+/// Issue 25: a tolerance relative to the curves' size gives the scaled answer of the
+/// unscaled problem at every scale (an absolute 1e-9 lost the crossings of a pair scaled by
+/// 1e20 and found false ones at 1e-20). A cubic crossing a wavy quadratic three times.
+#[test]
+fn relative_tolerances_give_the_same_crossings_at_every_scale() {
+    let make = |s: f64| {
+        let a = BSpline::from_knots(
+            3,
+            vec![0.0, 0.0, 0.0, 0.0, 1.0, 1.0, 1.0, 1.0],
+            vec![
+                Vector2::new(0.0, 0.0) * s,
+                Vector2::new(1.0, 2.0) * s,
+                Vector2::new(2.0, -2.0) * s,
+                Vector2::new(3.0, 0.5) * s,
+            ],
+        )
+        .unwrap();
+        let b = BSpline::from_knots(
+            1,
+            vec![0.0, 0.0, 1.0, 1.0],
+            vec![Vector2::new(-0.5, 0.1) * s, Vector2::new(3.5, 0.2) * s],
+        )
+        .unwrap();
+        (a, b)
+    };
+    let (a, b) = make(1.0);
+    let unit = intersect_curves_relative(&a, &b, 1e-9).unwrap();
+    assert_eq!(unit.len(), 3);
+    for s in [1e-60, 1e-20, 1e20, 1e60] {
+        let (a, b) = make(s);
+        let hits = intersect_curves_relative(&a, &b, 1e-9).unwrap();
+        assert_eq!(hits.len(), 3, "scale {s}");
+        for (h, g) in hits.iter().zip(&unit) {
+            assert!(
+                (h.u - g.u).abs() < 1e-12 && (h.v - g.v).abs() < 1e-12,
+                "scale {s}"
+            );
+            assert!(((h.point / s) - g.point).norm() < 1e-12, "scale {s}");
+        }
+    }
+    // A self-intersecting loop likewise.
+    let looped = |s: f64| {
+        BSpline::from_knots(
+            3,
+            vec![0.0, 0.0, 0.0, 0.0, 1.0, 1.0, 1.0, 1.0],
+            vec![
+                Vector2::new(0.0, 0.0) * s,
+                Vector2::new(2.0, 2.0) * s,
+                Vector2::new(-1.0, 2.0) * s,
+                Vector2::new(1.0, 0.0) * s,
+            ],
+        )
+        .unwrap()
+    };
+    let unit = self_intersections_relative(&looped(1.0), 1e-9).unwrap();
+    assert_eq!(unit.len(), 1);
+    for s in [1e-60, 1e-20, 1e20, 1e60] {
+        let hits = self_intersections_relative(&looped(s), 1e-9).unwrap();
+        assert_eq!(hits.len(), 1, "scale {s}");
+        assert!((hits[0].u - unit[0].u).abs() < 1e-12, "scale {s}");
+    }
 }

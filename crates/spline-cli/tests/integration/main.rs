@@ -8,6 +8,7 @@ mod common;
 mod curve_tools;
 mod curves;
 mod fitting;
+mod functions;
 mod readme;
 mod reliability;
 mod shape;

@@ -15,6 +15,8 @@
 //! # Ok::<(), spline_core::Error>(())
 //! ```
 
+mod collocation;
+
 use crate::banded::{BandLu, Staircase};
 use crate::lsq::{LeastSquares, LsqMethod};
 use crate::periodic::solve_periodic_collocation;
@@ -296,6 +298,10 @@ pub fn make_interp_spline(
                 nt as i64 - n as i64
             ),
         ));
+    }
+    // Degrees 1 to 5: elimination without pivoting, rows of fixed width, all columns at once.
+    if let Some(c) = collocation::solve(&knots, x, y, columns, left, right) {
+        return ColumnSpline::from_knot_vector(knots, c, columns);
     }
     if nleft == 0 && nright == 0 {
         // Collocation only: a totally positive matrix when the data suit the knots, solved

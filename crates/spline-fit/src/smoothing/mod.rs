@@ -5,6 +5,8 @@
 
 mod band_inverse;
 mod brent;
+mod periodic;
+mod profile;
 mod residual;
 mod splrep;
 

@@ -14,11 +14,11 @@
 
 use crate::banded::BandCholesky;
 use crate::interpolate::interpolate_with_knots;
-use crate::lsq::LeastSquares;
+use crate::lsq::{LeastSquares, LsqMethod};
 use crate::params::{Parametrization, check_points, parametrize};
 use spline_core::{
-    ControlPoint, Error, ErrorKind, KnotVector, Result, Scalar, cast, check_params, from_count,
-    to_f64,
+    ControlPoint, Error, ErrorKind, KnotVector, MAX_DEGREE, Result, Scalar, cast, check_params,
+    from_count, to_f64,
 };
 use spline_geom::BSpline;
 
@@ -26,7 +26,7 @@ use spline_geom::BSpline;
 pub const MAX_RESIDUAL_ITERATIONS: usize = 20;
 
 /// FITPACK's relative accuracy of the residual target (`tol` of `curfit`).
-const TOL: f64 = 0.001;
+pub(super) const TOL: f64 = 0.001;
 
 /// A spline that meets a residual target ([`smoothing_to_residual`]).
 #[derive(Clone, Debug, PartialEq)]
@@ -77,6 +77,7 @@ pub fn smoothing_to_residual<T: Scalar, P: ControlPoint<T>>(
     degree: usize,
     s: T,
 ) -> Result<ResidualFit<T, P>> {
+    check_degree(degree, 5)?;
     let data = Data::new(x, y, weights, degree, s)?;
     if s == T::zero() {
         let knots = KnotVector::not_a_knot(degree, x)?;
@@ -89,7 +90,7 @@ pub fn smoothing_to_residual<T: Scalar, P: ControlPoint<T>>(
         });
     }
     let knots = data.generate_knots()?;
-    let (lsq, _, fp) = data.least_squares(&knots)?;
+    let (lsq, _, fp) = data.least_squares_qr(&knots)?;
     if knots.len() == 2 * (degree + 1) {
         return Ok(ResidualFit {
             spline: lsq,
@@ -118,6 +119,76 @@ pub fn smoothing_curve_to_residual<T: Scalar, P: ControlPoint<T>>(
     Ok((fit, params))
 }
 
+/// Degrees `1 ..= max`: FITPACK's 1 to 5 ([`smoothing_to_residual`]), any supported one
+/// for scipy's replicas (`make_splrep` has no limit).
+pub(super) fn check_degree(degree: usize, max: usize) -> Result<()> {
+    if (1..=max).contains(&degree) {
+        Ok(())
+    } else {
+        Err(Error::new(
+            ErrorKind::InvalidArgument,
+            format!("smoothing to a residual target takes degrees 1 to {max}, got {degree}"),
+        ))
+    }
+}
+
+/// The checks of the data shared by the fits to a residual target: `s` finite and
+/// non-negative, one value per abscissa, at least `min_points` finite values (`who` names
+/// what needs them), sorted finite abscissae not all equal, positive finite weights (one per
+/// datum).
+pub(super) fn check_data<T: Scalar, P: ControlPoint<T>>(
+    x: &[T],
+    y: &[P],
+    weights: Option<&[T]>,
+    s: T,
+    (min_points, who): (usize, &str),
+) -> Result<()> {
+    if !(s >= T::zero() && s.is_finite()) {
+        return Err(Error::new(
+            ErrorKind::InvalidArgument,
+            format!(
+                "the residual target s must be finite and non-negative, got {}",
+                to_f64(s)
+            ),
+        ));
+    }
+    let m = x.len();
+    if y.len() != m {
+        return Err(Error::invalid_length("one value per abscissa", m, y.len()));
+    }
+    if m < min_points {
+        return Err(Error::new(
+            ErrorKind::TooFewPoints,
+            format!("{who} needs at least {min_points} data, got {m}"),
+        )
+        .with_counts(min_points, m));
+    }
+    check_points(y, min_points, "smoothing")?;
+    check_params(x)?;
+    if !(x[0] < x[m - 1]) {
+        return Err(Error::new(
+            ErrorKind::EmptyDomain,
+            "the abscissae must not all be equal",
+        ));
+    }
+    if let Some(w) = weights {
+        if w.len() != m {
+            return Err(Error::invalid_length("one weight per datum", m, w.len()));
+        }
+        if let Some(k) = w.iter().position(|&v| !(v > T::zero() && v.is_finite())) {
+            return Err(Error::new(
+                ErrorKind::InvalidWeight,
+                format!(
+                    "weight {k} is {}: weights must be positive and finite",
+                    to_f64(w[k])
+                ),
+            )
+            .with_index(k));
+        }
+    }
+    Ok(())
+}
+
 /// The validated data of a residual-target fit.
 pub(super) struct Data<'a, T, P> {
     x: &'a [T],
@@ -135,58 +206,8 @@ impl<'a, T: Scalar, P: ControlPoint<T>> Data<'a, T, P> {
         degree: usize,
         s: T,
     ) -> Result<Self> {
-        if !(1..=5).contains(&degree) {
-            return Err(Error::new(
-                ErrorKind::InvalidArgument,
-                format!("smoothing to a residual target takes degrees 1 to 5, got {degree}"),
-            ));
-        }
-        if !(s >= T::zero() && s.is_finite()) {
-            return Err(Error::new(
-                ErrorKind::InvalidArgument,
-                format!(
-                    "the residual target s must be finite and non-negative, got {}",
-                    to_f64(s)
-                ),
-            ));
-        }
-        let m = x.len();
-        if y.len() != m {
-            return Err(Error::invalid_length("one value per abscissa", m, y.len()));
-        }
-        if m <= degree {
-            return Err(Error::new(
-                ErrorKind::TooFewPoints,
-                format!(
-                    "degree {degree} needs at least {} data, got {m}",
-                    degree + 1
-                ),
-            )
-            .with_counts(degree + 1, m));
-        }
-        check_points(y, degree + 1, "smoothing")?;
-        check_params(x)?;
-        if !(x[0] < x[m - 1]) {
-            return Err(Error::new(
-                ErrorKind::EmptyDomain,
-                "the abscissae must not all be equal",
-            ));
-        }
-        if let Some(w) = weights {
-            if w.len() != m {
-                return Err(Error::invalid_length("one weight per datum", m, w.len()));
-            }
-            if let Some(k) = w.iter().position(|&v| !(v > T::zero() && v.is_finite())) {
-                return Err(Error::new(
-                    ErrorKind::InvalidWeight,
-                    format!(
-                        "weight {k} is {}: weights must be positive and finite",
-                        to_f64(w[k])
-                    ),
-                )
-                .with_index(k));
-            }
-        }
+        check_degree(degree, MAX_DEGREE)?;
+        check_data(x, y, weights, s, (degree + 1, &format!("degree {degree}")))?;
         Ok(Self {
             x,
             y,
@@ -218,12 +239,31 @@ impl<'a, T: Scalar, P: ControlPoint<T>> Data<'a, T, P> {
         Ok((residuals, fp))
     }
 
-    /// The weighted least-squares spline on `knots`, its residuals and their sum.
+    /// The weighted least-squares spline on `knots`, its residuals and their sum: by the
+    /// banded normal equations while knots are placed (only the residuals count).
     pub(super) fn least_squares(
         &self,
         knots: &KnotVector<T>,
     ) -> Result<(BSpline<T, P>, Vec<T>, T)> {
-        let mut lsq = LeastSquares::new(self.y, self.x, knots.clone());
+        self.least_squares_by(knots, LsqMethod::NormalEquations)
+    }
+
+    /// [`Data::least_squares`] by Givens QR as FITPACK's (the condition number not squared):
+    /// for the least-squares spline that is returned (a linear function fits to `1e-16`,
+    /// not `1e-15`).
+    pub(super) fn least_squares_qr(
+        &self,
+        knots: &KnotVector<T>,
+    ) -> Result<(BSpline<T, P>, Vec<T>, T)> {
+        self.least_squares_by(knots, LsqMethod::Qr)
+    }
+
+    fn least_squares_by(
+        &self,
+        knots: &KnotVector<T>,
+        method: LsqMethod,
+    ) -> Result<(BSpline<T, P>, Vec<T>, T)> {
+        let mut lsq = LeastSquares::new(self.y, self.x, knots.clone()).method(method);
         if let Some(w) = self.weights {
             lsq = lsq.weights(w);
         }
@@ -265,24 +305,11 @@ impl<'a, T: Scalar, P: ControlPoint<T>> Data<'a, T, P> {
             if fpms.abs() < acc || fpms < T::zero() {
                 return Ok(t);
             }
-            if t.len() == nmin {
-                nplus = 1;
+            nplus = if t.len() == nmin {
+                1
             } else {
-                let delta = fpold - fp;
-                let npl1 = if delta > acc {
-                    // Python's int(): truncation, bounded before the cast.
-                    let ratio = (from_count::<T>(nplus) * fpms / delta).floor();
-                    let cap = from_count::<T>(2 * nplus);
-                    if ratio >= cap {
-                        2 * nplus
-                    } else {
-                        to_count(ratio)
-                    }
-                } else {
-                    2 * nplus
-                };
-                nplus = (2 * nplus).min(npl1.max(nplus / 2).max(1));
-            }
+                knots_to_add(nplus, fpold - fp, fpms, acc)
+            };
             for j in 0..nplus {
                 t = add_knot(self.x, &t, &residuals)?;
                 let n = t.len();
@@ -353,73 +380,107 @@ impl<'a, T: Scalar, P: ControlPoint<T>> Data<'a, T, P> {
         };
         let polynomial = KnotVector::clamped(k, bounds.0, bounds.1, &[])?;
         let fp0 = self.least_squares(&polynomial)?.2 - s;
-        let fpinf = fp_lsq - s;
-        // scipy's root_rati: (p1, f1) = (0, fp0), (p3, f3) = (∞, fpinf); p3 = None is ∞.
-        let (con1, con9, con4): (T, T, T) = (cast(0.1), cast(0.9), cast(0.04));
-        let (mut p1, mut f1) = (T::zero(), fp0);
-        let (mut p3, mut f3): (Option<T>, T) = (None, fpinf);
-        let (mut ich1, mut ich3) = (false, false);
-        let mut p = p0;
-        let mut last = None;
-        let mut converged = false;
-        for _ in 0..MAX_RESIDUAL_ITERATIONS {
-            let (spline, f2) = solve(p)?;
-            let p2 = p;
-            last = Some((spline, f2 + s, p2));
-            if f2.abs() < acc {
-                converged = true;
-                break;
-            }
-            if !ich3 {
-                if f2 - f3 <= acc {
-                    p3 = Some(p2);
-                    f3 = f2;
-                    p *= con4;
-                    if p <= p1 {
-                        p = p1 * con9 + p2 * con1;
-                    }
-                    continue;
-                }
-                if f2 < T::zero() {
-                    ich3 = true;
-                }
-            }
-            if !ich1 {
-                if f1 - f2 <= acc {
-                    p1 = p2;
-                    f1 = f2;
-                    p /= con4;
-                    if let Some(p3v) = p3 {
-                        if p <= p3v {
-                            p = p2 * con1 + p3v * con9;
-                        }
-                    }
-                    continue;
-                }
-                if f2 > T::zero() {
-                    ich1 = true;
-                }
-            }
-            if f1 <= f2 || f2 <= f3 {
-                break;
-            }
-            p = fprati(p1, f1, p2, f2, p3, f3);
-            if f2 < T::zero() {
-                p3 = Some(p2);
-                f3 = f2;
-            } else {
-                p1 = p2;
-                f1 = f2;
-            }
-        }
-        let (spline, residual, p) = last.expect("at least one iteration");
+        let (spline, f, p, converged) = root_rati(p0, (fp0, fp_lsq - s), acc, solve)?;
         Ok(ResidualFit {
             spline,
-            residual,
+            residual: f + s,
             smoothing: Some(p),
             converged,
         })
     }
+}
+
+/// How many knots FITPACK adds next (`nplus`), after `nplus` were added last time and the
+/// residual fell by `delta` to `fpms` above the target: twice as many if it fell by at most
+/// `acc`, else the estimate `nplus · fpms / delta` bounded to `[max(nplus / 2, 1), 2 nplus]`.
+pub(super) fn knots_to_add<T: Scalar>(nplus: usize, delta: T, fpms: T, acc: T) -> usize {
+    let npl1 = if delta > acc {
+        // Python's int(): truncation, bounded before the cast.
+        let ratio = (from_count::<T>(nplus) * fpms / delta).floor();
+        let cap = from_count::<T>(2 * nplus);
+        if ratio >= cap {
+            2 * nplus
+        } else {
+            to_count(ratio)
+        }
+    } else {
+        2 * nplus
+    };
+    (2 * nplus).min(npl1.max(nplus / 2).max(1))
+}
+
+/// FITPACK's search for the smoothing factor `p` with $f(p) = 0$ (scipy's `root_rati`):
+/// `f(p)` returns the spline for `p` and its residual minus the target, decreasing in `p`;
+/// `(f0, finf)` are its values at `p = 0` (the polynomial, or the constant when periodic) and
+/// `p = ∞` (the least-squares spline); `p0` starts the search, `acc` is the accuracy.
+/// Rational interpolation `r(p) = (u p + v) / (p + w)` through a bracket, at most
+/// [`MAX_RESIDUAL_ITERATIONS`] steps. Returns the last spline, its `f`, its `p` and whether
+/// $|f| <$ `acc` (otherwise FITPACK's `ier` 2 or 3: the last iterate is kept).
+pub(super) fn root_rati<T: Scalar, S>(
+    p0: T,
+    (f0, finf): (T, T),
+    acc: T,
+    mut f: impl FnMut(T) -> Result<(S, T)>,
+) -> Result<(S, T, T, bool)> {
+    // (p1, f1) = (0, f0), (p3, f3) = (∞, finf); p3 = None is ∞.
+    let (con1, con9, con4): (T, T, T) = (cast(0.1), cast(0.9), cast(0.04));
+    let (mut p1, mut f1) = (T::zero(), f0);
+    let (mut p3, mut f3): (Option<T>, T) = (None, finf);
+    let (mut ich1, mut ich3) = (false, false);
+    let mut p = p0;
+    let mut last = None;
+    for _ in 0..MAX_RESIDUAL_ITERATIONS {
+        let (state, f2) = f(p)?;
+        let p2 = p;
+        if f2.abs() < acc {
+            return Ok((state, f2, p2, true));
+        }
+        last = Some((state, f2, p2));
+        if !ich3 {
+            if f2 - f3 <= acc {
+                p3 = Some(p2);
+                f3 = f2;
+                p *= con4;
+                if p <= p1 {
+                    p = p1 * con9 + p2 * con1;
+                }
+                continue;
+            }
+            if f2 < T::zero() {
+                ich3 = true;
+            }
+        }
+        if !ich1 {
+            if f1 - f2 <= acc {
+                p1 = p2;
+                f1 = f2;
+                p /= con4;
+                // scipy's test (FITPACK's is p ≥ p3).
+                if let Some(p3v) = p3
+                    && p <= p3v
+                {
+                    p = p2 * con1 + p3v * con9;
+                }
+                continue;
+            }
+            if f2 > T::zero() {
+                ich1 = true;
+            }
+        }
+        if f1 <= f2 || f2 <= f3 {
+            break;
+        }
+        p = fprati(p1, f1, p2, f2, p3, f3);
+        if f2 < T::zero() {
+            p3 = Some(p2);
+            f3 = f2;
+        } else {
+            p1 = p2;
+            f1 = f2;
+        }
+    }
+    let (state, f2, p2) = last.expect("at least one iteration");
+    Ok((state, f2, p2, false))
 }
 
 /// A non-negative whole number held in a scalar, as a count.
@@ -453,7 +514,11 @@ fn fprati<T: Scalar>(p1: T, f1: T, p2: T, f2: T, p3: Option<T>, f3: T) -> T {
 /// runs between consecutive knots (a datum on a knot shares its residual between the two
 /// runs); in the run with the largest residual sum among those with more than one interior
 /// step, the datum in the middle becomes a knot.
-fn add_knot<T: Scalar>(x: &[T], t: &KnotVector<T>, residuals: &[T]) -> Result<KnotVector<T>> {
+pub(super) fn add_knot<T: Scalar>(
+    x: &[T],
+    t: &KnotVector<T>,
+    residuals: &[T],
+) -> Result<KnotVector<T>> {
     let k = t.degree();
     let knots = t.knots();
     let nc = t.num_basis();
@@ -501,7 +566,7 @@ fn add_knot<T: Scalar>(x: &[T], t: &KnotVector<T>, residuals: &[T]) -> Result<Kn
 /// FITPACK's normalisation $(\delta / \text{nrint})^k$ ($\delta$ the length of the domain,
 /// `nrint` its number of knot intervals). Row `(first, values)` acts on coefficients
 /// `first … first + k + 1`.
-fn jump_rows<T: Scalar>(t: &[T], k: usize) -> Vec<(usize, Vec<T>)> {
+pub(super) fn jump_rows<T: Scalar>(t: &[T], k: usize) -> Vec<(usize, Vec<T>)> {
     let n = t.len();
     let delta = t[n - k - 1] - t[k];
     let nrint = n - 2 * k - 1;

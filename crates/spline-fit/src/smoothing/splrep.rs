@@ -1,10 +1,12 @@
 //! scipy 1.17's FITPACK replicas with their full signatures: `make_splrep(x, y, w, xb, xe,
 //! k, s, t, nest)`, `make_splprep(x, w, u, ub, ue, k, s, t, nest)` and
-//! `generate_knots(x, y, w, xb, xe, k, s, nest)` (scipy/interpolate/_fitpack_repro.py,
-//! not periodic). The algorithm is [`super::residual`]'s (FITPACK's `curfit`); this module
-//! adds the interval $[x_b, x_e]$, given knots, the cap `nest`, the sequence of knot
+//! `generate_knots(x, y, w, xb, xe, k, s, nest)` (scipy/interpolate/_fitpack_repro.py), with
+//! scipy's `bc_type="periodic"` as [`SplrepOptions::periodic`]. The algorithm is
+//! [`super::residual`]'s (FITPACK's `curfit`) and [`super::periodic`]'s (`percur`); this
+//! module adds the interval $[x_b, x_e]$, given knots, the cap `nest`, the sequence of knot
 //! vectors and scipy's parameters of curves.
 
+use super::periodic;
 use super::residual::{Data, ResidualFit};
 use crate::interpolate::interpolate_with_knots;
 use crate::params::check_strict;
@@ -21,7 +23,8 @@ pub struct SplrepOptions<'a, T> {
     pub xb: Option<T>,
     /// The end $x_e$ of the interval (`None`: the last abscissa); at least `x[m − 1]`.
     pub xe: Option<T>,
-    /// The degree `k` (FITPACK's 1 to 5 when `s > 0`).
+    /// The degree `k`: 1 to [`spline_core::MAX_DEGREE`] when `s > 0` (scipy's replicas
+    /// set no limit; FITPACK's `curfit` and `percur` take 1 to 5, odd ones recommended).
     pub k: usize,
     /// The smoothing condition `s ≥ 0`; `0` is not-a-knot interpolation.
     pub s: T,
@@ -29,8 +32,15 @@ pub struct SplrepOptions<'a, T> {
     /// smoothing stage runs on them.
     pub t: Option<&'a [T]>,
     /// The cap on the number of knots placed (at least `2(k + 1)`); `None`: scipy's
-    /// $\max(m + k + 1, 2k + 3)$.
+    /// $\max(m + k + 1, 2k + 3)$ ($\max(m + 2k, 2k + 3)$ when periodic).
     pub nest: Option<usize>,
+    /// scipy's `bc_type="periodic"` (FITPACK's `percur`): the spline of period
+    /// $x_e - x_b$ whose values and first `k − 1` derivatives agree at $x_b$ and $x_e$. The
+    /// first and last values must agree (as `numpy.allclose` with `atol=1e-15`); the last
+    /// datum is the first one a period later and does not count in the residual. The
+    /// knots are wrapped ($t_{k-j} = t_{n-k-1-j} - T$, $t_{n-k-1+j} = t_{k+j} + T$) and the
+    /// last `k` coefficients repeat the first `k`. `false`: scipy's `"not-a-knot"`.
+    pub periodic: bool,
 }
 
 impl<T: Scalar> Default for SplrepOptions<'_, T> {
@@ -44,6 +54,7 @@ impl<T: Scalar> Default for SplrepOptions<'_, T> {
             s: T::zero(),
             t: None,
             nest: None,
+            periodic: false,
         }
     }
 }
@@ -54,7 +65,7 @@ fn invalid(message: impl Into<String>) -> Error {
 
 impl<T: Scalar> SplrepOptions<'_, T> {
     /// For `s = 0`: scipy refuses `t`, `w` and `nest`.
-    fn check_interpolation(&self) -> Result<()> {
+    pub(super) fn check_interpolation(&self) -> Result<()> {
         if self.t.is_some() || self.weights.is_some() || self.nest.is_some() {
             return Err(invalid(
                 "s == 0 is for interpolation only: t, w and nest must not be given",
@@ -64,7 +75,7 @@ impl<T: Scalar> SplrepOptions<'_, T> {
     }
 
     /// The interval $[x_b, x_e]$ for sorted abscissae `x` (validated already).
-    fn bounds(&self, x: &[T]) -> Result<(T, T)> {
+    pub(super) fn bounds(&self, x: &[T]) -> Result<(T, T)> {
         let m = x.len();
         let xb = self.xb.unwrap_or(x[0]);
         let xe = self.xe.unwrap_or(x[m - 1]);
@@ -91,7 +102,7 @@ impl<T: Scalar> SplrepOptions<'_, T> {
     }
 
     /// scipy's check of `nest`: at least `2(k + 1)`, and not together with `t`.
-    fn check_nest(&self) -> Result<()> {
+    pub(super) fn check_nest(&self) -> Result<()> {
         if let Some(nest) = self.nest {
             let k = self.k;
             if nest < 2 * (k + 1) {
@@ -179,6 +190,11 @@ fn check_given_knots<T: Scalar>(x: &[T], t: &[T], k: usize) -> Result<KnotVector
 /// subject to $\sum_i (w_i \lVert y_i - g(x_i) \rVert)^2 = s$. Vector values `y` give
 /// scipy's `make_splprep` with given parameters `x`.
 ///
+/// With [`SplrepOptions::periodic`] (scipy's `bc_type="periodic"`, FITPACK's `percur`): the
+/// spline of period $x_e - x_b$, on wrapped knots, whose residual over the data but the
+/// last meets `s`; knots are placed from the least-squares constant, and `s = 0` is scipy's
+/// periodic interpolation (`make_interp_spline(x, y, k, bc_type="periodic")`).
+///
 /// ```
 /// use spline_fit::{SplrepOptions, make_splrep};
 /// let x: Vec<f64> = (0..40).map(|i| f64::from(i) / 39.0).collect();
@@ -190,19 +206,31 @@ fn check_given_knots<T: Scalar>(x: &[T], t: &[T], k: usize) -> Result<KnotVector
 ///
 /// # Errors
 /// [`ErrorKind::InvalidArgument`] for `t`, `w` or `nest` with `s = 0`, `nest < 2(k + 1)`,
-/// `t` and `nest` together, and the errors of [`crate::smoothing_to_residual`] (degrees 1
-/// to 5, `s` finite and non-negative, lengths, sorted finite data, positive weights);
+/// `t` and `nest` together, and the errors of [`crate::smoothing_to_residual`] (but
+/// degrees 1 to [`spline_core::MAX_DEGREE`]; `s` finite and non-negative, lengths, sorted
+/// finite data, positive weights);
 /// [`ErrorKind::OutOfDomain`] when $[x_b, x_e]$ does not contain the data or the given
 /// knots' base interval does not; for given knots [`ErrorKind::InvalidLength`] unless
 /// `k + 1 ≤ n − k − 1 ≤ m`, [`ErrorKind::KnotMultiplicity`] for repeated interior knots and
 /// the errors of [`KnotVector::new`]; [`ErrorKind::SchoenbergWhitney`] or
 /// [`ErrorKind::SingularSystem`] when a system cannot be solved. For `s = 0` the errors of
 /// [`crate::interpolate_with_knots`] (strictly increasing `x`).
+///
+/// Periodic: at least 2 data ([`ErrorKind::TooFewPoints`]);
+/// [`ErrorKind::InvalidArgument`] when the first and last values differ (beyond
+/// `numpy.allclose(y[0], y[-1], atol=1e-15)`); for given knots
+/// [`ErrorKind::InvalidLength`] unless `k + 1 ≤ n − k − 1 ≤ m + k − 1` and
+/// [`ErrorKind::SchoenbergWhitney`] unless some cyclic shift of the data satisfies the
+/// Schoenberg–Whitney conditions (FITPACK's `fpchep`); for `s = 0` the errors of
+/// [`crate::interpolate_periodic`].
 pub fn make_splrep<T: Scalar, P: ControlPoint<T>>(
     x: &[T],
     y: &[P],
     options: &SplrepOptions<'_, T>,
 ) -> Result<ResidualFit<T, P>> {
+    if options.periodic {
+        return periodic::make_splrep(x, y, options);
+    }
     let k = options.k;
     if options.s == T::zero() {
         options.check_interpolation()?;
@@ -215,7 +243,7 @@ pub fn make_splrep<T: Scalar, P: ControlPoint<T>>(
         Some(t) => check_given_knots(x, t, k)?,
         None => data.generate_knots_with(bounds, options.nest, &mut |_| {})?,
     };
-    let (lsq, _, fp) = data.least_squares(&knots)?;
+    let (lsq, _, fp) = data.least_squares_qr(&knots)?;
     if knots.len() == 2 * (k + 1) {
         return Ok(ResidualFit {
             spline: lsq,
@@ -275,6 +303,9 @@ pub fn chord_length_parameters<T: Scalar, P: ControlPoint<T>>(points: &[P]) -> R
 /// curve through `points` (scipy's `x` transposed: one point per datum): the parameters are
 /// `u` or [`chord_length_parameters`], then [`make_splrep`] with the points as values
 /// (`options.xb`, `options.xe` are `ub`, `ue`). Returns the fit and the parameters.
+/// Periodic (a closed curve, the last point equal to the first) with `s = 0` is the
+/// periodic interpolation here; scipy's `make_splprep` ignores `bc_type` when `s = 0` and
+/// interpolates with not-a-knot ends (the Python package keeps scipy's behaviour).
 ///
 /// # Errors
 /// As [`chord_length_parameters`] (when `u` is `None`) and [`make_splrep`];
@@ -307,7 +338,10 @@ pub fn make_splprep<T: Scalar, P: ControlPoint<T>>(
 /// the knots added; it ends when the residual meets `s` (the last vector is the one that
 /// met it), when `nest` knots are reached, or with the not-a-knot knots of interpolation
 /// when `m + k + 1` would be. For `s = 0` the one vector is the not-a-knot one.
-/// `options.t` must be `None`.
+/// Periodic: the least-squares constant's first (one period `x[0] … x[m − 1]` and `k` more
+/// knots each side), then from one interior knot at the middle datum the wrapped vectors,
+/// ending with scipy's periodic interpolation knots when `m + 2k` would be reached; for
+/// `s = 0` those (the not-a-knot ones for `k = 1`, as scipy). `options.t` must be `None`.
 ///
 /// # Errors
 /// [`ErrorKind::InvalidArgument`] for `options.t`, and as [`make_splrep`].
@@ -320,6 +354,9 @@ pub fn generate_knots<T: Scalar, P: ControlPoint<T>>(
         return Err(invalid(
             "generate_knots places the knots: t must not be given",
         ));
+    }
+    if options.periodic {
+        return periodic::generate_knots(x, y, options);
     }
     if options.s == T::zero() {
         options.check_interpolation()?;

@@ -13,6 +13,7 @@ mod properties;
 mod reference;
 mod seeds;
 mod smoothing;
+mod splrep_periodic;
 mod surface_closest;
 mod surface_construct;
 mod surface_intersect;

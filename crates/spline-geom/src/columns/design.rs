@@ -94,14 +94,12 @@ impl ColumnSpline {
             }
         }
         let offsets: Vec<usize> = (0..=x.len()).map(|i| i * width).collect();
-        CsrMatrix::try_from_csr_data(x.len(), n, offsets, columns, values).map_err(
-            |e| {
-                Error::new(
-                    ErrorKind::InvalidArgument,
-                    format!("the design matrix is malformed: {e}"),
-                )
-            },
-        )
+        CsrMatrix::try_from_csr_data(x.len(), n, offsets, columns, values).map_err(|e| {
+            Error::new(
+                ErrorKind::InvalidArgument,
+                format!("the design matrix is malformed: {e}"),
+            )
+        })
     }
 }
 

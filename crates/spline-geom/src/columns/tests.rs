@@ -773,15 +773,39 @@ fn knots_repeated_beyond_the_order_match_scipy() {
     close(&s.eval(&x, 0, Extrapolate::On).unwrap(), &want, 1e-14);
     let want = [0.0, 3.0, 1.8125, 1.125, 3.0, 4.8125];
     close(&s.eval(&x, 1, Extrapolate::On).unwrap(), &want, 1e-13);
-    close(&s.integrate(0.0, 3.0, Extrapolate::On).unwrap(), &[10.5], 1e-13);
+    close(
+        &s.integrate(0.0, 3.0, Extrapolate::On).unwrap(),
+        &[10.5],
+        1e-13,
+    );
     let d = ColumnSpline::design_matrix(&[0.25, 2.5], &t, 3, Extrapolate::On).unwrap();
     let dense = nalgebra::DMatrix::from(&d);
     let want = [
-        [0.0, 0.421875, 0.49609375, 0.07942708333333333, 0.00260416666666667, 0.0, 0.0],
-        [0.0, 0.0, 0.0, 0.02083333333333333, 0.26041666666666663, 0.59375, 0.125],
+        [
+            0.0,
+            0.421875,
+            0.49609375,
+            0.07942708333333333,
+            0.00260416666666667,
+            0.0,
+            0.0,
+        ],
+        [
+            0.0,
+            0.0,
+            0.0,
+            0.02083333333333333,
+            0.26041666666666663,
+            0.59375,
+            0.125,
+        ],
     ];
     for (i, row) in want.iter().enumerate() {
-        close(&dense.row(i).iter().copied().collect::<Vec<_>>(), row, 1e-15);
+        close(
+            &dense.row(i).iter().copied().collect::<Vec<_>>(),
+            row,
+            1e-15,
+        );
     }
 
     // de Boor's example (scipy's test_derivative_jumps): t_n = 6 is a triple knot followed
@@ -813,7 +837,9 @@ fn knots_repeated_beyond_the_order_match_scipy() {
         1,
     )
     .unwrap();
-    let got = z.eval(&[-1.0, 0.0, 3.5, 4.0, 4.5], 0, Extrapolate::On).unwrap();
+    let got = z
+        .eval(&[-1.0, 0.0, 3.5, 4.0, 4.5], 0, Extrapolate::On)
+        .unwrap();
     close(&got, &[0.0, 0.0, 9.0, 16.0, 16.0], 0.0);
 
     // Inserting a knot at a clamped end (FITPACK's insert, as scipy's insert_knot).
@@ -827,7 +853,9 @@ fn knots_repeated_beyond_the_order_match_scipy() {
     let i = s.insert_knot(0.0, 1, false).unwrap();
     close(
         i.knots(),
-        &[0.0, 0.0, 0.0, 0.0, 0.0, 2.0, 3.0, 4.0, 5.0, 7.0, 7.0, 7.0, 7.0],
+        &[
+            0.0, 0.0, 0.0, 0.0, 0.0, 2.0, 3.0, 4.0, 5.0, 7.0, 7.0, 7.0, 7.0,
+        ],
         0.0,
     );
     close(
@@ -836,16 +864,8 @@ fn knots_repeated_beyond_the_order_match_scipy() {
         1e-15,
     );
     let i = s.insert_knot(7.0, 2, false).unwrap();
-    close(
-        &i.knots()[7..],
-        &[5.0, 7.0, 7.0, 7.0, 7.0, 7.0, 7.0],
-        0.0,
-    );
-    close(
-        &i.coefficients()[7..],
-        &[-0.5, -0.5, -0.5],
-        1e-15,
-    );
+    close(&i.knots()[7..], &[5.0, 7.0, 7.0, 7.0, 7.0, 7.0, 7.0], 0.0);
+    close(&i.coefficients()[7..], &[-0.5, -0.5, -0.5], 1e-15);
     let x = [0.0, 1.0, 6.5];
     close(
         &i.eval(&x, 0, Extrapolate::On).unwrap(),

@@ -14,6 +14,9 @@
 //! - [`Record`]: an object of either kind read as the tool reads its files, reports of the
 //!   tool (an object under `"curve"` or `"surface"`) included.
 //! - [`crate::Geometry::to_exchange`] and [`crate::Geometry::from_exchange`]: CAD items.
+//! - scipy's objects: [`columns_to_value`] (a `ColumnSpline` as a curve record),
+//!   [`nd_to_value`] and [`nd_from_value`] (an `NdSpline`, its coefficients nested one level
+//!   per dimension: [`nest`], [`nested_array`]).
 //!
 //! ```
 //! use nalgebra::Vector2;
@@ -27,9 +30,11 @@
 //! # Ok::<(), spline_core::Error>(())
 //! ```
 
+mod columns;
 mod geometry;
 mod records;
 
+pub use columns::{columns_to_value, nd_from_value, nd_to_value, nest, nested_array};
 pub use records::{CurveRecord, SurfaceRecord, points_from_rows};
 
 use serde::Serialize;

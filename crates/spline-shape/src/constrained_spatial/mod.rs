@@ -24,7 +24,8 @@
 //! below that of the heights-only patch.
 
 use crate::barrier::{BarrierOptions, BarrierProblem, BarrierReport, find_feasible_near, minimize};
-use crate::constrained_parametric::{ParametricConvexity, check_grid};
+use crate::constrained_parametric::ParametricConvexity;
+use crate::problem::check_grid;
 use crate::problem::{LeastSquaresObjective, Sign};
 use nalgebra::{DMatrix, DVector, SymmetricEigen, Vector2, Vector3};
 use nalgebra_sparse::{CooMatrix, CsrMatrix};

@@ -3,9 +3,11 @@
 //! linear sign constraints `G x < 0` and quadratic ones `½ xᵀ H_k x < 0` with constant
 //! Hessians, as a [`BarrierProblem`].
 
+mod grid;
 mod in_place;
 mod objective;
 
+pub(crate) use grid::{check_grid, normalized_forms};
 pub(crate) use objective::LeastSquaresObjective;
 
 use crate::barrier::{
