@@ -308,3 +308,93 @@ fn json_errors_are_one_line() {
         "EOF while parsing a list at line 3 column 0"
     );
 }
+
+/// scipy's objects: nested arrays both ways, `NdSpline` and `ColumnSpline` records (the
+/// keys of a JSON value in sorted order), against values written out by hand.
+#[test]
+fn nested_arrays_and_scipy_objects() {
+    use spline_geom::{ColumnSpline, NdSpline};
+    use spline_io::exchange::{columns_to_value, nd_from_value, nd_to_value, nest, nested_array};
+    let (shape, m, values) = nested_array(&json!([[1, 2, 3], [4, 5, 6]]), 2, "v").unwrap();
+    assert_eq!((shape.clone(), m), (vec![2, 3], 1));
+    assert_eq!(values, [1.0, 2.0, 3.0, 4.0, 5.0, 6.0]);
+    assert_eq!(
+        nest(&values, &shape, m),
+        json!([[1.0, 2.0, 3.0], [4.0, 5.0, 6.0]])
+    );
+    let points = json!([[1.0, 2.0], [3.0, 4.0], [5.0, 6.0]]);
+    let (shape, m, values) = nested_array(&points, 1, "v").unwrap();
+    assert_eq!((shape.clone(), m), (vec![3], 2));
+    assert_eq!(nest(&values, &shape, m), points);
+    for (value, depth, message) in [
+        (
+            json!([[1, 2], [3]]),
+            2,
+            "v: not a regular array of shape [2, 2] of numbers",
+        ),
+        (
+            json!([[1, 2], [3, "x"]]),
+            2,
+            "v: not a regular array of shape [2, 2] of numbers",
+        ),
+        (
+            json!([[1, 2], [3]]),
+            1,
+            "v: not a regular array of shape [2] of points of 2 numbers",
+        ),
+        (json!(5), 1, "v: level 0 is a number, not an array"),
+        (json!([]), 1, "v: level 0 is empty"),
+    ] {
+        let e = nested_array(&value, depth, "v").unwrap_err();
+        assert_eq!(e.kind(), ErrorKind::InvalidArgument);
+        assert_eq!(e.message(), message);
+    }
+    // The bilinear spline with coefficients c_ij = 2 i + j on [0, 1]²: f(x, y) = 2x + y.
+    let bilinear = json!({
+        "degree": [1, 1],
+        "knots": [[0, 0, 1, 1], [0, 0, 1, 1]],
+        "coefficients": [[0, 1], [2, 3]]
+    });
+    let s: NdSpline = nd_from_value(&bilinear).unwrap();
+    let mut out = [0.0; 2];
+    s.eval_into(&[0.25, 0.5, 1.0, 0.0], &[0, 0], true, &mut out)
+        .unwrap();
+    assert_eq!(out, [1.0, 2.0]);
+    assert_eq!(
+        nd_to_value(&s).to_string(),
+        r#"{"coefficients":[[0.0,1.0],[2.0,3.0]],"degree":[1,1],"knots":[[0.0,0.0,1.0,1.0],[0.0,0.0,1.0,1.0]]}"#
+    );
+    // A surface record (control points, no weights) reads as the same spline.
+    let surface = json!({
+        "degree": [1, 1],
+        "knots": [[0, 0, 1, 1], [0, 0, 1, 1]],
+        "control_points": [[[0], [1]], [[2], [3]]]
+    });
+    assert_eq!(
+        nd_to_value(&nd_from_value(&surface).unwrap()),
+        nd_to_value(&s)
+    );
+    let e = nd_from_value(&json!({"degree": [1], "knots": [[0, 0, 1, 1]]})).unwrap_err();
+    assert!(
+        e.message()
+            .contains("needs \"degree\", \"knots\" and \"coefficients\""),
+        "{e}"
+    );
+    let e = nd_from_value(&json!({"degree": 1, "knots": [], "coefficients": []})).unwrap_err();
+    assert_eq!(
+        e.message(),
+        "malformed degree: expected an array, got the number 1"
+    );
+    // A spline of two columns: the rows its knots need, FITPACK's padding dropped.
+    let columns = ColumnSpline::new(
+        vec![0.0, 0.0, 1.0, 1.0],
+        vec![1.0, 2.0, 3.0, 4.0, 0.0, 0.0],
+        1,
+        2,
+    )
+    .unwrap();
+    assert_eq!(
+        columns_to_value(&columns).to_string(),
+        r#"{"control_points":[[1.0,2.0],[3.0,4.0]],"degree":1,"knots":[0.0,0.0,1.0,1.0]}"#
+    );
+}
