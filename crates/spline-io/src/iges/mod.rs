@@ -22,7 +22,7 @@
 //!   [`Item::name`] the name of a name property (406 form 15) the entity points to, else
 //!   its directory-entry label (8 columns, blanks trimmed).
 //! - Curves are read as 3-D curves, planar ones too (a 126 with `PROP1 = 1` and all `z = 0`
-//!   is a 3-D curve in the plane `z = 0`); a curve is polynomial ([`Geometry::Curve3`]) when
+//!   is a 3-D curve in the plane `z = 0`); a curve is polynomial ([`crate::Geometry::Curve3`]) when
 //!   `PROP3 = 1` and its weights are equal, rational otherwise; likewise for surfaces.
 //! - A transformation matrix (entity 124) referenced from a directory entry, and the chain
 //!   of matrices the 124 itself references, is applied to the control points (affine maps

@@ -147,7 +147,7 @@ fn write_surface(
 /// An AP214 file holding the items; see the [module](super) documentation.
 ///
 /// # Errors
-/// [`ErrorKind::NonFinite`] if a coordinate, weight or knot is not finite (the containers
+/// [`spline_core::ErrorKind::NonFinite`] if a coordinate, weight or knot is not finite (the containers
 /// hold finite numbers only, so this does not happen for items built by this library).
 pub fn write_step(items: &[Item]) -> Result<String> {
     let mut w = Writer {
