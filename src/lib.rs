@@ -58,6 +58,9 @@
 //!
 //! CAD files (STEP, IGES) are read and written by [`io`] (`spline-io`).
 
+/// The guide: doc-tested chapters from scipy, CAD and the thesis to this library.
+pub mod guide;
+
 pub use spline_algebra as algebra;
 pub use spline_core as core;
 pub use spline_fit as fit;
