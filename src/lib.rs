@@ -62,6 +62,9 @@
 //! Every file format — the exchange format, point files, airfoils, OBJ and OFF meshes, SVG
 //! and gnuplot pictures, STEP and IGES — is read and written by [`io`] (`spline-io`).
 
+/// The guide: doc-tested chapters from scipy, CAD and the thesis to this library.
+pub mod guide;
+
 pub use spline_algebra as algebra;
 pub use spline_core as core;
 pub use spline_fit as fit;
