@@ -3,6 +3,7 @@
 
 use crate::{IntoPy, bad_input};
 use pyo3::prelude::*;
+use spline::io::exchange::Record;
 use spline::io::{Geometry, Item};
 use std::path::Path;
 
@@ -41,7 +42,21 @@ fn write_cad(py: Python<'_>, path: &str, items: Vec<(String, String)>) -> PyResu
         .py()
 }
 
+/// The kind of an exchange-format object, as spline-io reads it (`Record::from_value`):
+/// `"surface"` (a pair of degrees), `"nurbs"` (a curve with weights) or `"curve"`.
+#[pyfunction]
+fn exchange_kind(text: &str) -> PyResult<&'static str> {
+    let value =
+        spline::io::exchange::parse_json(text).map_err(|e| bad_input(format!("not JSON: {e}")))?;
+    Ok(match Record::from_value(value).py()? {
+        Record::Surface(_) => "surface",
+        Record::Curve(c) if c.weights.is_some() => "nurbs",
+        Record::Curve(_) => "curve",
+    })
+}
+
 pub(crate) fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    m.add_function(wrap_pyfunction!(exchange_kind, m)?)?;
     m.add_function(wrap_pyfunction!(read_cad, m)?)?;
     m.add_function(wrap_pyfunction!(write_cad, m)?)?;
     Ok(())

@@ -2,10 +2,9 @@
 
 from __future__ import annotations
 
-import json
 import operator
 from math import prod
-from typing import NamedTuple, Optional, Sequence, Tuple
+from typing import NamedTuple, Optional, Tuple
 
 import numpy as np
 import numpy.typing as npt
@@ -625,15 +624,12 @@ def product(a: BSpline, b: BSpline) -> Tuple[BSpline, scipy.sparse.csr_array, sc
 
 def read_json(text: str):
     """A curve or surface from exchange-format JSON: ``BSpline``, ``NurbsCurve`` (with
-    ``"weights"``) or ``NurbsSurface`` (two degrees)."""
+    ``"weights"``) or ``NurbsSurface`` (two degrees); the library reads the record."""
     from ._nurbs import NurbsCurve, NurbsSurface
 
-    try:
-        obj = json.loads(text)
-    except json.JSONDecodeError as e:
-        raise _core.SplineError(f"not JSON: {e}") from None
-    if isinstance(obj, dict) and isinstance(obj.get("degree"), Sequence):
+    kind = _core.exchange_kind(text)
+    if kind == "surface":
         return NurbsSurface.from_json(text)
-    if isinstance(obj, dict) and "weights" in obj:
+    if kind == "nurbs":
         return NurbsCurve.from_json(text)
     return BSpline.from_json(text)
