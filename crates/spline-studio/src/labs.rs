@@ -3,7 +3,7 @@
 //! here: de Casteljau, subdivision and elevation are spline-geom's, the fits spline-fit's,
 //! the features spline-algebra's and the eraser spline-shape's.
 
-use crate::api::{
+use crate::values::{
     MAX_DEGREE, MAX_POINTS, MAX_SAMPLES, Point, count, planar, points, record, samples, xy, xys,
 };
 use serde::Deserialize;

@@ -30,5 +30,6 @@
 pub mod api;
 mod labs;
 mod server;
+mod values;
 
 pub use server::{MAX_BODY, router, run};

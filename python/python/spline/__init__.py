@@ -25,8 +25,8 @@ from ._bspline import (
     make_lsq_spline,
     make_smoothing_spline,
     product,
-    read_json,
 )
+from ._exchange import read_json
 from ._nd import NdBSpline, make_ndbspl
 from ._splrep import generate_knots, make_splprep, make_splrep
 from ._nurbs import NurbsCurve, NurbsSurface

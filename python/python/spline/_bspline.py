@@ -621,15 +621,3 @@ def product(a: BSpline, b: BSpline) -> Tuple[BSpline, scipy.sparse.csr_array, sc
     p, ja, jb = _core.product(a._s, b._s)
     return BSpline._wrap(p), _csr(ja), _csr(jb)
 
-
-def read_json(text: str):
-    """A curve or surface from exchange-format JSON: ``BSpline``, ``NurbsCurve`` (with
-    ``"weights"``) or ``NurbsSurface`` (two degrees); the library reads the record."""
-    from ._nurbs import NurbsCurve, NurbsSurface
-
-    kind = _core.exchange_kind(text)
-    if kind == "surface":
-        return NurbsSurface.from_json(text)
-    if kind == "nurbs":
-        return NurbsCurve.from_json(text)
-    return BSpline.from_json(text)

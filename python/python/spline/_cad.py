@@ -7,7 +7,7 @@ from dataclasses import dataclass
 from typing import Any, Iterable, List, Optional, Sequence, Union
 
 from . import _core
-from ._bspline import read_json
+from ._exchange import read_json
 
 PathLike = Union[str, "os.PathLike[str]"]
 

@@ -226,7 +226,17 @@ fn assemble_normal<T: Scalar, P: ControlPoint<T>>(
     #[cfg(feature = "parallel")]
     if params.len() >= PARALLEL_MIN_POINTS && knots.degree() <= 5 {
         return Some(super::parallel::assemble(
-            knots, params, points, weights, check, band, rhs,
+            (
+                normal_dispatch::<T, P, true>,
+                normal_dispatch::<T, P, false>,
+            ),
+            knots,
+            params,
+            points,
+            weights,
+            check,
+            band,
+            rhs,
         ));
     }
     normal_dispatch::<T, P, true>(knots, params, points, weights, check, band, rhs)
@@ -239,7 +249,7 @@ pub const PARALLEL_MIN_POINTS: usize = 1 << 14;
 
 /// [`normal_kernel`] for the degree of `knots` (`None` above degree 5); with `ACC = false`
 /// only the Schoenberg–Whitney check runs.
-pub(super) fn normal_dispatch<T: Scalar, P: ControlPoint<T>, const ACC: bool>(
+fn normal_dispatch<T: Scalar, P: ControlPoint<T>, const ACC: bool>(
     knots: &KnotVector<T>,
     params: &[T],
     points: &[P],

@@ -457,7 +457,7 @@ pub fn approximate<T: Scalar, P: ControlPoint<T>>(
 fn weighted_square_sum<T: Scalar, P: ControlPoint<T>>(points: &[P], weights: Option<&[T]>) -> T {
     #[cfg(feature = "parallel")]
     if points.len() >= PARALLEL_MIN_POINTS {
-        return parallel::weighted_square_sum(points, weights);
+        return parallel::weighted_square_sum(points, weights, weighted_square_sum_of);
     }
     weighted_square_sum_of(points, weights)
 }

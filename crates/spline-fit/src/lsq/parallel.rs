@@ -2,8 +2,10 @@
 //! feature): each chunk of the data adds its rows into its own band and right-hand side,
 //! and the parts are summed in chunk order. The Schoenberg–Whitney check is a greedy scan in
 //! data order; it runs alongside the chunks (without the sums) on one of the threads.
+//!
+//! The kernels come from the caller (`assemble`'s per-degree dispatch, the one-pass square
+//! sum): this module knows how to split and sum, not what a chunk computes.
 
-use super::assemble::normal_dispatch;
 use rayon::prelude::*;
 use spline_core::{ControlPoint, KnotVector, Scalar};
 
@@ -45,6 +47,7 @@ pub(super) fn data_valid<T: Scalar, P: ControlPoint<T>>(
 pub(super) fn weighted_square_sum<T: Scalar, P: ControlPoint<T>>(
     points: &[P],
     weights: Option<&[T]>,
+    chunk_sum: impl Fn(&[P], Option<&[T]>) -> T + Sync,
 ) -> T {
     let chunk = chunk_len(points.len());
     let parts: Vec<T> = points
@@ -52,15 +55,31 @@ pub(super) fn weighted_square_sum<T: Scalar, P: ControlPoint<T>>(
         .enumerate()
         .map(|(c, qs)| {
             let ws = weights.map(|w| &w[c * chunk..c * chunk + qs.len()]);
-            super::weighted_square_sum_of(qs, ws)
+            chunk_sum(qs, ws)
         })
         .collect();
     parts.into_iter().fold(T::zero(), |s, part| s + part)
 }
 
+/// The sequential assembly kernel the chunks run: `(knots, params, points, weights, check,
+/// band, rhs)` as `assemble`'s per-degree dispatch takes them, `None` for an unsupported
+/// degree. `ACC = false` of the dispatch is the check alone.
+pub(super) type Kernel<T, P> = fn(
+    &KnotVector<T>,
+    &[T],
+    &[P],
+    Option<&[T]>,
+    bool,
+    &mut [T],
+    &mut [P],
+) -> Option<std::result::Result<(), usize>>;
+
 /// Adds the normal equations of the data to `band` and `rhs` (degree at most 5): as the
-/// sequential kernel, the sums in another order.
+/// sequential kernel `sums`, the sums in another order; `check_only` runs the
+/// Schoenberg–Whitney check beside them.
+#[allow(clippy::too_many_arguments)]
 pub(super) fn assemble<T: Scalar, P: ControlPoint<T>>(
+    (sums, check_only): (Kernel<T, P>, Kernel<T, P>),
     knots: &KnotVector<T>,
     params: &[T],
     points: &[P],
@@ -75,15 +94,7 @@ pub(super) fn assemble<T: Scalar, P: ControlPoint<T>>(
         || {
             if check {
                 // The check alone: no sums, the buffers untouched.
-                normal_dispatch::<T, P, false>(
-                    knots,
-                    params,
-                    points,
-                    weights,
-                    true,
-                    &mut [],
-                    &mut [],
-                )
+                check_only(knots, params, points, weights, true, &mut [], &mut [])
             } else {
                 Some(Ok(()))
             }
@@ -97,15 +108,7 @@ pub(super) fn assemble<T: Scalar, P: ControlPoint<T>>(
                     let ws = weights.map(|w| &w[c * chunk..c * chunk + ps.len()]);
                     let mut part_band = vec![T::zero(); band_len];
                     let mut part_rhs = vec![P::origin(); rhs_len];
-                    normal_dispatch::<T, P, true>(
-                        knots,
-                        ps,
-                        qs,
-                        ws,
-                        false,
-                        &mut part_band,
-                        &mut part_rhs,
-                    );
+                    sums(knots, ps, qs, ws, false, &mut part_band, &mut part_rhs);
                     (part_band, part_rhs)
                 })
                 .collect::<Vec<_>>()

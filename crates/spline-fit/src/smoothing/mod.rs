@@ -9,6 +9,7 @@ mod periodic;
 mod profile;
 mod residual;
 mod splrep;
+mod splrep_options;
 
 pub use residual::{
     MAX_RESIDUAL_ITERATIONS, ResidualFit, smoothing_curve_to_residual, smoothing_to_residual,

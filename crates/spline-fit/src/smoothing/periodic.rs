@@ -21,7 +21,7 @@ use super::profile::ProfileCholesky;
 use super::residual::{
     ResidualFit, TOL, add_knot, check_data, check_degree, jump_rows, knots_to_add, root_rati,
 };
-use super::splrep::SplrepOptions;
+use super::splrep_options::SplrepOptions;
 use crate::interpolate::interpolate_with_knots;
 use crate::lsq::LeastSquares;
 use crate::periodic::interpolate_periodic;

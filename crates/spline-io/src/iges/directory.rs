@@ -1,7 +1,7 @@
 //! Directory entries and the parameters of each entity, read on demand; transformation
 //! matrices (124) with their chains, name properties (406 form 15).
 
-use super::entities::Affine;
+use super::affine::Affine;
 use super::tokens::{Token, parse_int, parse_real, tokenize};
 use super::{PARAM_WIDTH, Section, parse_error};
 use nalgebra::{Matrix3, Vector3};

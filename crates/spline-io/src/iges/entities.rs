@@ -2,33 +2,13 @@
 //! their parameter ranges), 110 (line), 100 (circular arc), 120 (surface of revolution) and
 //! 122 (tabulated cylinder) converted exactly; transformations applied.
 
+use super::affine::Affine;
 use super::directory::{Entry, File, Params};
 use super::{Section, at, parse_error};
 use crate::Geometry;
-use nalgebra::{Matrix3, Rotation3, Unit, Vector2, Vector3};
+use nalgebra::{Rotation3, Unit, Vector2, Vector3};
 use spline_core::{ControlPoint, KnotVector, Result};
 use spline_geom::{Axis, BSpline, Direction, Frame, NurbsCurve3, NurbsSurface3, Surface};
-
-/// An affine map $x \mapsto M x + t$ (entity 124).
-#[derive(Clone, Copy, Debug)]
-pub(super) struct Affine {
-    pub(super) m: Matrix3<f64>,
-    pub(super) t: Vector3<f64>,
-}
-
-impl Affine {
-    pub(super) fn apply(&self, p: &Vector3<f64>) -> Vector3<f64> {
-        self.m * p + self.t
-    }
-
-    /// `self ∘ inner`.
-    pub(super) fn after(&self, inner: &Self) -> Self {
-        Self {
-            m: self.m * inner.m,
-            t: self.m * inner.t + self.t,
-        }
-    }
-}
 
 /// A converted curve, polynomial or rational.
 #[derive(Clone, Debug)]

@@ -62,6 +62,7 @@
 //! # Ok::<(), spline_core::Error>(())
 //! ```
 
+mod affine;
 mod directory;
 mod entities;
 mod sections;
