@@ -7,8 +7,8 @@ use numpy::{PyArray1, PyReadonlyArray1};
 use pyo3::prelude::*;
 use spline::KnotVector;
 use spline::fit::{
-    CorrectionOptions, LeastSquares, Parametrization, correct_parameters, interpolate_with_knots,
-    nurbs_book_knots, parametrize,
+    CorrectionOptions, LeastSquares, LeastSquaresRequest, LsqKnots, Parametrization,
+    fit_least_squares, interpolate_with_knots,
 };
 use spline::io::airfoil::parse_airfoil;
 use spline::nalgebra::{SVector, Vector2};
@@ -120,16 +120,9 @@ fn least_squares<'py>(
     .map(Curve)
 }
 
-/// The parametrisation named `name`.
+/// The parametrisation named `name` (the library's names).
 fn parametrization(name: &str) -> PyResult<Parametrization<f64>> {
-    match name {
-        "uniform" => Ok(Parametrization::Uniform),
-        "chordal" | "chord" => Ok(Parametrization::Chordal),
-        "centripetal" => Ok(Parametrization::Centripetal),
-        other => Err(bad_input(format!(
-            "parametrization: unknown choice '{other}' (uniform, chordal or centripetal)"
-        ))),
-    }
+    Parametrization::from_name(name).py()
 }
 
 /// A fit with parameter correction: the curve, the parameters of the data, the largest and
@@ -159,19 +152,25 @@ fn fit<'py>(
         ..CorrectionOptions::default()
     };
     let mut extra = (Vec::new(), 0.0, 0.0, 0, false);
+    let request = LeastSquaresRequest {
+        parametrization: how,
+        correction: Some(options),
+        ..LeastSquaresRequest::new(k, LsqKnots::ControlPoints(n))
+    };
     let curve = py
         .detach(|| {
             by_dim!(dim, P => rows::<P>(flat).and_then(|q| {
-                let params = parametrize(&q, &how)?;
-                let knots = nurbs_book_knots(k, n, &params)?;
-                let (fit, report) =
-                    correct_parameters(&LeastSquares::new(&q, &params, knots), &options)?;
+                let answer = fit_least_squares(&q, &request)?;
+                let fit = answer.fit;
+                let (sweeps, converged) = answer
+                    .correction
+                    .map_or((0, false), |r| (r.iterations, r.converged));
                 extra = (
                     fit.params,
                     fit.deviation.max,
                     fit.deviation.rms,
-                    report.iterations,
-                    report.converged,
+                    sweeps,
+                    converged,
                 );
                 Ok(fit.curve)
             }))

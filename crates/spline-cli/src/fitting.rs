@@ -7,9 +7,9 @@ use clap::{Args, ValueEnum};
 use serde_json::{Value, json};
 use spline_core::{Error, ErrorKind, KnotVector, Result};
 use spline_fit::{
-    CorrectionOptions, CurveFit, InterpolationOptions, KnotChoice, LeastSquares, LsqMethod,
-    Parametrization, correct_parameters, interpolate_closed, natural_spline, nurbs_book_knots,
-    parametrize, parametrize_in,
+    CorrectionOptions, CurveFit, InterpolationOptions, InterpolationRequest, KnotChoice,
+    LeastSquaresRequest, LsqKnots, LsqMethod, Parametrization, fit_interpolation,
+    fit_least_squares, natural_spline,
 };
 
 #[derive(Args)]
@@ -114,52 +114,35 @@ pub struct ApproximateArgs {
     report: bool,
 }
 
-/// Reads points and divides them by a power of two near their largest coordinate (an exact
-/// scaling): fitting is affinely invariant, and with coordinates near 1 neither distances nor
-/// squares overflow or underflow. Returns the scaled points, their dimension and the scale.
-fn read_padded(path: &str) -> Result<(Vec<Pt>, usize, f64)> {
+/// Reads points, padded to the tool's point type, with their dimension.
+fn read_padded(path: &str) -> Result<(Vec<Pt>, usize)> {
     let rows = read_points(path)?;
     let dim = rows.first().map_or(0, Vec::len);
     let points = rows.iter().map(|r| pad(r)).collect::<Result<Vec<Pt>>>()?;
-    let largest = points.iter().fold(0.0f64, |m, p| m.max(p.amax()));
-    let scale = spline_core::power_of_two_scale(largest);
-    let points = points.iter().map(|p| p / scale).collect();
-    Ok((points, dim, scale))
+    Ok((points, dim))
 }
 
 fn parametrization(text: &str) -> Result<Parametrization<f64>> {
-    match text.trim() {
-        "uniform" => Ok(Parametrization::Uniform),
-        "chordal" => Ok(Parametrization::Chordal),
-        "centripetal" => Ok(Parametrization::Centripetal),
-        t if t.starts_with('[') => Ok(Parametrization::Given(parse_arg("--parametrization", t)?)),
-        other => Err(Error::new(
-            ErrorKind::InvalidArgument,
-            format!(
-                "--parametrization: unknown choice {other:?} (uniform, chordal, centripetal or a JSON array)"
-            ),
-        )),
+    if text.trim().starts_with('[') {
+        return Ok(Parametrization::Given(parse_arg(
+            "--parametrization",
+            text,
+        )?));
     }
+    Parametrization::from_name(text).map_err(|e| e.context("--parametrization (or a JSON array)"))
 }
 
 fn knot_choice(text: &str, degree: usize) -> Result<KnotChoice<f64>> {
-    match text.trim() {
-        "averaging" => Ok(KnotChoice::Averaging),
-        "uniform" => Ok(KnotChoice::Uniform),
-        "nurbs-book" => Ok(KnotChoice::NurbsBook),
-        t if t.starts_with('[') => Ok(KnotChoice::Given(
-            KnotVector::new(degree, parse_arg("--knots", t)?).map_err(|e| e.context("--knots"))?,
-        )),
-        other => Err(Error::new(
-            ErrorKind::InvalidArgument,
-            format!(
-                "--knots: unknown choice {other:?} (averaging, uniform, nurbs-book or a JSON array)"
-            ),
-        )),
+    if text.trim().starts_with('[') {
+        return Ok(KnotChoice::Given(
+            KnotVector::new(degree, parse_arg("--knots", text)?)
+                .map_err(|e| e.context("--knots"))?,
+        ));
     }
+    KnotChoice::from_name(text).map_err(|e| e.context("--knots (or a JSON array)"))
 }
 
-fn vector(option: &str, text: &str, dim: usize, scale: f64) -> Result<Pt> {
+fn vector(option: &str, text: &str, dim: usize) -> Result<Pt> {
     let v: Vec<f64> = parse_arg(option, text)?;
     if v.len() != dim {
         return Err(Error::new(
@@ -170,19 +153,13 @@ fn vector(option: &str, text: &str, dim: usize, scale: f64) -> Result<Pt> {
             ),
         ));
     }
-    Ok(pad(&v)? / scale)
+    pad(&v)
 }
 
-/// Prints a fit made on points divided by `scale`, mapped back.
-fn output(
-    fit: &CurveFit<f64, Pt>,
-    dim: usize,
-    scale: f64,
-    report: bool,
-    extra: Option<Value>,
-) -> Result<()> {
+/// Prints a fit: the curve, or with `report` the curve and its deviation (and `extra`).
+fn output(fit: &CurveFit<f64, Pt>, dim: usize, report: bool, extra: Option<Value>) -> Result<()> {
     let record = Sized {
-        value: fit.curve.map_control_points(|p| p * scale),
+        value: fit.curve.clone(),
         dim,
     }
     .json()?;
@@ -192,9 +169,9 @@ fn output(
     let mut value = json!({
         "curve": record,
         "params": fit.params,
-        "max_deviation": fit.deviation.max * scale,
+        "max_deviation": fit.deviation.max,
         "max_index": fit.deviation.max_index,
-        "rms": fit.deviation.rms * scale,
+        "rms": fit.deviation.rms,
     });
     if let Some(extra) = extra {
         value["correction"] = extra;
@@ -203,35 +180,26 @@ fn output(
 }
 
 pub fn interpolate(args: &InterpolateArgs) -> Result<()> {
-    let (points, dim, scale) = read_padded(&args.points)?;
-    let parametrization = parametrization(&args.parametrization)?;
-    if args.closed {
-        if args.knots.is_some() || args.start_derivative.is_some() || args.end_derivative.is_some()
-        {
-            return Err(Error::new(
-                ErrorKind::InvalidArgument,
-                "--closed chooses its own knots and takes no end derivatives",
-            ));
-        }
-        let fit = interpolate_closed(&points, args.degree, &parametrization)?;
-        return output(&fit, dim, scale, args.report, None);
-    }
-    let options = InterpolationOptions {
-        parametrization,
-        knots: knot_choice(args.knots.as_deref().unwrap_or("averaging"), args.degree)?,
-        start_derivative: args
-            .start_derivative
-            .as_deref()
-            .map(|t| vector("--start-derivative", t, dim, scale))
-            .transpose()?,
-        end_derivative: args
-            .end_derivative
-            .as_deref()
-            .map(|t| vector("--end-derivative", t, dim, scale))
-            .transpose()?,
+    let (points, dim) = read_padded(&args.points)?;
+    let derivative = |option: &str, text: &Option<String>| {
+        text.as_deref().map(|t| vector(option, t, dim)).transpose()
     };
-    let fit = spline_fit::interpolate(&points, args.degree, &options)?;
-    output(&fit, dim, scale, args.report, None)
+    let request = InterpolationRequest {
+        degree: args.degree,
+        closed: args.closed,
+        options: InterpolationOptions {
+            parametrization: parametrization(&args.parametrization)?,
+            knots: knot_choice(args.knots.as_deref().unwrap_or("averaging"), args.degree)?,
+            start_derivative: derivative("--start-derivative", &args.start_derivative)?,
+            end_derivative: derivative("--end-derivative", &args.end_derivative)?,
+        },
+    };
+    output(
+        &fit_interpolation(&points, &request)?,
+        dim,
+        args.report,
+        None,
+    )
 }
 
 /// The values of `--y`: a JSON array of numbers (1-D) or of points of one dimension, padded,
@@ -297,14 +265,13 @@ fn fixes(text: &str, dim: usize) -> Result<Vec<(usize, usize, f64)>> {
 }
 
 pub fn approximate(args: &ApproximateArgs) -> Result<()> {
-    let (points, dim, scale) = read_padded(&args.points)?;
-    let parametrization = parametrization(&args.parametrization)?;
+    let (points, dim) = read_padded(&args.points)?;
     let knots = match (&args.knots, args.control_points) {
-        (Some(text), _) => KnotVector::new(args.degree, parse_arg("--knots", text)?)
-            .map_err(|e| e.context("--knots"))?,
-        (None, Some(n)) => {
-            nurbs_book_knots(args.degree, n, &parametrize(&points, &parametrization)?)?
-        }
+        (Some(text), _) => LsqKnots::Given(
+            KnotVector::new(args.degree, parse_arg("--knots", text)?)
+                .map_err(|e| e.context("--knots"))?,
+        ),
+        (None, Some(n)) => LsqKnots::ControlPoints(n),
         (None, None) => {
             return Err(Error::new(
                 ErrorKind::InvalidArgument,
@@ -312,65 +279,39 @@ pub fn approximate(args: &ApproximateArgs) -> Result<()> {
             ));
         }
     };
-    // Named parametrisations on [0, 1] are mapped onto the domain of the knots.
-    let params = parametrize_in(&points, &parametrization, knots.domain())?;
-    solve(args, &points, &params, knots, (dim, scale))
-}
-
-fn solve(
-    args: &ApproximateArgs,
-    points: &[Pt],
-    params: &[f64],
-    knots: KnotVector<f64>,
-    (dim, scale): (usize, f64),
-) -> Result<()> {
     let weights: Option<Vec<f64>> = args
         .weights
         .as_deref()
         .map(|t| parse_arg("--weights", t))
         .transpose()?;
-    let mut problem = LeastSquares::new(points, params, knots)
-        .smoothing(args.smoothing)
-        .method(match args.method {
+    let request = LeastSquaresRequest {
+        parametrization: parametrization(&args.parametrization)?,
+        weights: weights.as_deref(),
+        pin_ends: args.pin_ends,
+        fixed: args
+            .fix
+            .as_deref()
+            .map_or(Ok(Vec::new()), |t| fixes(t, dim))?,
+        smoothing: args.smoothing,
+        method: match args.method {
             Method::Normal => LsqMethod::NormalEquations,
             Method::Qr => LsqMethod::Qr,
-        });
-    if let Some(w) = &weights {
-        problem = problem.weights(w);
-    }
-    if args.pin_ends {
-        problem = problem.pin_ends();
-    }
-    if let Some(text) = &args.fix {
-        for (i, c, v) in fixes(text, dim)? {
-            problem = problem.fix_coordinate(i, c, v / scale);
-        }
-    }
-    match args.correct_parameters {
-        None => output(&problem.solve()?, dim, scale, args.report, None),
-        Some(iterations) => {
-            if iterations > spline_fit::MAX_CORRECTION_ITERATIONS {
-                return Err(Error::new(
-                    ErrorKind::InvalidArgument,
-                    format!(
-                        "--correct-parameters {iterations}: more sweeps than the supported maximum {}",
-                        spline_fit::MAX_CORRECTION_ITERATIONS
-                    ),
-                ));
-            }
-            let options = CorrectionOptions {
-                max_iterations: iterations,
-                angle_tolerance: args.angle_tolerance,
-                ..CorrectionOptions::default()
-            };
-            let (fit, report) = correct_parameters(&problem, &options)?;
-            let extra = json!({
-                "iterations": report.iterations,
-                "converged": report.converged,
-                "angles": report.angles,
-                "errors": report.errors.iter().map(|e| e * scale * scale).collect::<Vec<_>>(),
-            });
-            output(&fit, dim, scale, args.report, Some(extra))
-        }
-    }
+        },
+        correction: args.correct_parameters.map(|iterations| CorrectionOptions {
+            max_iterations: iterations,
+            angle_tolerance: args.angle_tolerance,
+            ..CorrectionOptions::default()
+        }),
+        ..LeastSquaresRequest::new(args.degree, knots)
+    };
+    let answer = fit_least_squares(&points, &request)?;
+    let extra = answer.correction.map(|report| {
+        json!({
+            "iterations": report.iterations,
+            "converged": report.converged,
+            "angles": report.angles,
+            "errors": report.errors,
+        })
+    });
+    output(&answer.fit, dim, args.report, extra)
 }

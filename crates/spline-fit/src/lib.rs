@@ -79,6 +79,7 @@ mod periodic;
 mod project;
 mod reduce;
 mod report;
+mod requests;
 mod scattered;
 mod skin;
 mod slab;
@@ -121,6 +122,10 @@ pub use periodic::{interpolate_periodic, least_squares_periodic};
 pub use project::{Projection, closest_point, project_ordered};
 pub use reduce::reduce_degree;
 pub use report::{CurveFit, Deviation, deviation};
+pub use requests::{
+    InterpolationRequest, LeastSquaresFit, LeastSquaresRequest, LsqKnots, fit_interpolation,
+    fit_least_squares,
+};
 pub use scattered::{MAX_SCATTERED_SYSTEM, ScatteredFit, ScatteredOptions, fit_scattered};
 pub use skin::{Gordon, Skinned, gordon, skin};
 pub use smoothing::{

@@ -33,6 +33,57 @@ impl<T> Default for Parametrization<T> {
     }
 }
 
+impl<T> Parametrization<T> {
+    /// The names of the named choices, as every front end spells them (the tool's
+    /// `--parametrization`, the studio's field, the Python keyword).
+    pub const NAMES: [&'static str; 3] = ["uniform", "chordal", "centripetal"];
+
+    /// The named choice `name` (one of [`Self::NAMES`]; `"chord"` is read as `"chordal"`).
+    ///
+    /// # Errors
+    /// [`ErrorKind::InvalidArgument`] naming the choices for any other text.
+    ///
+    /// # Examples
+    /// ```
+    /// use spline_fit::Parametrization;
+    /// assert_eq!(Parametrization::<f64>::from_name("centripetal")?, Parametrization::Centripetal);
+    /// assert!(Parametrization::<f64>::from_name("arc").is_err());
+    /// # Ok::<(), spline_core::Error>(())
+    /// ```
+    pub fn from_name(name: &str) -> Result<Self> {
+        match name.trim() {
+            "uniform" => Ok(Self::Uniform),
+            "chordal" | "chord" => Ok(Self::Chordal),
+            "centripetal" => Ok(Self::Centripetal),
+            other => Err(unknown_name("parametrization", other, &Self::NAMES)),
+        }
+    }
+
+    /// The name of a named choice; `None` for [`Parametrization::Given`].
+    #[must_use]
+    pub const fn name(&self) -> Option<&'static str> {
+        match self {
+            Self::Uniform => Some("uniform"),
+            Self::Chordal => Some("chordal"),
+            Self::Centripetal => Some("centripetal"),
+            Self::Given(_) => None,
+        }
+    }
+}
+
+/// The error for a name that is none of `names`: the text (at most 40 characters) and the
+/// choices.
+fn unknown_name(what: &str, text: &str, names: &[&str]) -> Error {
+    Error::new(
+        ErrorKind::InvalidArgument,
+        format!(
+            "unknown {what} {:?} (one of {})",
+            text.chars().take(40).collect::<String>(),
+            names.join(", ")
+        ),
+    )
+}
+
 /// How the knot vector of a fit is chosen.
 #[derive(Clone, Debug, PartialEq)]
 pub enum KnotChoice<T> {
@@ -54,6 +105,24 @@ impl<T> Default for KnotChoice<T> {
     /// Averaging, the default of the exchange-format contract.
     fn default() -> Self {
         Self::Averaging
+    }
+}
+
+impl<T> KnotChoice<T> {
+    /// The names of the placements chosen by rule, as every front end spells them.
+    pub const NAMES: [&'static str; 3] = ["averaging", "uniform", "nurbs-book"];
+
+    /// The placement named `name` (one of [`Self::NAMES`]).
+    ///
+    /// # Errors
+    /// [`ErrorKind::InvalidArgument`] naming the choices for any other text.
+    pub fn from_name(name: &str) -> Result<Self> {
+        match name.trim() {
+            "averaging" => Ok(Self::Averaging),
+            "uniform" => Ok(Self::Uniform),
+            "nurbs-book" => Ok(Self::NurbsBook),
+            other => Err(unknown_name("knot placement", other, &Self::NAMES)),
+        }
     }
 }
 

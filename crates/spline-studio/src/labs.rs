@@ -36,22 +36,11 @@ fn chordal() -> String {
     "chordal".into()
 }
 fn all_parametrizations() -> Vec<String> {
-    vec!["uniform".into(), "chordal".into(), "centripetal".into()]
+    Parametrization::<f64>::NAMES.map(String::from).to_vec()
 }
 
 fn parametrization(name: &str) -> Result<Parametrization<f64>> {
-    match name {
-        "uniform" => Ok(Parametrization::Uniform),
-        "chordal" => Ok(Parametrization::Chordal),
-        "centripetal" => Ok(Parametrization::Centripetal),
-        other => Err(Error::new(
-            ErrorKind::InvalidArgument,
-            format!(
-                "parametrization {:?}: one of uniform, chordal, centripetal",
-                other.chars().take(40).collect::<String>()
-            ),
-        )),
-    }
+    Parametrization::from_name(name)
 }
 
 fn degree(value: usize) -> Result<usize> {

@@ -482,6 +482,17 @@ fn malformed_point_files_are_an_error() {
             "--parametrization",
             "sideways",
         ],
-        "unknown choice",
+        "--parametrization (or a JSON array): unknown parametrization \"sideways\" (one of uniform, chordal, centripetal)",
+    );
+    fails_with(
+        &[
+            "interpolate",
+            file.path(),
+            "--degree",
+            "1",
+            "--knots",
+            "even",
+        ],
+        "--knots (or a JSON array): unknown knot placement \"even\" (one of averaging, uniform, nurbs-book)",
     );
 }

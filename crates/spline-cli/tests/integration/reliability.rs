@@ -370,7 +370,7 @@ fn parameter_correction_sweeps_are_limited() {
     ]);
     assert_message(
         &run,
-        "--correct-parameters 10000000: more sweeps than the supported maximum 10000",
+        "10000000 correction sweeps are more than the supported maximum 10000",
     );
 }
 
