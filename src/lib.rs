@@ -82,9 +82,10 @@ pub use spline_core::{
 };
 pub use spline_geom::{
     BSpline, BSplineFunction, Bezier, Curve2, Curve3, CurveEvaluator, Direction, Homogeneous,
-    NurbsCurve, NurbsCurve2, NurbsCurve3, NurbsEvaluator, NurbsSurface, NurbsSurface3, Operation,
-    Outcome, ParamCurve, ParamSurface, PlanarCurve, SpatialSurface, StructuralCurve,
-    StructuralSurface, Surface, Surface3, TriangleMesh,
+    NurbsCurve, NurbsCurve2, NurbsCurve3, NurbsEvaluator, NurbsSurface, NurbsSurface3,
+    NurbsSurfaceEvaluator, Operation, Outcome, ParamCurve, ParamSurface, PlanarCurve,
+    SpatialSurface, StructuralCurve, StructuralSurface, Surface, Surface3, SurfaceEvaluator,
+    TriangleMesh,
 };
 
 /// The containers, the traits and the nalgebra vectors: `use spline::prelude::*;`.

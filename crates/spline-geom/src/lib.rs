@@ -82,7 +82,7 @@ pub use periodic::PeriodicBSpline;
 pub use planar::wedge;
 pub use spline_core::{ControlPoint, Error, ErrorKind, KnotVector, Result, Scalar};
 pub use structural::DEFAULT_REMOVAL_TOLERANCE;
-pub use surface::{Direction, Surface};
+pub use surface::{Direction, NurbsSurfaceEvaluator, Surface, SurfaceEvaluator};
 pub use surface_geometry::{FundamentalForm, LocalProperties};
 pub use variation::sign_changes;
 

@@ -72,8 +72,15 @@ pub(crate) fn surfaces(c: &mut Criterion) {
     ours.eval_grid_into(&grid, &grid, &mut out).unwrap();
     let (mut d_curvo, mut d_truck, mut d_grid) = (0.0f64, 0.0f64, 0.0f64);
     let mut evaluator = curvo.evaluator();
+    let fast = ours.evaluator();
+    assert!(
+        fast.has_form(),
+        "the bicubic has a piecewise polynomial form"
+    );
+    let mut d_fast = 0.0f64;
     for k in (0..SIDE * SIDE).step_by(101) {
         let p = ours.eval(us[k], vs[k]).unwrap();
+        d_fast = d_fast.max((p - fast.eval(us[k], vs[k]).unwrap()).amax());
         let q = evaluator.point_at(us[k], vs[k]);
         d_curvo = d_curvo.max(gap(p, q.x, q.y, q.z));
         let q = truck.subs(us[k], vs[k]);
@@ -90,6 +97,7 @@ pub(crate) fn surfaces(c: &mut Criterion) {
         }
     }
     report_check("surface/curvo_evaluator", d_curvo);
+    report_check("surface/ours_evaluator", d_fast);
     report_check("surface/truck", d_truck);
     report_check("surface/ours_grid", d_grid);
     report_check("surface/curvo_grid", d_sampled);
@@ -101,6 +109,15 @@ pub(crate) fn surfaces(c: &mut Criterion) {
             let mut acc = Vector3::zeros();
             for (&u, &v) in us.iter().zip(&vs) {
                 acc += ours.eval(black_box(u), black_box(v)).unwrap();
+            }
+            acc
+        });
+    });
+    group.bench_function("ours_evaluator", |b| {
+        b.iter(|| {
+            let mut acc = Vector3::zeros();
+            for (&u, &v) in us.iter().zip(&vs) {
+                acc += fast.eval(black_box(u), black_box(v)).unwrap();
             }
             acc
         });
@@ -123,6 +140,11 @@ pub(crate) fn surfaces(c: &mut Criterion) {
             }
             acc
         });
+    });
+    group.finish();
+    let mut group = c.benchmark_group("peers_surface_build");
+    group.bench_function("ours_evaluator", |b| {
+        b.iter(|| black_box(&ours).evaluator());
     });
     group.finish();
 
@@ -151,12 +173,18 @@ fn derivatives(
 ) {
     let us = uniform_samples(DERIV_POINTS, 48);
     let vs = uniform_samples(DERIV_POINTS, 49);
-    let (mut d_curvo, mut d_truck) = (0.0f64, 0.0f64);
+    let (mut d_curvo, mut d_truck, mut d_fast) = (0.0f64, 0.0f64, 0.0f64);
     let mut evaluator = curvo.evaluator();
+    let fast = ours.evaluator();
     for k in (0..DERIV_POINTS).step_by(13) {
         let (u, v) = (us[k], vs[k]);
         let mut d = [Vector3::zeros(); 4];
         ours.derivatives_into(u, v, 1, &mut d).unwrap();
+        let mut e = [Vector3::zeros(); 4];
+        fast.derivatives_into(u, v, 1, &mut e).unwrap();
+        d_fast = d_fast.max(
+            (d[1] - e[1]).amax().max((d[2] - e[2]).amax()) / d[1].amax().max(d[2].amax()).max(1.0),
+        );
         // derivatives_into writes [S, S_v, S_u, S_uv].
         let theirs = evaluator.rational_derivatives(u, v, 1);
         let scale = d[1].amax().max(d[2].amax()).max(1.0);
@@ -167,6 +195,7 @@ fn derivatives(
     }
     report_check("surface_derivs/curvo_evaluator", d_curvo);
     report_check("surface_derivs/truck", d_truck);
+    report_check("surface_derivs/ours_evaluator", d_fast);
     let mut group = c.benchmark_group("peers_surface_derivs");
     group.throughput(Throughput::Elements(DERIV_POINTS as u64));
     group.bench_function("ours", |b| {
@@ -175,6 +204,18 @@ fn derivatives(
             let mut d = [Vector3::zeros(); 4];
             for (&u, &v) in us.iter().zip(&vs) {
                 ours.derivatives_into(black_box(u), black_box(v), 1, &mut d)
+                    .unwrap();
+                acc += d[1] + d[2];
+            }
+            acc
+        });
+    });
+    group.bench_function("ours_evaluator", |b| {
+        b.iter(|| {
+            let mut acc = Vector3::zeros();
+            let mut d = [Vector3::zeros(); 4];
+            for (&u, &v) in us.iter().zip(&vs) {
+                fast.derivatives_into(black_box(u), black_box(v), 1, &mut d)
                     .unwrap();
                 acc += d[1] + d[2];
             }
@@ -251,8 +292,15 @@ fn nurbs_sphere(c: &mut Criterion) {
         .collect();
     let (mut d_curvo, mut d_truck, mut radius) = (0.0f64, 0.0f64, 0.0f64);
     let mut evaluator = curvo.evaluator();
+    let fast = ours.evaluator();
+    assert!(
+        fast.has_form(),
+        "the sphere has a piecewise polynomial form"
+    );
+    let mut d_fast = 0.0f64;
     for k in (0..DERIV_POINTS).step_by(13) {
         let p = ours.eval(us[k], vs[k]).unwrap();
+        d_fast = d_fast.max((p - fast.eval(us[k], vs[k]).unwrap()).amax());
         let q = evaluator.point_at(us[k], vs[k]);
         d_curvo = d_curvo.max(gap(p, q.x, q.y, q.z));
         let q = truck.subs(us[k], vs[k]);
@@ -262,6 +310,7 @@ fn nurbs_sphere(c: &mut Criterion) {
     report_check("nurbs_surface/curvo_evaluator", d_curvo);
     report_check("nurbs_surface/truck", d_truck);
     report_check("nurbs_surface/radius", radius);
+    report_check("nurbs_surface/ours_evaluator", d_fast);
     let mut group = c.benchmark_group("peers_nurbs_surface");
     group.throughput(Throughput::Elements(DERIV_POINTS as u64));
     group.bench_function("ours", |b| {
@@ -269,6 +318,15 @@ fn nurbs_sphere(c: &mut Criterion) {
             let mut acc = Vector3::zeros();
             for (&u, &v) in us.iter().zip(&vs) {
                 acc += ours.eval(black_box(u), black_box(v)).unwrap();
+            }
+            acc
+        });
+    });
+    group.bench_function("ours_evaluator", |b| {
+        b.iter(|| {
+            let mut acc = Vector3::zeros();
+            for (&u, &v) in us.iter().zip(&vs) {
+                acc += fast.eval(black_box(u), black_box(v)).unwrap();
             }
             acc
         });

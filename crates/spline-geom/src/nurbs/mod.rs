@@ -271,7 +271,7 @@ pub(super) fn derivative_overflow(order: usize) -> Error {
 ///
 /// # Errors
 /// [`ErrorKind::NonFinite`] when a derivative leaves the range of the scalar type.
-pub(super) fn rational_surface_derivatives<T: Scalar, const D: usize>(
+pub(crate) fn rational_surface_derivatives<T: Scalar, const D: usize>(
     hom: &[Homogeneous<T, D>],
     top: usize,
     order: usize,

@@ -9,7 +9,10 @@
 //! every column (see `structural.rs`). Nothing is implemented twice.
 
 mod derivatives;
+mod evaluator;
 mod structural;
+
+pub use evaluator::{NurbsSurfaceEvaluator, SurfaceEvaluator};
 
 use spline_core::{ControlPoint, Error, ErrorKind, KnotVector, MAX_ORDER, Result, Scalar};
 use std::fmt;

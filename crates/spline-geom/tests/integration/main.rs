@@ -10,5 +10,6 @@ mod nurbs;
 mod periodic;
 mod pieces;
 mod reference_surfaces;
+mod surface_evaluator;
 mod surface_mesh;
 mod surfaces;
