@@ -172,12 +172,8 @@ fn report(result: &SmoothedCurve) -> Value {
 
 /// The `.dat` files of a directory, sorted.
 fn dat_files(dir: &Path) -> Result<Vec<PathBuf>> {
-    let entries = std::fs::read_dir(dir).map_err(|e| {
-        Error::new(
-            ErrorKind::InvalidArgument,
-            format!("cannot read the directory {}: {e}", dir.display()),
-        )
-    })?;
+    let entries = std::fs::read_dir(dir)
+        .map_err(|e| Error::io(format_args!("read the directory {}", dir.display()), e))?;
     let mut files: Vec<PathBuf> = entries
         .filter_map(|e| e.ok().map(|e| e.path()))
         .filter(|p| p.extension().is_some_and(|x| x.eq_ignore_ascii_case("dat")))
@@ -246,12 +242,8 @@ fn batch(
     options: &SmoothingOptions,
     args: &SmoothArgs,
 ) -> Result<()> {
-    std::fs::create_dir_all(out).map_err(|e| {
-        Error::new(
-            ErrorKind::InvalidArgument,
-            format!("cannot create {}: {e}", out.display()),
-        )
-    })?;
+    std::fs::create_dir_all(out)
+        .map_err(|e| Error::io(format_args!("create {}", out.display()), e))?;
     let summary_path = out.join("summary.jsonl");
     let summary_name = summary_path.display().to_string();
     let summary_file = io::create_file(&summary_name)?;

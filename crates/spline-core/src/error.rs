@@ -63,8 +63,9 @@ pub enum ErrorKind {
 
 /// The error of every fallible operation: an [`ErrorKind`], a one-line message that says
 /// what was wrong with which input, the structured facts behind it ([`Error::index`],
-/// [`Error::value`], [`Error::interval`], [`Error::counts`]) and, for I/O failures, the
-/// underlying error as [`std::error::Error::source`].
+/// [`Error::value`], [`Error::interval`], [`Error::counts`], and for a file's content
+/// [`Error::line`] and [`Error::file`]) and, for I/O failures, the underlying error as
+/// [`std::error::Error::source`].
 ///
 /// Messages are for people: [`Error::new`] and [`Error::context`] keep them on one line
 /// (line breaks become spaces) and write numbers short: a number that `{}` would print with
@@ -93,6 +94,8 @@ struct Inner {
     message: String,
     fields: Fields,
     source: Option<Arc<dyn std::error::Error + Send + Sync + 'static>>,
+    /// The file the error is about, when it came from one.
+    file: Option<Arc<str>>,
 }
 
 /// The structured facts of an [`Error`], each present when it applies.
@@ -102,13 +105,14 @@ struct Fields {
     value: Option<f64>,
     interval: Option<(f64, f64)>,
     counts: Option<(usize, usize)>,
+    line: Option<usize>,
 }
 
 /// Errors are equal when their kinds, messages and fields are (sources are not compared).
 impl PartialEq for Error {
     fn eq(&self, other: &Self) -> bool {
         let (a, b) = (&self.inner, &other.inner);
-        a.kind == b.kind && a.message == b.message && a.fields == b.fields
+        a.kind == b.kind && a.message == b.message && a.fields == b.fields && a.file == b.file
     }
 }
 
@@ -121,6 +125,7 @@ impl Error {
                 message: for_people(message.into()),
                 fields: Fields::default(),
                 source: None,
+                file: None,
             }),
         }
     }
@@ -224,6 +229,22 @@ impl Error {
         self
     }
 
+    /// Records the 1-based line of the input text the error is about (a file's line, a
+    /// record of a fixed-column file).
+    #[must_use]
+    pub fn with_line(mut self, line: usize) -> Self {
+        self.inner.fields.line = Some(line);
+        self
+    }
+
+    /// Records the file the error is about (its path as the caller named it). The message
+    /// is not changed: [`Error::context`] says it for people.
+    #[must_use]
+    pub fn with_file(mut self, file: impl fmt::Display) -> Self {
+        self.inner.file = Some(file.to_string().into());
+        self
+    }
+
     /// The kind of the error.
     #[must_use]
     pub fn kind(&self) -> ErrorKind {
@@ -252,6 +273,18 @@ impl Error {
     #[must_use]
     pub fn interval(&self) -> Option<(f64, f64)> {
         self.inner.fields.interval
+    }
+
+    /// The 1-based line of the input text, for errors about a file's content.
+    #[must_use]
+    pub fn line(&self) -> Option<usize> {
+        self.inner.fields.line
+    }
+
+    /// The file the error is about, when it came from one.
+    #[must_use]
+    pub fn file(&self) -> Option<&str> {
+        self.inner.file.as_deref()
     }
 
     /// `(expected, found)` counts, for errors about lengths, orders and multiplicities.

@@ -167,7 +167,8 @@ pub fn parse_airfoil(text: &str) -> Result<Airfoil> {
                             "line {i}: expected the two coordinates of a point, got {}",
                             quote(t)
                         ),
-                    ));
+                    )
+                    .with_line(*i));
                 }
                 break;
             }
@@ -179,7 +180,8 @@ pub fn parse_airfoil(text: &str) -> Result<Airfoil> {
             format!(
                 "line {line}: expected the two coordinates of a point, got {count} numbers (planar points need two columns)"
             ),
-        ));
+        )
+        .with_line(line));
     }
     finish(name, selig, AirfoilFormat::Selig)
 }
@@ -190,14 +192,16 @@ fn point(line: usize, v: &[f64]) -> Result<Vector2<f64>> {
         [_, _] => Err(Error::new(
             ErrorKind::NonFinite,
             format!("line {line}: the point is not finite"),
-        )),
+        )
+        .with_line(line)),
         _ => Err(Error::new(
             ErrorKind::Parse,
             format!(
                 "line {line}: expected the two coordinates of a point, got {} numbers",
                 v.len()
             ),
-        )),
+        )
+        .with_line(line)),
     }
 }
 

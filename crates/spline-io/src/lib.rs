@@ -110,7 +110,7 @@ pub fn read_file(path: &Path) -> Result<Vec<Item>> {
     } else {
         iges::read_iges_bytes(&bytes)
     };
-    items.map_err(|e| e.context(path.display()))
+    items.map_err(|e| e.context(path.display()).with_file(path.display()))
 }
 
 /// Writes the items to a STEP or IGES file, by its extension ([`step::write_step`],

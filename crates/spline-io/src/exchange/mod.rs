@@ -160,10 +160,14 @@ pub fn from_value<X: Exchange>(value: Value) -> Result<X> {
 /// [`from_value`].
 pub fn from_json<X: Exchange>(text: &str) -> Result<X> {
     let value = parse_json(text).map_err(|e| {
-        Error::new(
+        let error = Error::new(
             ErrorKind::Parse,
             format!("not valid JSON: {}", serde_message(e.message())),
-        )
+        );
+        match e.line() {
+            Some(line) => error.with_line(line),
+            None => error,
+        }
     })?;
     from_value(value)
 }
@@ -175,7 +179,8 @@ pub fn from_json<X: Exchange>(text: &str) -> Result<X> {
 /// caller completes with what was read (a file, an argument) or rewords with
 /// [`serde_message`].
 pub fn parse_json(text: &str) -> Result<Value> {
-    serde_json::from_str(text).map_err(|e| Error::new(ErrorKind::Parse, e.to_string()))
+    serde_json::from_str(text)
+        .map_err(|e| Error::new(ErrorKind::Parse, e.to_string()).with_line(e.line()))
 }
 
 /// An object of the exchange format, curve or surface, before validation.

@@ -150,7 +150,8 @@ impl CurveRecord {
     /// [`ErrorKind::Parse`] with serde_json's message (missing or unknown fields, wrong types,
     /// syntax), which the caller completes with what was read.
     pub fn from_json(text: &str) -> Result<Self> {
-        serde_json::from_str(text).map_err(|e| Error::new(ErrorKind::Parse, e.to_string()))
+        serde_json::from_str(text)
+            .map_err(|e| Error::new(ErrorKind::Parse, e.to_string()).with_line(e.line()))
     }
 
     /// The record as compact JSON text.
@@ -401,7 +402,8 @@ impl SurfaceRecord {
     /// [`ErrorKind::Parse`] with serde_json's message, which the caller completes with what
     /// was read.
     pub fn from_json(text: &str) -> Result<Self> {
-        serde_json::from_str(text).map_err(|e| Error::new(ErrorKind::Parse, e.to_string()))
+        serde_json::from_str(text)
+            .map_err(|e| Error::new(ErrorKind::Parse, e.to_string()).with_line(e.line()))
     }
 
     /// The record as compact JSON text.

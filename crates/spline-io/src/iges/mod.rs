@@ -120,6 +120,7 @@ fn parse_error(section: Section, line: usize, message: impl fmt::Display) -> Err
         ErrorKind::Parse,
         format!("IGES line {line} ({section}): {message}"),
     )
+    .with_line(line)
 }
 
 /// Prefixes an error of the geometry layer with the record it comes from.

@@ -110,7 +110,7 @@ impl Instance {
 }
 
 fn error_at(line: usize, message: impl std::fmt::Display) -> Error {
-    Error::new(ErrorKind::Parse, format!("STEP line {line}: {message}"))
+    Error::new(ErrorKind::Parse, format!("STEP line {line}: {message}")).with_line(line)
 }
 
 /// Reading context: the instances and the names given to geometry by faces and edges.

@@ -3,6 +3,7 @@
 
 #![allow(unreachable_pub)]
 
+mod error_fields;
 mod exchange;
 mod iges;
 mod meshes;
