@@ -144,8 +144,26 @@ pub(crate) fn run_criterion_args(
     args: &[&str],
     tags: &[&str],
 ) -> Result<std::collections::BTreeMap<String, f64>, String> {
+    run_criterion_in(repo_root, args, tags, None)
+}
+
+/// [`run_criterion_args`] with the build in `target_dir` (`CARGO_TARGET_DIR`) when given: a
+/// crate outside the workspace.
+///
+/// # Errors
+/// As [`run_criterion`].
+pub(crate) fn run_criterion_in(
+    repo_root: &Path,
+    args: &[&str],
+    tags: &[&str],
+    target_dir: Option<&Path>,
+) -> Result<std::collections::BTreeMap<String, f64>, String> {
     let cargo = std::env::var_os("CARGO").unwrap_or_else(|| "cargo".into());
-    let out = Command::new(cargo)
+    let mut command = Command::new(cargo);
+    if let Some(dir) = target_dir {
+        command.env("CARGO_TARGET_DIR", dir);
+    }
+    let out = command
         .arg("bench")
         .args(args)
         .current_dir(repo_root)

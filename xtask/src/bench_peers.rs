@@ -8,7 +8,9 @@
 //!    with every library in one binary, one criterion group per workload, after the
 //!    benchmark has checked that the libraries' results agree (`peers-check` lines, at most
 //!    1e-12 apart, or it stops before timing); then spline-fit's `peers_fit` (interpolation
-//!    against curvo, checked the same way) and `fit` (the scipy workloads, with residuals).
+//!    against curvo, checked the same way) and `fit` (the scipy workloads, with residuals);
+//!    then `xtask/bench/downstream` (a crate outside the workspace, thin LTO, built in
+//!    `target/downstream`): one-point surface evaluation timed from a user's crate.
 //! 3. Prints the table of medians (per point where the workload is a batch of points), the
 //!    ratio best peer / ours and whether the target holds, the limits on this CPU
 //!    (the batch's arithmetic alone, memory traffic alone) and the `parallel` rows with the
@@ -128,6 +130,14 @@ const ROWS: &[Row] = &[
         target: Some(2.0),
     },
     Row {
+        label: "same, through `Surface::evaluator` (per-patch Taylor form, built once)",
+        per: 250_000.0,
+        ours: "peers_surface_point/ours_evaluator",
+        curvo: &["peers_surface_point/curvo_evaluator"],
+        truck: &["peers_surface_point/truck"],
+        target: Some(2.0),
+    },
+    Row {
         label: "same, 500² grid call",
         per: 250_000.0,
         ours: "peers_surface_grid/ours",
@@ -139,6 +149,14 @@ const ROWS: &[Row] = &[
         label: "S_u and S_v, 10⁵ random points",
         per: 1e5,
         ours: "peers_surface_derivs/ours",
+        curvo: &["peers_surface_derivs/curvo_evaluator"],
+        truck: &["peers_surface_derivs/truck"],
+        target: None,
+    },
+    Row {
+        label: "same, through `Surface::evaluator`",
+        per: 1e5,
+        ours: "peers_surface_derivs/ours_evaluator",
         curvo: &["peers_surface_derivs/curvo_evaluator"],
         truck: &["peers_surface_derivs/truck"],
         target: None,
@@ -175,7 +193,39 @@ const ROWS: &[Row] = &[
         truck: &["peers_nurbs_surface/truck"],
         target: None,
     },
+    Row {
+        label: "same, through `NurbsSurface::evaluator`",
+        per: 1e5,
+        ours: "peers_nurbs_surface/ours_evaluator",
+        curvo: &["peers_nurbs_surface/curvo_evaluator"],
+        truck: &["peers_nurbs_surface/truck"],
+        target: None,
+    },
 ];
+
+/// Rows timed from `xtask/bench/downstream`, a crate outside the workspace that depends on
+/// the library as a user's crate does (thin LTO; built in `target/downstream`).
+const DOWNSTREAM_ROWS: &[Row] = &[
+    Row {
+        label: "from a separate crate (thin LTO): bicubic 50×50, 1000² random points, `Surface::eval`",
+        per: 1e6,
+        ours: "downstream_surface_point/ours",
+        curvo: &["downstream_surface_point/curvo_evaluator"],
+        truck: &[],
+        target: Some(2.0),
+    },
+    Row {
+        label: "same, from a separate crate, through `Surface::evaluator`",
+        per: 1e6,
+        ours: "downstream_surface_point/ours_evaluator",
+        curvo: &["downstream_surface_point/curvo_evaluator"],
+        truck: &[],
+        target: Some(2.0),
+    },
+];
+
+/// The manifest of the downstream crate, relative to the repository.
+const DOWNSTREAM: &str = "xtask/bench/downstream/Cargo.toml";
 
 /// The fastest of the given benchmarks, per unit.
 fn best(target: &Path, ids: &[&str], per: f64) -> Result<Option<f64>, String> {
@@ -239,6 +289,13 @@ pub(crate) fn run(repo_root: &Path, args: &[String]) -> Result<(), String> {
         &["peers-check"],
     )?);
     let residuals = bench::run_criterion(repo_root, "fit", &["fit-residual"])?;
+    eprintln!("bench peers: running the downstream crate ({DOWNSTREAM}, thin LTO)…");
+    lines.extend(bench::run_criterion_in(
+        repo_root,
+        &["--manifest-path", DOWNSTREAM, "--bench", "downstream"],
+        &["peers-check"],
+        Some(&target.join("downstream")),
+    )?);
     let fits = bench_fit::fit_rows(&scipy_fit, &bench_fit::rust_medians(&target)?, &residuals)?;
     let table = table(&target, &scipy, &fits, &lines)?;
     println!();
@@ -260,7 +317,13 @@ fn table(
     let mut out = String::from(
         "| workload | ours | curvo | truck | best peer / ours | target |\n|---|---|---|---|---|---|\n",
     );
-    for row in ROWS {
+    let downstream = target.join("downstream");
+    let rows = ROWS.iter().map(|row| (row, target)).chain(
+        DOWNSTREAM_ROWS
+            .iter()
+            .map(|row| (row, downstream.as_path())),
+    );
+    for (row, target) in rows {
         let ours = bench::criterion_median(target, row.ours)? / row.per;
         let curvo = best(target, row.curvo, row.per)?;
         let truck = best(target, row.truck, row.per)?;
