@@ -228,7 +228,12 @@ impl<T: Scalar, F: Function<T>> Tracked<T, F> {
     /// magnitudes of what remains restarted from the values). The Jacobian is kept: a
     /// numerator that vanishes identically need not have a vanishing derivative.
     pub(crate) fn cleaned(self) -> Self {
-        let threshold: T = cast(1e-10);
+        self.cleaned_below(cast(1e-10))
+    }
+
+    /// [`Tracked::cleaned`] with the coefficients below `threshold` times their magnitude
+    /// taken for rounding.
+    fn cleaned_below(self, threshold: T) -> Self {
         let points = self
             .value
             .coefficients()
@@ -245,11 +250,19 @@ impl<T: Scalar, F: Function<T>> Tracked<T, F> {
         Self::leaf(self.value.with_coefficients(points), self.jacobian)
     }
 
-    /// [`Tracked::cleaned`] when `clean`: the numerators with derivatives keep their
-    /// rounding, so that derivatives of their derivatives (dual numbers run through the
-    /// Jacobians) stay exact.
+    /// The numerators of curves when `clean` (with derivatives they keep their rounding, so
+    /// that derivatives of their derivatives — dual numbers run through the Jacobians — stay
+    /// exact). A curve's numerator is one chain of products whose rounding stays within a
+    /// few hundred ulps of the magnitudes (the circles and ellipses of the tests cancel below
+    /// it), so its threshold is 1e-13: at the surfaces' 1e-10 a random rational space cubic lost the
+    /// true size of the coefficients near a curvature minimum and placed it 2e-4 off
+    /// (issue 25).
     pub(crate) fn cleaned_if(self, clean: bool) -> Self {
-        if clean { self.cleaned() } else { self }
+        if clean {
+            self.cleaned_below(cast(1e-13))
+        } else {
+            self
+        }
     }
 
     /// Whether every coefficient is exactly zero (after [`Tracked::cleaned`]: the function

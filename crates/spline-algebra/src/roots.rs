@@ -277,12 +277,13 @@ fn analyse<T: Scalar>(f: &BSpline<T, T>, accuracy: T) -> Result<Analysis<T>> {
         let tol = local_tol((t0 + t1) * spline_core::cast(0.5));
         iso.tol = tol;
         if s > 0 {
+            // Each side's sign is judged against the coefficients of its own span: a
+            // numerator of size 1e7 left of a knot and 1e22 right of it changes sign there
+            // (issue 25: a random space cubic's curvature maximum at a knot near the end).
             let left = segments[s - 1][d];
-            let tol = tol.max(local_tol(
-                (breakpoints[s - 1] + t0) * spline_core::cast(0.5),
-            ));
-            if (left - coeffs[0]).abs() > tol {
-                jumps.push((t0, sign(left, tol), sign(coeffs[0], tol)));
+            let left_tol = local_tol((breakpoints[s - 1] + t0) * spline_core::cast(0.5));
+            if (left - coeffs[0]).abs() > tol.max(left_tol) {
+                jumps.push((t0, sign(left, left_tol), sign(coeffs[0], tol)));
             }
         }
         if coeffs.iter().all(|&x| x.abs() <= tol) {

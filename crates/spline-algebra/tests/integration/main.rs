@@ -15,6 +15,7 @@ mod revolution;
 mod roots;
 mod segment_curvature;
 mod space;
+mod space_random;
 mod surface_features;
 mod surface_jacobians;
 mod surface_ridges;
