@@ -71,7 +71,9 @@ function fitView(points) {
     x0 = Math.min(x0, x); x1 = Math.max(x1, x); y0 = Math.min(y0, y); y1 = Math.max(y1, y);
   }
   const w = Math.max(x1 - x0, 1e-9), h = Math.max(y1 - y0, 1e-9);
-  const scale = Math.min(800 / w, 460 / h);
+  // A margin around the points: curvature combs, control polygons and labels drawn beyond
+  // the data (an airfoil's comb at the nose) stay on the canvas.
+  const scale = Math.min(560 / w, 300 / h);
   S.view = { scale, ox: 450 - scale * (x0 + x1) / 2, oy: 280 + scale * (y0 + y1) / 2 };
   setView();
 }
@@ -480,5 +482,9 @@ $("export-svg").addEventListener("click", () => {
   download("studio.svg", "image/svg+xml", `<?xml version="1.0" encoding="UTF-8"?>\n${text}\n`);
 });
 
+// The page opens on an example (a cubic Bézier curve in the default view) rather than blank;
+// "Clear" empties it.
+const EXAMPLE = [[0.1, 0.2], [0.45, 0.85], [1.05, 0.05], [1.55, 0.65]];
+S.points = EXAMPLE.map((p) => p.slice());
 setView();
 setMode("bezier");

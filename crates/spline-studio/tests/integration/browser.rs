@@ -304,6 +304,21 @@ async fn labs(c: &Client, addr: SocketAddr) -> TestResult {
     let origin = canvas_origin(c).await?;
     let pixel = |x: f64, y: f64| (origin.0 + x, origin.1 + y);
 
+    // The page opens on an example Bézier curve, drawn; "Clear" empties it.
+    let example = state_points(c).await?;
+    assert_eq!(example.len(), 4, "the page opens on an example");
+    let example_curve = Bezier::new(example).expect("a Bézier curve");
+    let expected: Vec<P> = (0..=200)
+        .map(|k| {
+            example_curve
+                .eval(f64::from(k) / 200.0)
+                .expect("t in [0, 1]")
+        })
+        .collect();
+    assert_drawn(&path(c, "curve-main").await?, &expected, "the example");
+    click(c, "#clear").await?;
+    assert!(state_points(c).await?.is_empty());
+
     // Bézier (TDsm 1): five points placed with the mouse.
     let clicks = [
         (100.0, 420.0),
@@ -530,6 +545,20 @@ async fn labs(c: &Client, addr: SocketAddr) -> TestResult {
         c.find_all(Locator::Css("line.comb")).await?.len() > 100,
         "the comb is drawn"
     );
+    // The loaded data are fitted to the view with room for the comb: nothing drawn leaves
+    // the canvas (the nose's comb used to run off the left edge).
+    let outside = js(
+        c,
+        "const box = document.getElementById('canvas').getBoundingClientRect(); \
+         let outside = 0; \
+         for (const e of document.querySelectorAll('line.comb, #layer-curves path, #layer-points circle')) { \
+           const r = e.getBoundingClientRect(); \
+           if (r.left < box.left - 1 || r.right > box.right + 1 || r.top < box.top - 1 || r.bottom > box.bottom + 1) outside++; \
+         } \
+         return outside;",
+    )
+    .await?;
+    assert_eq!(outside, json!(0), "drawings outside the canvas");
     click(c, "#erase").await?;
     let deadline = Instant::now() + Duration::from_secs(120);
     while js(c, "return studio.state.erased !== null && studio.idle()").await? != json!(true) {
