@@ -164,7 +164,7 @@ fn run(command: Command) -> spline_core::Result<()> {
 const CLOSED_PIPE: u8 = 141;
 
 fn main() -> ExitCode {
-    let cli = match Cli::try_parse() {
+    let cli = match parse() {
         Ok(cli) => cli,
         Err(e) => return usage_error(&e),
     };
@@ -181,6 +181,30 @@ fn main() -> ExitCode {
             ExitCode::from(2)
         }
     }
+}
+
+/// The command line, with negative numbers taken as values wherever a value is expected
+/// (an option of one value takes whatever follows it, `-1e-3` included): `--tolerance -1` reaches the subcommand, which says what is wrong with it (issue 25:
+/// clap's "unexpected argument '-1'" told users to write `-- -1`).
+fn parse() -> Result<Cli, clap::Error> {
+    use clap::{CommandFactory, FromArgMatches};
+    fn negative_numbers(command: clap::Command) -> clap::Command {
+        command
+            .mut_args(|arg| {
+                let single = arg.get_num_args().is_none_or(|n| n.max_values() == 1);
+                if !arg.get_action().takes_values() {
+                    arg
+                } else if single && !arg.is_positional() {
+                    // `--tolerance -1e-3`: an option's one value is whatever follows it.
+                    arg.allow_hyphen_values(true)
+                } else {
+                    arg.allow_negative_numbers(true)
+                }
+            })
+            .mut_subcommands(negative_numbers)
+    }
+    let matches = negative_numbers(Cli::command()).try_get_matches()?;
+    Cli::from_arg_matches(&matches)
 }
 
 /// Prints help and version as asked, and every usage error as one line with exit status 2.

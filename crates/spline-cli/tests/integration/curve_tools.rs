@@ -82,6 +82,102 @@ fn reports_compose_with_every_reader() {
     assert!(num(&length["length"]) > 0.0, "{length}");
 }
 
+/// The other reports with an object inside (`reduce`, `arclength --reparametrize`,
+/// `smoothing`, `approximate-surface`) read back as their object, from a file and from
+/// standard input: the same values as the object alone.
+#[test]
+fn every_report_reads_back_as_its_object() {
+    let cubic = file(
+        &json!({"degree": 3, "knots": [0, 0, 0, 0, 1, 1, 1, 1], "control_points": [[0, 0], [1, 1], [2, -1], [3, 0]]}),
+    );
+    let points: Vec<Value> = (0..8)
+        .flat_map(|i| (0..8).map(move |j| (i, j)))
+        .map(|(i, j)| {
+            let (x, y) = (f64::from(i) / 7.0, f64::from(j) / 7.0);
+            json!([x, y, x * x - y * y])
+        })
+        .collect();
+    let cloud = temp_file("cloud.json", &Value::Array(points).to_string());
+    let runs = [
+        (
+            vec!["reduce", &cubic, "--tolerance", "1e-3", "--refine"],
+            "curve",
+            "[0.3]",
+        ),
+        (
+            vec!["arclength", &cubic, "--reparametrize"],
+            "curve",
+            "[0.3]",
+        ),
+        (
+            vec![
+                "smoothing",
+                "--x",
+                "[0, 1, 2, 3, 4, 5, 6]",
+                "--y",
+                "[0, 1, 0, 1, 0, 1, 0]",
+                "--lambda",
+                "0.1",
+            ],
+            "curve",
+            "[0.3]",
+        ),
+        (
+            vec!["approximate-surface", &cloud, "--control-points", "[4, 4]"],
+            "surface",
+            "[[0.3, 0.6]]",
+        ),
+    ];
+    for (args, field, at) in runs {
+        let run = spline(&args);
+        assert_eq!(run.status, 0, "{args:?}: {}", run.stderr);
+        let report = run.json();
+        let alone = file(&report[field]);
+        let expected = spline(&["eval", &alone, "--at", at]).json();
+        let whole = temp_file("report.json", &run.stdout);
+        assert_eq!(
+            spline(&["eval", &whole, "--at", at]).json(),
+            expected,
+            "{args:?}"
+        );
+        assert_eq!(
+            spline_with_stdin(&["eval", "-", "--at", at], &run.stdout),
+            expected,
+            "{args:?}"
+        );
+    }
+}
+
+/// Negative numbers are values as users type them (issue 25: `--tolerance -1` was "unexpected
+/// argument '-1'", with a tip to write `-- -1`): the subcommand says what is wrong.
+#[test]
+fn negative_values_reach_the_subcommand() {
+    for tolerance in ["-1", "-1e-3"] {
+        let message =
+            spline(&["intersect", &parabola(), "--tolerance", tolerance]).assert_clean_error();
+        assert!(
+            message.contains("must be positive") && !message.contains("unexpected argument"),
+            "{message}"
+        );
+        let message = spline(&[
+            "offset",
+            &parabola(),
+            "--distance",
+            "0.1",
+            "--tolerance",
+            tolerance,
+        ])
+        .assert_clean_error();
+        assert!(message.contains("must be positive"), "{message}");
+    }
+    // A negative distance is an offset to the other side.
+    let out = spline(&["offset", &parabola(), "--distance", "-1e-1"]).json();
+    assert!(out["curve"]["control_points"].is_array());
+    // An option still needs its value.
+    let message = spline(&["intersect", &parabola(), "--tolerance"]).assert_clean_error();
+    assert!(message.contains("value is required"), "{message}");
+}
+
 /// Runs the tool with `input` on its standard input; its output as JSON, asserting success.
 fn spline_with_stdin(args: &[&str], input: &str) -> Value {
     use std::io::Write;
