@@ -21,7 +21,7 @@ use super::profile::ProfileCholesky;
 use super::residual::{
     ResidualFit, TOL, add_knot, check_data, check_degree, jump_rows, knots_to_add, root_rati,
 };
-use super::splrep_options::SplrepOptions;
+use super::splrep_options::{SplrepOptions, knots_around_data};
 use crate::interpolate::interpolate_with_knots;
 use crate::lsq::LeastSquares;
 use crate::periodic::interpolate_periodic;
@@ -183,29 +183,7 @@ fn check_given_knots<T: Scalar>(x: &[T], t: &[T], k: usize) -> Result<KnotVector
             format!("Need k+1 <= n-k-1 <= m+k-1. Got m = {m}, n = {n}, k = {k}"),
         ));
     }
-    let knots = KnotVector::new(k, t.to_vec())?;
-    if let Some(j) = (k + 1..n - k).find(|&j| !(t[j] > t[j - 1])) {
-        return Err(Error::new(
-            ErrorKind::KnotMultiplicity,
-            format!(
-                "Internal knots must be distinct: knots {} and {j} are both {}",
-                j - 1,
-                to_f64(t[j])
-            ),
-        ));
-    }
-    if !(t[k] <= x[0] && x[m - 1] <= t[n - k - 1]) {
-        return Err(Error::new(
-            ErrorKind::OutOfDomain,
-            format!(
-                "Out of bounds: the data [{}, {}] must lie in [t[k], t[n-k-1]] = [{}, {}]",
-                to_f64(x[0]),
-                to_f64(x[m - 1]),
-                to_f64(t[k]),
-                to_f64(t[n - k - 1])
-            ),
-        ));
-    }
+    let knots = knots_around_data(x, t, k)?;
     if !schoenberg_whitney(x, t, k) {
         return Err(Error::new(
             ErrorKind::SchoenbergWhitney,

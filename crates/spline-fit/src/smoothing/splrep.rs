@@ -9,10 +9,10 @@
 use super::periodic;
 use super::residual::{Data, ResidualFit};
 pub use super::splrep_options::SplrepOptions;
-use super::splrep_options::invalid;
+use super::splrep_options::{invalid, knots_around_data};
 use crate::interpolate::interpolate_with_knots;
 use crate::params::check_strict;
-use spline_core::{ControlPoint, Error, ErrorKind, KnotVector, Result, Scalar, to_f64};
+use spline_core::{ControlPoint, Error, ErrorKind, KnotVector, Result, Scalar};
 
 /// The not-a-knot interpolating spline (scipy's `make_interp_spline(x, y, k)`).
 fn interpolation<T: Scalar, P: ControlPoint<T>>(
@@ -50,30 +50,7 @@ fn check_given_knots<T: Scalar>(x: &[T], t: &[T], k: usize) -> Result<KnotVector
             format!("Need k+1 <= n-k-1 <= m. Got m = {m}, n = {n}, k = {k}"),
         ));
     }
-    let knots = KnotVector::new(k, t.to_vec())?;
-    if let Some(j) = (k + 1..n - k).find(|&j| !(t[j] > t[j - 1])) {
-        return Err(Error::new(
-            ErrorKind::KnotMultiplicity,
-            format!(
-                "Internal knots must be distinct: knots {} and {j} are both {}",
-                j - 1,
-                to_f64(t[j])
-            ),
-        ));
-    }
-    if !(t[k] <= x[0] && x[m - 1] <= t[n - k - 1]) {
-        return Err(Error::new(
-            ErrorKind::OutOfDomain,
-            format!(
-                "Out of bounds: the data [{}, {}] must lie in [t[k], t[n-k-1]] = [{}, {}]",
-                to_f64(x[0]),
-                to_f64(x[m - 1]),
-                to_f64(t[k]),
-                to_f64(t[n - k - 1])
-            ),
-        ));
-    }
-    Ok(knots)
+    knots_around_data(x, t, k)
 }
 
 /// scipy's `make_splrep(x, y, w=w, xb=xb, xe=xe, k=k, s=s, t=t, nest=nest)`: the smoothing

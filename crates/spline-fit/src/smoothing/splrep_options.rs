@@ -2,7 +2,7 @@
 //! checks: read by the non-periodic replicas ([`super::splrep`]) and the periodic ones
 //! ([`super::periodic`]) alike.
 
-use spline_core::{Error, ErrorKind, Result, Scalar, to_f64};
+use spline_core::{Error, ErrorKind, KnotVector, Result, Scalar, to_f64};
 
 /// The optional arguments of scipy's `make_splrep`, `make_splprep` and `generate_knots`
 /// (for curves `xb`, `xe` are scipy's `ub`, `ue`).
@@ -109,4 +109,36 @@ impl<T: Scalar> SplrepOptions<'_, T> {
         }
         Ok(())
     }
+}
+
+/// The checks of given knots that scipy's `fpcheck` and `fpchep` share, after their counts:
+/// a valid knot vector, interior knots strictly increasing, the data inside
+/// $[t_k, t_{n-k-1}]$.
+pub(super) fn knots_around_data<T: Scalar>(x: &[T], t: &[T], k: usize) -> Result<KnotVector<T>> {
+    let m = x.len();
+    let n = t.len();
+    let knots = KnotVector::new(k, t.to_vec())?;
+    if let Some(j) = (k + 1..n - k).find(|&j| !(t[j] > t[j - 1])) {
+        return Err(Error::new(
+            ErrorKind::KnotMultiplicity,
+            format!(
+                "Internal knots must be distinct: knots {} and {j} are both {}",
+                j - 1,
+                to_f64(t[j])
+            ),
+        ));
+    }
+    if !(t[k] <= x[0] && x[m - 1] <= t[n - k - 1]) {
+        return Err(Error::new(
+            ErrorKind::OutOfDomain,
+            format!(
+                "Out of bounds: the data [{}, {}] must lie in [t[k], t[n-k-1]] = [{}, {}]",
+                to_f64(x[0]),
+                to_f64(x[m - 1]),
+                to_f64(t[k]),
+                to_f64(t[n - k - 1])
+            ),
+        ));
+    }
+    Ok(knots)
 }
