@@ -178,6 +178,25 @@ fn negative_values_reach_the_subcommand() {
     assert!(message.contains("value is required"), "{message}");
 }
 
+/// Messages of the readers (issue 25, item 7): an OBJ error names the file and the 1-based
+/// line; a three-column point file where planar points are expected says so.
+#[test]
+fn reader_messages_name_the_file_the_line_and_the_columns() {
+    let obj = temp_file("bad.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 9\n");
+    let message =
+        spline(&["approximate-surface", &obj, "--control-points", "[2, 2]"]).assert_clean_error();
+    assert!(
+        message.contains("bad.obj") && message.contains("line 4"),
+        "{message}"
+    );
+    let xyz = temp_file("xyz.txt", "0 0 0\n1 1 1\n2 0 3\n3 1 1\n4 2 2\n");
+    let message = spline(&["smooth", &xyz, "--control-points", "8"]).assert_clean_error();
+    assert!(
+        message.contains("xyz.txt") && message.contains("got 3 numbers"),
+        "{message}"
+    );
+}
+
 /// Runs the tool with `input` on its standard input; its output as JSON, asserting success.
 fn spline_with_stdin(args: &[&str], input: &str) -> Value {
     use std::io::Write;
