@@ -11,13 +11,13 @@ use serde_json::{Value, json};
 use spline_algebra::CurveFeatures;
 use spline_core::{Error, ErrorKind, KnotVector, Result};
 use spline_fit::{
-    CorrectionOptions, InterpolationOptions, KnotChoice, LeastSquares, MAX_CORRECTION_ITERATIONS,
-    Parametrization, bezier_interpolate, bezier_least_squares, correct_parameters,
-    correct_parameters_bezier, nurbs_book_knots, parametrize,
+    CorrectionOptions, InterpolationOptions, KnotChoice, LeastSquaresRequest, LsqKnots,
+    Parametrization, bezier_interpolate, bezier_least_squares, correct_parameters_bezier,
+    deviation, fit_least_squares,
 };
 use spline_geom::{BSpline, Bezier, ParamCurve};
 use spline_io::exchange::CurveRecord;
-use spline_shape::{Extremum, MAX_CURVATURE_EXTREMA, SmoothingOptions, smooth};
+use spline_shape::{MAX_CURVATURE_EXTREMA, SmoothingOptions, smooth};
 
 /// Samples per knot span of the drawn B-spline curves, unless the request says otherwise.
 const PER_SPAN: usize = 24;
@@ -268,15 +268,6 @@ pub(crate) fn approximate(request: &ApproximateRequest) -> Result<Value> {
     let data = points(&request.points, 2, "points")?;
     let p = degree(request.degree)?;
     let per_span = count(request.per_span, MAX_SAMPLES, "per_span")?;
-    if request.correct > MAX_CORRECTION_ITERATIONS {
-        return Err(Error::new(
-            ErrorKind::InvalidArgument,
-            format!(
-                "correct: at most {MAX_CORRECTION_ITERATIONS} sweeps, got {}",
-                request.correct
-            ),
-        ));
-    }
     let param = match &request.params {
         Some(given) if given.len() == data.len() => Parametrization::Given(given.clone()),
         Some(given) => {
@@ -304,13 +295,12 @@ pub(crate) fn approximate(request: &ApproximateRequest) -> Result<Value> {
             (fit.curve.to_bspline()?, fit.params, Some(report))
         }
     } else {
-        let params = parametrize(&data, &param)?;
         let knots = match (&request.knots, request.control_points) {
             (Some(k), _) if k.len() > MAX_POINTS + MAX_DEGREE => {
                 return Err(Error::new(ErrorKind::InvalidLength, "too many knots"));
             }
-            (Some(k), _) => KnotVector::new(p, k.clone())?,
-            (None, Some(n)) => nurbs_book_knots(p, n, &params)?,
+            (Some(k), _) => LsqKnots::Given(KnotVector::new(p, k.clone())?),
+            (None, Some(n)) => LsqKnots::ControlPoints(n),
             (None, None) => {
                 return Err(Error::new(
                     ErrorKind::InvalidArgument,
@@ -318,24 +308,19 @@ pub(crate) fn approximate(request: &ApproximateRequest) -> Result<Value> {
                 ));
             }
         };
-        let problem = LeastSquares::new(&data, &params, knots);
-        if request.correct == 0 {
-            let fit = problem.solve()?;
-            (fit.curve, fit.params, None)
-        } else {
-            let (fit, report) = correct_parameters(&problem, &options)?;
-            (fit.curve, fit.params, Some(report))
-        }
+        let answer = fit_least_squares(
+            &data,
+            &LeastSquaresRequest {
+                parametrization: param,
+                correction: (request.correct > 0).then_some(options),
+                ..LeastSquaresRequest::new(p, knots)
+            },
+        )?;
+        (answer.fit.curve, answer.fit.params, answer.correction)
     };
     let feet = curve.eval_many(&params)?;
-    let distances: Vec<f64> = feet
-        .iter()
-        .zip(&data)
-        .map(|(f, q)| (f - q).norm())
-        .collect();
-    let max = distances.iter().fold(0.0f64, |m, &d| m.max(d));
-    #[allow(clippy::cast_precision_loss)]
-    let rms = (distances.iter().map(|d| d * d).sum::<f64>() / distances.len() as f64).sqrt();
+    let fit = deviation(&curve, &params, &data)?;
+    let (max, rms) = (fit.max, fit.rms);
     let per = if request.bezier {
         (per_span * 8).min(MAX_SAMPLES)
     } else {
@@ -433,15 +418,8 @@ pub(crate) fn erase(request: &EraseRequest) -> Result<Value> {
     let k = count(request.extrema, MAX_CURVATURE_EXTREMA, "extrema")?;
     let n = count(request.control_points, MAX_POINTS, "control_points")?;
     let mut options = SmoothingOptions::new(n);
-    options.extrema = (0..k)
-        .map(|i| {
-            if i % 2 == 0 {
-                Extremum::maximum()
-            } else {
-                Extremum::minimum()
-            }
-        })
-        .collect();
+    // Alternately maximum, minimum, … as the tool's --curvature-extrema: the library's rule.
+    options.request_extrema(Some(k), Vec::new())?;
     let result = smooth(&data, &options)?;
     let curve = &result.curve;
     Ok(json!({
