@@ -242,9 +242,18 @@ impl<'a, T: Scalar, C: ParamCurve<T> + ?Sized> ArcLengthTable<'a, T, C> {
         let quadrature = accuracy * cast(0.1) / pieces;
         let mut cumulative = Vec::with_capacity(breaks.len());
         cumulative.push(T::zero());
+        // Each piece's quadrature on its own bounds: `arc_length_between` would list the
+        // curve's breaks again for every piece, quadratic in their number (issue 25: 10⁵
+        // control points took minutes).
+        let speed = |u: T| {
+            let mut d = [C::Point::origin(); 2];
+            curve
+                .derivatives_into(u, &mut d)
+                .map_or(T::zero(), |()| d[1].length())
+        };
         for w in breaks.windows(2) {
             let last = cumulative[cumulative.len() - 1];
-            cumulative.push(last + curve.arc_length_between(w[0], w[1], quadrature)?);
+            cumulative.push(last + adaptive_length(w, quadrature, speed)?);
         }
         Ok(Self {
             curve,

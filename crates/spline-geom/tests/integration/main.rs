@@ -3,6 +3,7 @@
 
 #![allow(unreachable_pub)]
 
+mod arclength_cost;
 mod constructions;
 mod curves;
 mod in_place;
