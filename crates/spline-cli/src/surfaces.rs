@@ -9,7 +9,7 @@ use serde_json::json;
 use spline_core::{Error, ErrorKind, Result};
 use spline_fit::{
     ScatteredOptions, SurfaceProjector, Tolerances, closest_point, fit_scattered, gordon,
-    intersect_curve_surface, intersect_surfaces, skin, sweep,
+    intersect_curve_surface, intersect_surfaces, skin, skin_rational, sweep,
 };
 use spline_geom::{NurbsCurve, NurbsSurface, ParamCurve, ParamSurface, Surface};
 
@@ -270,13 +270,9 @@ pub fn make_skin(paths: &[String], degree: usize) -> Result<Json> {
         ));
     }
     if curves.iter().any(|c| c.rational) {
-        let sections: Vec<_> = curves
-            .iter()
-            .map(|c| c.curve.value.homogeneous().clone())
-            .collect();
-        let s = skin(&sections, degree, None)?;
+        let sections: Vec<_> = curves.iter().map(|c| c.curve.value.clone()).collect();
         Sized {
-            value: NurbsSurface::from_homogeneous(s.surface)?,
+            value: skin_rational(&sections, degree, None)?.surface,
             dim,
         }
         .json()

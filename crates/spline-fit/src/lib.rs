@@ -82,6 +82,7 @@ mod report;
 mod requests;
 mod scattered;
 mod skin;
+mod skin_rational;
 mod slab;
 mod smoothing;
 mod surface;
@@ -128,6 +129,7 @@ pub use requests::{
 };
 pub use scattered::{MAX_SCATTERED_SYSTEM, ScatteredFit, ScatteredOptions, fit_scattered};
 pub use skin::{Gordon, Skinned, gordon, skin};
+pub use skin_rational::{SkinnedNurbs, skin_rational};
 pub use smoothing::{
     MAX_RESIDUAL_ITERATIONS, ResidualFit, SmoothingFit, SmoothingParameter, smoothing_curve,
     smoothing_curve_to_residual, smoothing_spline, smoothing_to_residual,

@@ -214,3 +214,59 @@ fn approximate_surface_from_points_and_a_mesh() {
     let bad = temp_file("bad.obj", "v 0 0 0\nf 1 2 x\n");
     spline(&["approximate-surface", &bad, "--control-points", "[4,4]"]).assert_clean_error();
 }
+
+/// Skinning four rational conics whose middle weights are 1, 8, 0.2, 8 (reproducer
+/// `conic_section_*.json`, issue 25 item 3): the weights interpolated at degree 3 across
+/// the sections went down to −19.7 and the tool reported "weight 6 … got -19.70" as if the
+/// user had given it. Now the surface has positive weights and passes through every
+/// section: points of each conic, from `spline eval`, are on it (`spline closest`).
+#[test]
+fn skinning_rational_conics_keeps_the_weights_positive() {
+    let conic = |z: f64, w: f64| {
+        temp_file(
+            "conic.json",
+            &format!(
+                r#"{{"degree": 2, "knots": [0, 0, 0, 1, 1, 1], "control_points": [[0, 0, {z}], [1, 1, {z}], [2, 0, {z}]], "weights": [1, {w}, 1]}}"#
+            ),
+        )
+    };
+    let sections = [
+        conic(0.0, 1.0),
+        conic(1.0, 8.0),
+        conic(2.0, 0.2),
+        conic(3.0, 8.0),
+    ];
+    let mut args = vec!["make", "skin", "--curves"];
+    args.extend(sections.iter().map(String::as_str));
+    let run = spline(&args);
+    assert_eq!(run.status, 0, "{}", run.stderr);
+    let surface = run.json();
+    let weights: Vec<f64> = surface["weights"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .flat_map(|row| row.as_array().unwrap().iter().map(num))
+        .collect();
+    assert!(weights.iter().all(|&w| w > 0.0), "{weights:?}");
+    let path = temp_file("skin.json", &surface.to_string());
+    let us = "[0, 0.1, 0.25, 0.5, 0.7, 0.9, 1]";
+    for section in &sections {
+        let values = spline(&["eval", section, "--at", us]).json();
+        let points: Vec<Value> = values
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|v| v[0].clone())
+            .collect();
+        let hits = spline(&[
+            "closest",
+            &path,
+            "--points",
+            &Value::Array(points).to_string(),
+        ])
+        .json();
+        for hit in hits.as_array().unwrap() {
+            assert!(num(&hit["distance"]) < 1e-9, "{hit}");
+        }
+    }
+}
