@@ -8,7 +8,7 @@ use crate::numerator::Tracked;
 use crate::roots::{sign_change_params, zeros};
 use nalgebra::{SVector, Vector2};
 use spline_core::{Error, ErrorKind, Result, Scalar, cast, to_f64};
-use spline_geom::{BSpline, Bezier, Homogeneous, NurbsCurve, PlanarCurve};
+use spline_geom::{BSpline, Bezier, Homogeneous, NurbsCurve, PeriodicBSpline, PlanarCurve};
 
 /// The inflections and curvature extrema of a planar curve.
 #[derive(Clone, Debug, PartialEq)]
@@ -144,6 +144,17 @@ impl<T: Scalar> CurveFeatures<T> for BSpline<T, Vector2<T>> {
             add_seam_features(self, &h4, &g, &mut features)?;
         }
         Ok(features)
+    }
+}
+
+/// A closed curve: the features of one period `[a, a + T)`, found exactly on its wrapped
+/// container (whose two ends are the closing point): those inside the period as on any
+/// B-spline, and at `a` an inflection or a curvature extremum where the numerator changes
+/// sign across the closing point (judged by its one-sided values, or its slope where it
+/// vanishes there). A closing point that is a corner (a knot of multiplicity `p`) has none.
+impl<T: Scalar> CurveFeatures<T> for PeriodicBSpline<T, Vector2<T>> {
+    fn features(&self, accuracy: T) -> Result<PlanarFeatures<T>> {
+        self.wrapped().features(accuracy)
     }
 }
 

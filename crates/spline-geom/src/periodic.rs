@@ -285,6 +285,67 @@ impl<T: Scalar, V: VectorSpace<T> + ControlPoint<T>> PeriodicBSpline<T, V> {
         Self::new(p, knots, period, control)
     }
 
+    /// Inserts many knots at once (any finite parameters, reduced to the period, in any
+    /// order, repeats allowed): the same curve with `N + r` control points, still periodic.
+    /// One refinement of the two-period container at every `u` and `u + T` (The NURBS Book
+    /// A5.4), read back on the second period; no copy of the curve per knot.
+    ///
+    /// ```
+    /// use nalgebra::Vector2;
+    /// use spline_geom::PeriodicBSpline;
+    /// let square = vec![
+    ///     Vector2::new(1.0, 0.0), Vector2::new(0.0, 1.0),
+    ///     Vector2::new(-1.0, 0.0), Vector2::new(0.0, -1.0),
+    /// ];
+    /// let curve = PeriodicBSpline::new(3, vec![0.0, 1.0, 2.0, 3.0], 4.0, square)?;
+    /// let finer = curve.refine(&[0.5, 2.5, 5.5, 0.5])?; // 5.5 is 1.5 of the period
+    /// assert_eq!(finer.len(), 8);
+    /// assert!((finer.eval(1.7)? - curve.eval(1.7)?).norm() < 1e-14);
+    /// # Ok::<(), spline_core::Error>(())
+    /// ```
+    ///
+    /// # Errors
+    /// [`ErrorKind::NonFinite`]; [`ErrorKind::KnotMultiplicity`] if a knot would occur more
+    /// than `p` times. The curve is not changed on error.
+    pub fn refine(&self, knots: &[T]) -> Result<Self> {
+        let p = self.degree();
+        let period = self.period();
+        let (a, b) = self.domain();
+        // The end of the period is its start.
+        let mut reduced = knots
+            .iter()
+            .map(|&u| self.reduce(u).map(|v| if v == b { a } else { v }))
+            .collect::<Result<Vec<T>>>()?;
+        // Finite after the reduction: no NaN to order.
+        reduced.sort_by(|a, b| a.partial_cmp(b).unwrap_or(std::cmp::Ordering::Equal));
+        for run in reduced.chunk_by(|a, b| a == b) {
+            let u = run[0];
+            let existing = self.period_knots().iter().filter(|&&k| k == u).count();
+            if existing + run.len() > p {
+                return Err(Error::new(
+                    ErrorKind::KnotMultiplicity,
+                    format!(
+                        "inserting u = {} {} times gives multiplicity {} > degree {p} (a periodic curve must stay continuous)",
+                        to_f64(u),
+                        run.len(),
+                        existing + run.len()
+                    ),
+                ));
+            }
+        }
+        if reduced.is_empty() {
+            return Ok(self.clone());
+        }
+        let mut both = reduced.clone();
+        both.extend(reduced.iter().map(|&u| u + period));
+        let refined = self.extended(2).refine(&both)?;
+        let n = self.count + reduced.len();
+        let knots = refined.knots().knots()[p..p + n].to_vec();
+        // The second period (see `insert_knot`).
+        let control = refined.control_points()[n..2 * n].to_vec();
+        Self::new(p, knots, period, control)
+    }
+
     /// The closed curve opened at `u` (reduced to the period): the clamped B-spline on
     /// $[u, u + T]$ with the same points, $\tilde C(s) = C(s)$.
     ///

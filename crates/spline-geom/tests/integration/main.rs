@@ -9,6 +9,7 @@ mod curves;
 mod in_place;
 mod nurbs;
 mod periodic;
+mod periodic_refine;
 mod pieces;
 mod reference_surfaces;
 mod surface_evaluator;

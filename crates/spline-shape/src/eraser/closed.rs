@@ -1,27 +1,16 @@
-//! The eraser on closed curves: the same problem on a periodic B-spline of period 1.
-//!
-//! The curve is the wrapped container of a [`PeriodicBSpline`] (`N + p` control points, the
-//! last `p` repeating the first `p`; its knots extend those of one period by the period), so
-//! that the sign conditions of every segment and the foot points of every data point see one
-//! curve without an end: the variables are the `N` free control points, foot points cross
-//! the closing point, and the pieces between the allowed extrema wrap around it (an even
-//! number of extrema, alternating around the curve). The coarse-to-fine continuation runs over
-//! nested periodic knot vectors, knot insertion carrying a feasible curve from one level to
-//! the next.
+//! The start of the eraser on closed curves: the least-squares shape round the contour, where
+//! its closing point goes (inside a monotone stretch of the curvature) and where the allowed
+//! extrema go round it (the best split of the curvature into alternately rising and falling
+//! pieces).
 
-use super::driver::{Attempt, Topology, continuation};
-use super::placement::{nested_levels, new_knots};
-use super::problem::EraserProblem;
-use super::{Objective, SmoothingOptions};
-use nalgebra::Vector2;
-use spline_core::{Error, ErrorKind, KnotVector, Result};
-use spline_fit::{
-    Parametrization, closest_point, least_squares_periodic, parametrize, project_ordered,
+use super::placement::{
+    curvature_samples, fit_with_correction, isotonic_prefix_costs, refine_extrema,
 };
-use spline_geom::{BSpline, Curve2, PeriodicBSpline};
-
-/// A closed planar curve.
-pub(crate) type ClosedCurve2 = PeriodicBSpline<f64, Vector2<f64>>;
+use super::topology::{Closed, ClosedCurve2};
+use nalgebra::Vector2;
+use spline_core::{Error, ErrorKind, Result};
+use spline_fit::{Parametrization, closest_point, parametrize};
+use spline_geom::{Curve2, PeriodicBSpline};
 
 /// Centripetal parameters of closed data in `[0, 1)`: the closing chord (last point back to
 /// the first) counts as one more chord.
@@ -31,37 +20,6 @@ pub(crate) fn closed_parameters(points: &[Vector2<f64>]) -> Result<Vec<f64>> {
     let mut params = parametrize(&loop_points, &Parametrization::Centripetal)?;
     params.pop();
     Ok(params)
-}
-
-/// The periodic space of period 1 whose knots of one period are those of the clamped knot
-/// vector `clamped` on `[0, 1]` with `N + p` basis functions: `0` and its `N − 1` interior
-/// knots.
-fn periodic_space(clamped: &KnotVector<f64>) -> Result<ClosedCurve2> {
-    let p = clamped.degree();
-    let k = clamped.knots();
-    let interior = &k[p + 1..k.len() - p - 1];
-    let mut period_knots = Vec::with_capacity(interior.len() + 1);
-    period_knots.push(0.0);
-    period_knots.extend_from_slice(interior);
-    let count = period_knots.len();
-    PeriodicBSpline::new(p, period_knots, 1.0, vec![Vector2::zeros(); count])
-}
-
-/// Periodic least squares on `space` with `rounds` sweeps of parameter correction (each
-/// data point moves to its closest point near its parameter).
-pub(crate) fn fit_closed_with_correction(
-    points: &[Vector2<f64>],
-    params: &[f64],
-    space: &ClosedCurve2,
-    rounds: usize,
-) -> Result<(ClosedCurve2, Vec<f64>)> {
-    let mut params = params.to_vec();
-    let mut curve = least_squares_periodic(points, &params, space, None, 0.0)?;
-    for _ in 0..rounds {
-        params = project_ordered(&curve, points, &params)?;
-        curve = least_squares_periodic(points, &params, space, None, 0.0)?;
-    }
-    Ok((curve, params))
 }
 
 /// The least-squares shape of closed data with `count` control points on uniform periodic
@@ -74,48 +32,7 @@ fn closed_shape(
     let params = closed_parameters(points)?;
     let knots: Vec<f64> = (0..count).map(|i| i as f64 / count as f64).collect();
     let space = PeriodicBSpline::new(degree, knots, 1.0, vec![Vector2::zeros(); count])?;
-    fit_closed_with_correction(points, &params, &space, 8)
-}
-
-/// Moves each extremum of `placed` (placed on a coarse fit) to where the curvature of
-/// `shape` needs the least change to be monotone on its two sides (weighted isotonic
-/// regression), within a quarter of the distance to its neighbours: the coarse fit finds the
-/// large turns, the fine one their exact place.
-fn refine_closed_extrema(
-    shape: &ClosedCurve2,
-    placed: &mut [f64],
-    first_rising: bool,
-    orientation: f64,
-) -> Result<()> {
-    let samples = closed_curvature_samples(shape, orientation)?;
-    let k = placed.len();
-    for i in 0..k {
-        let lo = if i == 0 { 0.0 } else { placed[i - 1] };
-        let hi = if i + 1 == k { 1.0 } else { placed[i + 1] };
-        let reach = 0.25 * (placed[i] - lo).min(hi - placed[i]);
-        let before_rising = (i % 2 == 0) == first_rising;
-        let left = samples.partition_point(|s| s.0 < lo);
-        let right = samples.partition_point(|s| s.0 <= hi);
-        let window = &samples[left..right];
-        let before = super::placement::isotonic_prefix_costs(window, before_rising);
-        let reversed: Vec<(f64, f64, f64)> = window.iter().rev().copied().collect();
-        // The piece after rises when the one before falls; read backwards, it falls.
-        let after = super::placement::isotonic_prefix_costs(&reversed, before_rising);
-        let mut best: Option<(f64, f64)> = None;
-        for (j, sample) in window.iter().enumerate() {
-            if (sample.0 - placed[i]).abs() > reach {
-                continue;
-            }
-            let cost = before[j] + after[window.len() - 1 - j];
-            if best.is_none_or(|(c, _)| cost < c) {
-                best = Some((cost, sample.0));
-            }
-        }
-        if let Some((_, u)) = best {
-            placed[i] = u;
-        }
-    }
-    Ok(())
+    fit_with_correction::<Closed>(points, &params, &space, 8)
 }
 
 /// The number of control points of the fit on which `k` extrema are placed: `2k + 2` (room for
@@ -179,7 +96,11 @@ pub(crate) fn closed_start(
         let hit = closest_point(&opened, rough.eval(u)?)?;
         placed.push(hit.param);
     }
-    refine_closed_extrema(&shape, &mut placed, first_rising, orientation)?;
+    refine_extrema(
+        &curvature_samples(&shape, PLACEMENT_SAMPLES, true, orientation)?,
+        &mut placed,
+        first_rising,
+    );
     if placed.windows(2).any(|w| !(w[1] > w[0])) || placed.iter().any(|&u| !(u > 0.0 && u < 1.0)) {
         return Err(Error::new(
             ErrorKind::InvalidArgument,
@@ -196,150 +117,14 @@ pub(crate) fn closed_start(
     })
 }
 
-/// Closed curves: nested periodic knot vectors (those of [`nested_levels`], each with the
-/// closing point `0` as a knot); the containers are the wrapped ones.
-struct Closed {
-    levels: Vec<(KnotVector<f64>, ClosedCurve2)>,
-}
-
-impl Topology for Closed {
-    type Curve = ClosedCurve2;
-
-    fn num_levels(&self) -> usize {
-        self.levels.len()
-    }
-
-    fn fit(
-        &self,
-        level: usize,
-        points: &[Vector2<f64>],
-        params: &[f64],
-    ) -> Result<(Self::Curve, Vec<f64>)> {
-        fit_closed_with_correction(points, params, &self.levels[level].1, 12)
-    }
-
-    fn problem(
-        &self,
-        level: usize,
-        points: &[Vector2<f64>],
-        params: &[f64],
-        objective: Objective,
-        extrema: &[f64],
-        first_sign: f64,
-    ) -> Result<EraserProblem> {
-        EraserProblem::new_closed(
-            self.levels[level].1.wrapped().knots(),
-            points,
-            params,
-            objective,
-            extrema.to_vec(),
-            first_sign,
-        )
-    }
-
-    fn control_points(curve: &Self::Curve) -> Vec<Vector2<f64>> {
-        curve.wrapped().control_points().to_vec()
-    }
-
-    fn solution(
-        &self,
-        level: usize,
-        control: Vec<Vector2<f64>>,
-    ) -> Result<(Self::Curve, Curve2<f64>)> {
-        let wrapped = BSpline::new(self.levels[level].1.wrapped().knots().clone(), control)?;
-        Ok((PeriodicBSpline::from_wrapped(&wrapped)?, wrapped))
-    }
-
-    fn next(
-        &self,
-        level: usize,
-        curve: &Self::Curve,
-        anchors: Vec<f64>,
-        points: &[Vector2<f64>],
-    ) -> Result<(Self::Curve, Vec<f64>)> {
-        let mut refined = curve.clone();
-        for u in new_knots(&self.levels[level].0, &self.levels[level + 1].0) {
-            refined = refined.insert_knot(u, 1)?;
-        }
-        let params = project_ordered(&refined, points, &sorted_in_period(&anchors))?;
-        Ok((refined, params))
-    }
-}
-
-/// The constrained fit of closed `points` (normalised, at `params` in `[0, 1)`) on the
-/// periodic knots of `clamped` (see [`periodic_space`]), with the allowed extrema at the
-/// knots `extrema` and the sign of the first piece `first_sign`: the continuation of open
-/// curves over nested periodic knot vectors. The attempt's curve is the wrapped container.
-/// `None` when no strictly feasible curve was found.
-pub(crate) fn attempt_closed(
-    points: &[Vector2<f64>],
-    params: &[f64],
-    clamped: &KnotVector<f64>,
-    extrema: &[f64],
-    first_sign: f64,
-    options: &SmoothingOptions,
-) -> Result<Option<Attempt>> {
-    if extrema.len() % 2 != 0 {
-        return Err(Error::new(
-            ErrorKind::InvalidArgument,
-            "a closed curve has as many curvature maxima as minima",
-        ));
-    }
-    // Levels with fewer knots than a periodic curve of degree p needs are skipped.
-    let levels: Vec<(KnotVector<f64>, ClosedCurve2)> = nested_levels(clamped, extrema)?
-        .into_iter()
-        .filter_map(|level| periodic_space(&level).ok().map(|space| (level, space)))
-        .collect();
-    if levels.is_empty() {
-        return Ok(None);
-    }
-    continuation(
-        &Closed { levels },
-        points,
-        params,
-        extrema,
-        first_sign,
-        options,
-    )
-}
-
-/// Foot-point parameters as [`project_ordered`] takes them: in `[0, 1]` and not decreasing
-/// (a foot point that crossed the closing point is moved back to its end of the period).
-fn sorted_in_period(params: &[f64]) -> Vec<f64> {
-    let mut out: Vec<f64> = params.iter().map(|u| u.clamp(0.0, 1.0)).collect();
-    for k in 1..out.len() {
-        if out[k] < out[k - 1] {
-            out[k] = out[k - 1];
-        }
-    }
-    out
-}
-
 /// Samples round a closed curve for the placement of its extrema.
 const PLACEMENT_SAMPLES: usize = 400;
-
-/// `(u, oriented κ(u), arc-length weight)` at [`PLACEMENT_SAMPLES`] parameters of one period.
-fn closed_curvature_samples(
-    curve: &ClosedCurve2,
-    orientation: f64,
-) -> Result<Vec<(f64, f64, f64)>> {
-    let du = 1.0 / PLACEMENT_SAMPLES as f64;
-    (0..PLACEMENT_SAMPLES)
-        .map(|k| {
-            let u = k as f64 * du;
-            let d = curve.derivatives(u, 2)?;
-            let speed = d[1].norm();
-            let kappa = (d[1].x * d[2].y - d[1].y * d[2].x) / (speed * speed * speed);
-            Ok((u, orientation * kappa, speed * du))
-        })
-        .collect()
-}
 
 /// `cost[i][j − i]`: the weighted least-squares cost of making `values[i..=j]` monotone
 /// (increasing or not), for every window.
 fn window_costs(values: &[(f64, f64, f64)], increasing: bool) -> Vec<Vec<f64>> {
     (0..values.len())
-        .map(|i| super::placement::isotonic_prefix_costs(&values[i..], increasing))
+        .map(|i| isotonic_prefix_costs(&values[i..], increasing))
         .collect()
 }
 
@@ -404,7 +189,7 @@ fn alternating_split(
 /// length), over rotations of the closing point. Returns the parameter where a closing point
 /// inside a monotone piece (halfway between the last extremum and the first) should go.
 pub(crate) fn closed_seam(curve: &ClosedCurve2, k: usize, orientation: f64) -> Result<f64> {
-    let samples = closed_curvature_samples(curve, orientation)?;
+    let samples = curvature_samples(curve, PLACEMENT_SAMPLES, true, orientation)?;
     let m = samples.len();
     let min_width = (m / 100).max(2);
     let mut best: Option<(f64, f64)> = None;
@@ -443,7 +228,7 @@ pub(crate) fn place_closed_extrema(
     k: usize,
     orientation: f64,
 ) -> Result<(Vec<f64>, bool)> {
-    let samples = closed_curvature_samples(curve, orientation)?;
+    let samples = curvature_samples(curve, PLACEMENT_SAMPLES, true, orientation)?;
     let m = samples.len();
     let min_width = (m / 100).max(2);
     let rising = window_costs(&samples, true);
@@ -474,6 +259,8 @@ pub(crate) fn place_closed_extrema(
 mod tests {
     use super::*;
     use crate::barrier::BarrierProblem;
+    use crate::eraser::Objective;
+    use crate::eraser::problem::EraserProblem;
     use nalgebra::DVector;
 
     /// The closed problem of a wobbly contour: derivatives of every function of the barrier
@@ -492,8 +279,9 @@ mod tests {
         let knots = shape.wrapped().knots().clone();
         let control = shape.wrapped().control_points().to_vec();
         for objective in [Objective::MaxDeviation, Objective::LeastSquares] {
-            let mut problem = EraserProblem::new_closed(
+            let mut problem = EraserProblem::new(
                 &knots,
+                true,
                 &points,
                 &params,
                 objective,

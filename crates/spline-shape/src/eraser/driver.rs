@@ -2,14 +2,14 @@
 //! vectors, phase I where a level has no strictly feasible curve yet, path following with
 //! refinement of active conditions on the finest level.
 
-use super::placement::{fit_with_correction, nested_levels, new_knots, pin_ends};
+use super::placement::fit_with_correction;
 use super::problem::EraserProblem;
+use super::topology::Topology;
 use super::{Objective, SmoothingOptions};
 use crate::barrier::{BarrierProblem, StopRule, centre};
 use nalgebra::{DVector, Vector2};
 use spline_core::{ErrorKind, KnotVector, Result};
-use spline_fit::project_ordered;
-use spline_geom::{BSpline, Curve2};
+use spline_geom::Curve2;
 
 /// Newton steps per centring step in phase I, at most.
 const PHASE_ONE_NEWTON_STEPS: usize = 60;
@@ -155,135 +155,13 @@ impl Solver<'_> {
     }
 }
 
-/// What differs between open and closed curves in the coarse-to-fine continuation of
-/// [`continuation`]: the levels, the fit a level starts from, the problem, and how a curve
-/// moves to the next level.
-pub(super) trait Topology {
-    /// The curve the continuation carries from level to level.
-    type Curve;
-    /// The number of levels, coarse to fine.
-    fn num_levels(&self) -> usize;
-    /// Least squares with parameter correction on `level`: the curve and the parameters.
-    ///
-    /// # Errors
-    /// As the fit.
-    fn fit(
-        &self,
-        level: usize,
-        points: &[Vector2<f64>],
-        params: &[f64],
-    ) -> Result<(Self::Curve, Vec<f64>)>;
-    /// The eraser's problem on `level`'s knots.
-    ///
-    /// # Errors
-    /// As [`EraserProblem::new`].
-    fn problem(
-        &self,
-        level: usize,
-        points: &[Vector2<f64>],
-        params: &[f64],
-        objective: Objective,
-        extrema: &[f64],
-        first_sign: f64,
-    ) -> Result<EraserProblem>;
-    /// The control points the problem's variables hold (the wrapped ones of a closed curve).
-    fn control_points(curve: &Self::Curve) -> Vec<Vector2<f64>>;
-    /// The curve of the solution's control points on `level`, and the container the attempt
-    /// returns (the wrapped one of a closed curve).
-    ///
-    /// # Errors
-    /// As the containers' constructors.
-    fn solution(
-        &self,
-        level: usize,
-        control: Vec<Vector2<f64>>,
-    ) -> Result<(Self::Curve, Curve2<f64>)>;
-    /// The same curve on the knots of `level + 1` (unchanged, so still strictly feasible)
-    /// and the data's parameters on it, from the solution's anchors.
-    ///
-    /// # Errors
-    /// As refinement and projection.
-    fn next(
-        &self,
-        level: usize,
-        curve: &Self::Curve,
-        anchors: Vec<f64>,
-        points: &[Vector2<f64>],
-    ) -> Result<(Self::Curve, Vec<f64>)>;
-}
-
-/// Open curves: nested clamped knot vectors, the ends pinned to the first and last points.
-struct Open {
-    levels: Vec<KnotVector<f64>>,
-}
-
-impl Topology for Open {
-    type Curve = Curve2<f64>;
-
-    fn num_levels(&self) -> usize {
-        self.levels.len()
-    }
-
-    fn fit(
-        &self,
-        level: usize,
-        points: &[Vector2<f64>],
-        params: &[f64],
-    ) -> Result<(Self::Curve, Vec<f64>)> {
-        fit_with_correction(points, params, &self.levels[level], 12)
-    }
-
-    fn problem(
-        &self,
-        level: usize,
-        points: &[Vector2<f64>],
-        params: &[f64],
-        objective: Objective,
-        extrema: &[f64],
-        first_sign: f64,
-    ) -> Result<EraserProblem> {
-        EraserProblem::new(
-            &self.levels[level],
-            points,
-            params,
-            objective,
-            extrema.to_vec(),
-            first_sign,
-        )
-    }
-
-    fn control_points(curve: &Self::Curve) -> Vec<Vector2<f64>> {
-        curve.control_points().to_vec()
-    }
-
-    fn solution(
-        &self,
-        level: usize,
-        control: Vec<Vector2<f64>>,
-    ) -> Result<(Self::Curve, Curve2<f64>)> {
-        let curve = BSpline::new(self.levels[level].clone(), control)?;
-        Ok((curve.clone(), curve))
-    }
-
-    fn next(
-        &self,
-        level: usize,
-        curve: &Self::Curve,
-        mut anchors: Vec<f64>,
-        points: &[Vector2<f64>],
-    ) -> Result<(Self::Curve, Vec<f64>)> {
-        pin_ends(&mut anchors);
-        let refined = curve.refine(&new_knots(curve.knots(), &self.levels[level + 1]))?;
-        let mut params = project_ordered(&refined, points, &anchors)?;
-        pin_ends(&mut params);
-        Ok((refined, params))
-    }
-}
-
-/// The constrained fit of `points` (normalised, at `params`) on `knots` with the allowed
-/// extrema at the knots `extrema` and the sign of the first piece `first_sign`. `None` when
-/// no strictly feasible curve was found on any level.
-pub(crate) fn attempt(
+/// The constrained fit of `points` (normalised, at `params`) on the clamped `knots` (a
+/// closed curve's periodic knots are its `0` and its interior knots) with the allowed
+/// extrema at the knots `extrema` and the sign of the first piece `first_sign`: the
+/// continuation over the topology's nested spaces. The attempt's curve is the container
+/// (the wrapped one of a closed curve). `None` when no strictly feasible curve was found on
+/// any level.
+pub(crate) fn attempt<T: Topology>(
     points: &[Vector2<f64>],
     params: &[f64],
     knots: &KnotVector<f64>,
@@ -291,10 +169,11 @@ pub(crate) fn attempt(
     first_sign: f64,
     options: &SmoothingOptions,
 ) -> Result<Option<Attempt>> {
-    let open = Open {
-        levels: nested_levels(knots, extrema)?,
-    };
-    continuation(&open, points, params, extrema, first_sign, options)
+    let levels = T::levels(knots, extrema)?;
+    if levels.is_empty() {
+        return Ok(None);
+    }
+    continuation::<T>(&levels, points, params, extrema, first_sign, options)
 }
 
 /// The coarse-to-fine continuation of one attempt, for open and closed curves alike: entry at
@@ -302,15 +181,15 @@ pub(crate) fn attempt(
 /// phase I), so that it starts as close to the data as it can; path following on each level
 /// (loosely on the coarse ones), the solution carried to the next level's knots (phase I
 /// mends what rounding breaks there); refinement of active conditions on the finest.
-pub(super) fn continuation<T: Topology>(
-    topology: &T,
+fn continuation<T: Topology>(
+    spaces: &[T::Space],
     points: &[Vector2<f64>],
     params: &[f64],
     extrema: &[f64],
     first_sign: f64,
     options: &SmoothingOptions,
 ) -> Result<Option<Attempt>> {
-    let levels = topology.num_levels();
+    let levels = spaces.len();
     let mut solver = Solver {
         options,
         newton_steps: 0,
@@ -321,12 +200,13 @@ pub(super) fn continuation<T: Topology>(
                  unit: Option<f64>|
      -> Result<(EraserProblem, DVector<f64>, f64)> {
         let finest = level + 1 == levels;
-        let mut problem = topology.problem(
-            level,
+        let mut problem = EraserProblem::new(
+            T::knots(&spaces[level]),
+            T::CLOSED,
             points,
             params,
             options.objective,
-            extrema,
+            extrema.to_vec(),
             first_sign,
         )?;
         // Fixed parameters on the coarse levels (a coarse curve could otherwise fit the data
@@ -358,7 +238,7 @@ pub(super) fn continuation<T: Topology>(
     };
     let mut entry = None;
     for level in (0..levels).rev() {
-        let (fit, corrected) = match topology.fit(level, points, params) {
+        let (fit, corrected) = match fit_with_correction::<T>(points, params, &spaces[level], 12) {
             Ok(found) => found,
             Err(e)
                 if matches!(
@@ -394,7 +274,7 @@ pub(super) fn continuation<T: Topology>(
             (1e-4, 0)
         };
         let refinements = solver.phase_two(&mut problem, &mut x, gap, max_refinements)?;
-        let (curve, container) = topology.solution(level, problem.control_points(&x))?;
+        let (curve, container) = T::solution(&spaces[level], problem.control_points(&x))?;
         if finest {
             return Ok(Some(Attempt {
                 curve: container,
@@ -404,7 +284,13 @@ pub(super) fn continuation<T: Topology>(
                 levels: levels - first,
             }));
         }
-        let (refined, params) = topology.next(level, &curve, problem.anchors(), points)?;
+        let (refined, params) = T::next(
+            &spaces[level],
+            &spaces[level + 1],
+            &curve,
+            problem.anchors(),
+            points,
+        )?;
         level += 1;
         let control = T::control_points(&refined);
         let (mut next_problem, mut next_x, _) = setup(level, &control, &params, Some(unit))?;

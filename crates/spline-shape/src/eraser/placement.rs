@@ -1,23 +1,35 @@
-//! Where the allowed extrema go, and the knot vectors of the coarse-to-fine continuation.
+//! Where the allowed extrema go, the least-squares fits they are placed on, and the knot
+//! vectors of the coarse-to-fine continuation: each written once for open and closed curves
+//! (what differs is the [`Topology`]).
 
+use super::topology::Topology;
 use super::{Extremum, ExtremumKind};
 use nalgebra::Vector2;
 use spline_core::{Error, ErrorKind, KnotVector, Result};
-use spline_fit::{LeastSquares, project_ordered};
-use spline_geom::{BSpline, Curve2};
+use spline_fit::project_ordered;
+use spline_geom::{ParamCurve, PlanarCurve};
 
-/// `(u, oriented κ(u), arc-length weight)` of `curve` on a dense grid.
-fn curvature_samples(curve: &Curve2<f64>, orientation: f64) -> Result<Vec<(f64, f64, f64)>> {
-    let samples = 2000;
-    let du = 1.0 / f64::from(samples);
-    (0..=samples)
+/// `(u, oriented κ(u), arc-length weight)` of `curve` at `count` parameters `k / count` of
+/// `[0, 1]`, and at `1` too unless the curve is `closed` (where `1` is `0`).
+///
+/// # Errors
+/// [`ErrorKind::DegenerateGeometry`] where the velocity vanishes; the errors of evaluation.
+pub(crate) fn curvature_samples<C: PlanarCurve<f64>>(
+    curve: &C,
+    count: usize,
+    closed: bool,
+    orientation: f64,
+) -> Result<Vec<(f64, f64, f64)>> {
+    let du = 1.0 / count as f64;
+    let mut first = [Vector2::zeros(); 2];
+    (0..count + usize::from(!closed))
         .map(|k| {
-            let u = f64::from(k) * du;
-            let d = curve.derivatives(u, 1)?;
+            let u = k as f64 * du;
+            curve.derivatives_into(u, &mut first)?;
             Ok((
                 u,
                 orientation * curve.signed_curvature(u)?,
-                d[1].norm() * du,
+                first[1].norm() * du,
             ))
         })
         .collect()
@@ -63,20 +75,56 @@ fn isotonic_cost(values: &[(f64, f64, f64)], increasing: bool) -> f64 {
         .unwrap_or(0.0)
 }
 
+/// The sample of `window` (from [`curvature_samples`]) where an extremum needs the least
+/// change of the curvature to make it monotone on both sides (rising before it when
+/// `rising_before`, falling after; weighted isotonic regression along the arc length), among
+/// the samples whose parameter is `admissible`; the first of equal costs.
+fn cheapest_turn(
+    window: &[(f64, f64, f64)],
+    rising_before: bool,
+    admissible: impl Fn(f64) -> bool,
+) -> Option<f64> {
+    // Prefix costs of the rising part and suffix costs of the falling part (the suffix read
+    // backwards is a prefix of the reversed samples, monotone the other way).
+    let before = isotonic_prefix_costs(window, rising_before);
+    let reversed: Vec<(f64, f64, f64)> = window.iter().rev().copied().collect();
+    let after = isotonic_prefix_costs(&reversed, rising_before);
+    let mut best: Option<(f64, f64)> = None;
+    for (k, sample) in window.iter().enumerate() {
+        if !admissible(sample.0) {
+            continue;
+        }
+        let cost = before[k] + after[window.len() - 1 - k];
+        if best.is_none_or(|(c, _)| cost < c) {
+            best = Some((cost, sample.0));
+        }
+    }
+    best.map(|(_, u)| u)
+}
+
+/// The samples with parameters in `[lo, hi]`.
+fn window(samples: &[(f64, f64, f64)], lo: f64, hi: f64) -> &[(f64, f64, f64)] {
+    let left = samples.partition_point(|s| s.0 < lo);
+    let right = samples.partition_point(|s| s.0 <= hi);
+    &samples[left..right]
+}
+
+/// Samples of the curvature of an open curve for the placement of its extrema.
+const OPEN_PLACEMENT_SAMPLES: usize = 2000;
+
 /// Parameters of the allowed extrema: given ones as they are; automatic ones, from left to
-/// right, where the curvature of `fit` needs the least change to become monotone on both
-/// sides (weighted isotonic regression along the arc length, between the neighbouring
-/// extrema).
+/// right, at the [`cheapest_turn`] of the curvature of `fit` between the neighbouring
+/// extrema (a margin of `0.01` from them).
 ///
 /// # Errors
 /// [`ErrorKind::InvalidArgument`] when an automatic extremum has no room between its
 /// neighbours or the result is not in increasing order.
-pub(crate) fn place_extrema(
-    fit: &Curve2<f64>,
+pub(crate) fn place_extrema<C: PlanarCurve<f64>>(
+    fit: &C,
     extrema: &[Extremum],
     orientation: f64,
 ) -> Result<Vec<f64>> {
-    let samples = curvature_samples(fit, orientation)?;
+    let samples = curvature_samples(fit, OPEN_PLACEMENT_SAMPLES, false, orientation)?;
     let mut slots: Vec<Option<f64>> = extrema.iter().map(|e| e.at).collect();
     for i in 0..extrema.len() {
         if slots[i].is_some() {
@@ -85,27 +133,9 @@ pub(crate) fn place_extrema(
         let lo = (0..i).rev().find_map(|j| slots[j]).unwrap_or(0.0);
         let hi = (i + 1..extrema.len()).find_map(|j| slots[j]).unwrap_or(1.0);
         let margin = 0.01;
-        let left = samples.partition_point(|s| s.0 < lo);
-        let right = samples.partition_point(|s| s.0 <= hi);
         let rising_before = extrema[i].kind == ExtremumKind::Maximum;
-        let window = &samples[left..right];
-        // Prefix costs of the rising part and suffix costs of the falling part (the suffix
-        // read backwards is a prefix of the reversed samples, monotone the other way).
-        let before = isotonic_prefix_costs(window, rising_before);
-        let reversed: Vec<(f64, f64, f64)> = window.iter().rev().copied().collect();
-        let after = isotonic_prefix_costs(&reversed, rising_before);
-        let mut best: Option<(f64, f64)> = None;
-        for (k, sample) in window.iter().enumerate() {
-            let u = sample.0;
-            if !(u > lo + margin && u < hi - margin) {
-                continue;
-            }
-            let cost = before[k] + after[window.len() - 1 - k];
-            if best.is_none_or(|(c, _)| cost < c) {
-                best = Some((cost, u));
-            }
-        }
-        let Some((_, u)) = best else {
+        let admissible = |u: f64| u > lo + margin && u < hi - margin;
+        let Some(u) = cheapest_turn(window(&samples, lo, hi), rising_before, admissible) else {
             return Err(Error::new(
                 ErrorKind::InvalidArgument,
                 format!(
@@ -126,30 +156,47 @@ pub(crate) fn place_extrema(
     Ok(placed)
 }
 
-/// Least squares on `knots` with `rounds` of parameter correction (projection of each point
-/// on the curve, in order, the end points staying at the ends); returns the last fit and the
-/// corrected parameters.
+/// Moves each extremum of `placed` (placed on a coarse fit) to the [`cheapest_turn`] of the
+/// curvature `samples` of a finer fit, within a quarter of the distance to its neighbours
+/// (the first piece rising when `first_rising`): the coarse fit finds the large turns, the
+/// fine one their exact place.
+pub(crate) fn refine_extrema(samples: &[(f64, f64, f64)], placed: &mut [f64], first_rising: bool) {
+    let k = placed.len();
+    for i in 0..k {
+        let lo = if i == 0 { 0.0 } else { placed[i - 1] };
+        let hi = if i + 1 == k { 1.0 } else { placed[i + 1] };
+        let here = placed[i];
+        let reach = 0.25 * (here - lo).min(hi - here);
+        let rising_before = (i % 2 == 0) == first_rising;
+        let admissible = |u: f64| (u - here).abs() <= reach;
+        if let Some(u) = cheapest_turn(window(samples, lo, hi), rising_before, admissible) {
+            placed[i] = u;
+        }
+    }
+}
+
+/// Least squares on `space` with `rounds` of parameter correction (each data point moves
+/// to its closest point on the fit, in order; an open curve's end points stay at its ends);
+/// returns the last fit and the corrected parameters.
 ///
 /// # Errors
-/// The errors of [`LeastSquares::control_points`] (Schoenberg–Whitney, singular systems).
-pub(crate) fn fit_with_correction(
+/// The errors of the topology's least squares (Schoenberg–Whitney, singular systems) and of
+/// projection.
+pub(crate) fn fit_with_correction<T: Topology>(
     points: &[Vector2<f64>],
     params: &[f64],
-    knots: &KnotVector<f64>,
+    space: &T::Space,
     rounds: usize,
-) -> Result<(Curve2<f64>, Vec<f64>)> {
+) -> Result<(T::Curve, Vec<f64>)>
+where
+    T::Curve: ParamCurve<f64, Point = Vector2<f64>>,
+{
     let mut params = params.to_vec();
-    let fit = |params: &[f64]| -> Result<Curve2<f64>> {
-        BSpline::new(
-            knots.clone(),
-            LeastSquares::new(points, params, knots.clone()).control_points()?,
-        )
-    };
-    let mut curve = fit(&params)?;
+    let mut curve = T::least_squares(points, &params, space)?;
     for _ in 0..rounds {
         params = project_ordered(&curve, points, &params)?;
-        pin_ends(&mut params);
-        curve = fit(&params)?;
+        T::hold_ends(&mut params);
+        curve = T::least_squares(points, &params, space)?;
     }
     Ok((curve, params))
 }
@@ -164,10 +211,10 @@ pub(crate) fn pin_ends(params: &mut [f64]) {
     }
 }
 
-/// The knots of `fine` that `coarse` lacks (with multiplicity).
-pub(crate) fn new_knots(coarse: &KnotVector<f64>, fine: &KnotVector<f64>) -> Vec<f64> {
+/// The knots of `fine` that `coarse` lacks (with multiplicity; both sorted).
+pub(crate) fn new_knots(coarse: &[f64], fine: &[f64]) -> Vec<f64> {
     let mut out = Vec::new();
-    let (c, f) = (coarse.knots(), fine.knots());
+    let (c, f) = (coarse, fine);
     let mut i = 0;
     for &u in f {
         if i < c.len() && c[i] == u {
@@ -239,7 +286,7 @@ mod tests {
         assert_eq!(levels.last().unwrap(), &knots);
         assert_eq!(levels[0].knots().len(), 9); // 0.45 alone inside
         for w in levels.windows(2) {
-            let added = new_knots(&w[0], &w[1]);
+            let added = new_knots(w[0].knots(), w[1].knots());
             assert_eq!(w[0].knots().len() + added.len(), w[1].knots().len());
             assert!(w[1].knots().contains(&0.45));
         }

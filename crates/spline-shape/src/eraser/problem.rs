@@ -25,6 +25,9 @@ use spline_core::{KnotVector, Result};
 use std::cell::RefCell;
 
 mod barrier_form;
+mod excursions;
+
+use excursions::Excursion;
 
 /// Scratch memory of the segment kernel.
 /// Scratch memory of the segment kernel and of the conditions, reused by every evaluation
@@ -91,20 +94,16 @@ struct FeetCache {
     points: Vec<Vector2<f64>>,
 }
 
-/// `‖C(u) − centre‖² < radius²`.
-#[derive(Clone, Debug)]
-struct Excursion {
-    param: f64,
-    centre: Vector2<f64>,
-    radius2: f64,
-}
-
 impl EraserProblem {
     /// The problem for `points` (at their foot-point parameters `params`) on `knots`, with
     /// the allowed extrema at the knots `extrema` and the curvature increasing on the first
-    /// piece when `first_sign > 0`.
+    /// piece when `first_sign > 0`. For a `closed` curve, `knots` are those of the wrapped
+    /// container of a periodic B-spline of period 1 on `[0, 1]` (`N + p` control points, the
+    /// last `p` repeating the first), the variables its `N` free control points, and every
+    /// foot point is free to cross the closing point.
     pub(crate) fn new(
         knots: &KnotVector<f64>,
+        closed: bool,
         points: &[Vector2<f64>],
         params: &[f64],
         objective: Objective,
@@ -134,11 +133,12 @@ impl EraserProblem {
                 points: points.to_vec(),
                 params: RefCell::new(params.to_vec()),
                 project: true,
-                closed: false,
+                closed,
             },
             objective,
-            n: knots.num_basis(),
-            closed: false,
+            // A closed curve's last p control points repeat its first p.
+            n: knots.num_basis() - if closed { knots.degree() } else { 0 },
+            closed,
             unit: 1.0,
             mean_weight: 1e-2,
             tau: 0.0,
@@ -153,25 +153,6 @@ impl EraserProblem {
         problem.pieces = (0..problem.kernel.num_segments())
             .map(|s| problem.piece(s, 0.0, 1.0))
             .collect();
-        Ok(problem)
-    }
-
-    /// The same problem for a closed curve: `knots` are those of the wrapped container of a
-    /// periodic B-spline of period 1 on `[0, 1]` (`N + p` control points, the last `p`
-    /// repeating the first), the variables its `N` free control points, and every foot point
-    /// free to cross the closing point.
-    pub(crate) fn new_closed(
-        knots: &KnotVector<f64>,
-        points: &[Vector2<f64>],
-        params: &[f64],
-        objective: Objective,
-        extrema: Vec<f64>,
-        first_sign: f64,
-    ) -> Result<Self> {
-        let mut problem = Self::new(knots, points, params, objective, extrema, first_sign)?;
-        problem.n = knots.num_basis() - knots.degree();
-        problem.closed = true;
-        problem.distances.closed = true;
         Ok(problem)
     }
 
@@ -274,49 +255,6 @@ impl EraserProblem {
             let k = i % self.n;
             Vector2::new(x[2 * k], x[2 * k + 1])
         }));
-    }
-
-    /// Sets the excursion bounds from the anchors and the curve of `x`: the curve point halfway
-    /// (in parameter) between the foot points of data points `j` and `j + 1` stays within
-    /// `‖Q_{j+1} − Q_j‖/2 + allowance` of the middle of their chord (and within 1.1 times
-    /// its current distance, so that `x` stays strictly feasible).
-    pub(crate) fn set_excursions(&mut self, x: &DVector<f64>, allowance: f64) {
-        let control = self.control_points(x);
-        let params = self.distances.params.borrow().clone();
-        let points = &self.distances.points;
-        let knots = &self.distances.knots;
-        let p = knots.degree();
-        let mut basis = [0.0; spline_core::MAX_ORDER];
-        // A closed curve also joins the last data point to the first, across the closing point.
-        let pairs = if self.closed {
-            points.len()
-        } else {
-            points.len() - 1
-        };
-        self.excursions = (0..pairs)
-            .filter_map(|j| {
-                let next = (j + 1) % points.len();
-                let (a, mut b) = (params[j], params[next]);
-                if next == 0 {
-                    b += 1.0;
-                }
-                if !(b > a) {
-                    return None;
-                }
-                let u = (0.5 * (a + b)).rem_euclid(1.0);
-                let span = knots.span_in_domain(u);
-                knots.basis_values(span, u, &mut basis[..=p]);
-                let c: Vector2<f64> = (0..=p).map(|k| control[span - p + k] * basis[k]).sum();
-                let centre = (points[j] + points[next]) * 0.5;
-                let half = 0.5 * (points[next] - points[j]).norm();
-                let radius = (half + allowance).max(1.1 * (c - centre).norm());
-                Some(Excursion {
-                    param: u,
-                    centre,
-                    radius2: radius * radius,
-                })
-            })
-            .collect();
     }
 
     /// Foot points follow the curve (`true`) or stay at their anchors (`false`).

@@ -1,0 +1,223 @@
+//! The eraser's pipeline: [`smooth`], the same stages for open and closed data.
+
+use super::driver::attempt;
+use super::input::{check_options, distinct, frame, polygon_area};
+use super::topology::{Closed, Open, Start, Topology};
+use super::types::{
+    CurvatureExtremum, ExtremumKind, SmoothedCurve, SmoothingOptions, extrema_words,
+};
+use nalgebra::Vector2;
+use spline_algebra::planar_features;
+use spline_core::{Error, ErrorKind, Result};
+use spline_fit::{curvature_knots_with, two_sided_deviation};
+use spline_geom::Curve2;
+
+/// Fits `points` with a planar B-spline curve whose curvature has only the allowed extrema
+/// (thesis ch. 6, built on spline-fit as the module documentation describes).
+///
+/// The data are translated and scaled to unit size for the computation and the result is
+/// mapped back, so the answer does not depend on units. Consecutive repeated points count
+/// once. The first and last data points stay at the ends of the curve.
+///
+/// ```
+/// use nalgebra::Vector2;
+/// use spline_shape::{SmoothingOptions, smooth};
+/// // A noisy quarter of an ellipse; its curvature rises from (0, 1) to (2, 0).
+/// let points: Vec<Vector2<f64>> = (0..60)
+///     .map(|k| {
+///         let t = f64::from(k) / 59.0 * std::f64::consts::FRAC_PI_2;
+///         let noise = 1e-3 * f64::from((k * 37) % 7) / 7.0;
+///         Vector2::new(2.0 * t.sin(), t.cos() + noise)
+///     })
+///     .collect();
+/// let mut options = SmoothingOptions::new(8);
+/// options.extrema = vec!["max@0.999".parse()?]; // monotone curvature up to the end
+/// let result = smooth(&points, &options)?;
+/// assert_eq!(result.extrema.len(), 1);
+/// assert!(result.deviation.to_curve.max < 3e-3);
+/// # Ok::<(), spline_core::Error>(())
+/// ```
+///
+/// # Errors
+/// [`ErrorKind::InvalidArgument`] for a degree below 3, no extrema or kinds that do not
+/// alternate, parameters outside `(0, 1)` or not increasing, or more extrema than the control
+/// points allow; [`ErrorKind::TooFewPoints`] / [`ErrorKind::NonFinite`] /
+/// [`ErrorKind::DegenerateGeometry`] for unusable data; [`ErrorKind::NoConvergence`] when no
+/// curve with these extrema and control points is found near the data, or the only ones
+/// found leave the data (the message says what to change).
+pub fn smooth(points: &[Vector2<f64>], options: &SmoothingOptions) -> Result<SmoothedCurve> {
+    check_options(options)?;
+    if options.closed {
+        run::<Closed>(points, options)
+    } else {
+        run::<Open>(points, options)
+    }
+}
+
+/// The eraser's stages, once for both topologies: the data in unit size, the start (shape and
+/// placed extrema), attempts on knots that follow the shape, the closest curve found.
+fn run<T: Topology>(points: &[Vector2<f64>], options: &SmoothingOptions) -> Result<SmoothedCurve> {
+    let p = options.degree;
+    let n = options.control_points;
+    let mut data = distinct(points)?;
+    T::count_once(&mut data);
+    if data.len() < n + 1 {
+        return Err(Error::new(
+            ErrorKind::TooFewPoints,
+            format!(
+                "{n} control points need more than {n} distinct data points, got {}",
+                data.len()
+            ),
+        ));
+    }
+    // Unit size: translate to the centre of the bounding box, scale by its diagonal.
+    let (middle, size) = frame(&data);
+    if !(size > 0.0) {
+        return Err(Error::new(
+            ErrorKind::DegenerateGeometry,
+            "the data points all coincide",
+        ));
+    }
+    let mut unit: Vec<Vector2<f64>> = data.iter().map(|q| (q - middle) / size).collect();
+    let orientation = if polygon_area(&unit) >= 0.0 {
+        1.0
+    } else {
+        -1.0
+    };
+
+    // 1. The shape: centripetal parameters, least squares, parameter correction (a closed
+    // contour's periodic fit is opened at its closing point, which moves to a data point
+    // inside a monotone stretch); 2. the allowed extrema on the shape.
+    let Start {
+        rotation,
+        shape: preliminary,
+        params,
+        placed,
+        first_sign,
+    } = T::start(&unit, options, orientation)?;
+    data.rotate_left(rotation);
+    unit.rotate_left(rotation);
+    // The data the deviations are measured against.
+    let polyline = T::polyline(&data);
+    let start_extrema = planar_features(&preliminary, 1e-10)
+        .map(|f| f.curvature_extrema.len())
+        .unwrap_or(0);
+    let fixed: Vec<(f64, usize)> = placed.iter().map(|&u| (u, p - 2)).collect();
+
+    // 3. Attempts with knots that follow the shape, densities in turn (a closed curve's `N`
+    // periodic knots are the clamped vector's `0` and its interior knots).
+    let basis_count = T::basis_count(n, p);
+    let mut best: Option<SmoothedCurve> = None;
+    let mut newton_steps = 0;
+    let mut left_the_data = false;
+    for &exponent in &options.knot_exponents {
+        let Ok(knots) = curvature_knots_with(
+            &preliminary,
+            p,
+            basis_count,
+            exponent,
+            options.knot_floor,
+            &fixed,
+        ) else {
+            continue;
+        };
+        let found = match attempt::<T>(&unit, &params, &knots, &placed, first_sign, options) {
+            Ok(found) => found,
+            Err(e)
+                if matches!(
+                    e.kind(),
+                    ErrorKind::SchoenbergWhitney
+                        | ErrorKind::SingularSystem
+                        | ErrorKind::NonFinite
+                        | ErrorKind::NoConvergence
+                ) =>
+            {
+                None
+            }
+            Err(e) => return Err(e),
+        };
+        let Some(found) = found else { continue };
+        newton_steps += found.newton_steps;
+        let world = found.curve.map_control_points(|c| c * size + middle);
+        let (curve, periodic) = T::result(world)?;
+        let mut deviation = two_sided_deviation(&curve, &polyline)?;
+        T::in_data_order(&mut deviation, rotation, data.len());
+        // A curve that strays from the data between data points is no answer: the curve →
+        // data distance may exceed the data → curve one only by the sagitta of the data's
+        // own chords.
+        if deviation.to_data_excess > 3.0 * deviation.to_curve.max + 1e-3 * size {
+            left_the_data = true;
+            continue;
+        }
+        let better = best
+            .as_ref()
+            .is_none_or(|b| deviation.to_curve.max < b.deviation.to_curve.max);
+        if better {
+            // A curve whose velocity vanishes somewhere has no curvature there: no answer.
+            let Ok(features) = T::features(&curve, periodic.as_ref()) else {
+                continue;
+            };
+            let extrema = features
+                .curvature_extrema
+                .iter()
+                .map(|&u| classify(&curve, u, orientation))
+                .collect::<Result<Vec<_>>>()?;
+            let inflections = features.inflections;
+            best = Some(SmoothedCurve {
+                curve,
+                periodic,
+                first_point: rotation,
+                deviation,
+                extrema,
+                inflections,
+                start_extrema,
+                orientation,
+                knot_exponent: exponent,
+                levels: found.levels,
+                refinements: found.refinements,
+                conditions: found.conditions,
+                newton_steps: 0,
+            });
+        }
+        if !options.thorough {
+            break;
+        }
+    }
+    match best {
+        Some(mut result) => {
+            result.newton_steps = newton_steps;
+            Ok(result)
+        }
+        None => Err(Error::new(
+            ErrorKind::NoConvergence,
+            format!(
+                "no curve with {} and {n} control points was found near the data{}: allow more control points or more extrema",
+                extrema_words(placed.len()),
+                if left_the_data {
+                    " (the curves found leave the data between data points)"
+                } else {
+                    ""
+                }
+            ),
+        )),
+    }
+}
+
+/// The kind of the extremum of the oriented curvature at `u`.
+fn classify(curve: &Curve2<f64>, u: f64, orientation: f64) -> Result<CurvatureExtremum> {
+    let (a, b) = curve.domain();
+    let h = 1e-6 * (b - a);
+    let k = |t: f64| -> Result<f64> { Ok(orientation * curve.signed_curvature(t.clamp(a, b))?) };
+    let centre = k(u)?;
+    let side = k(u - h)?.max(k(u + h)?);
+    let kind = if centre >= side {
+        ExtremumKind::Maximum
+    } else {
+        ExtremumKind::Minimum
+    };
+    Ok(CurvatureExtremum {
+        param: u,
+        point: curve.eval(u)?,
+        kind,
+    })
+}

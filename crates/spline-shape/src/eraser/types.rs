@@ -1,0 +1,233 @@
+//! The eraser's vocabulary: the allowed extrema, the objective, the options and the result.
+
+use crate::barrier::BarrierOptions;
+use nalgebra::Vector2;
+use spline_core::{Error, ErrorKind, Result};
+use spline_fit::TwoSidedDeviation;
+use spline_geom::{Curve2, PeriodicBSpline};
+use std::fmt;
+use std::str::FromStr;
+
+/// The most curvature extrema a smoothing may allow (each one is a knot of the curve and a
+/// slot of the placement; far more than any shape needs).
+pub const MAX_CURVATURE_EXTREMA: usize = 1000;
+
+/// A maximum or a minimum of the curvature.
+///
+/// The curvature is oriented so that it is positive where the data turn counter-clockwise
+/// when they are listed counter-clockwise, i.e. positive on the convex parts of a closed-ish
+/// contour whatever the order of its points: the nose of an airfoil is a maximum, a flat or
+/// concave stretch of its pressure side a minimum.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum ExtremumKind {
+    /// A local maximum of the oriented curvature.
+    Maximum,
+    /// A local minimum of the oriented curvature.
+    Minimum,
+}
+
+impl fmt::Display for ExtremumKind {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(match self {
+            Self::Maximum => "maximum",
+            Self::Minimum => "minimum",
+        })
+    }
+}
+
+/// An allowed curvature extremum: its kind and, optionally, its parameter in `(0, 1)`.
+///
+/// ```
+/// use spline_shape::{Extremum, ExtremumKind};
+/// let nose: Extremum = "max".parse()?;
+/// let trailing: Extremum = "min@0.02".parse()?;
+/// assert_eq!(nose, Extremum { kind: ExtremumKind::Maximum, at: None });
+/// assert_eq!(trailing.at, Some(0.02));
+/// # Ok::<(), spline_core::Error>(())
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Extremum {
+    /// Maximum or minimum.
+    pub kind: ExtremumKind,
+    /// The parameter on the curve's domain `[0, 1]`; `None` places it automatically (the
+    /// strongest extremum of that kind of the least-squares fit between its neighbours).
+    pub at: Option<f64>,
+}
+
+impl Extremum {
+    /// A maximum placed automatically.
+    #[must_use]
+    pub fn maximum() -> Self {
+        Self {
+            kind: ExtremumKind::Maximum,
+            at: None,
+        }
+    }
+
+    /// A minimum placed automatically.
+    #[must_use]
+    pub fn minimum() -> Self {
+        Self {
+            kind: ExtremumKind::Minimum,
+            at: None,
+        }
+    }
+}
+
+impl FromStr for Extremum {
+    type Err = Error;
+
+    /// `max`, `min`, `max@U` or `min@U` (also `maximum`, `minimum`).
+    fn from_str(text: &str) -> Result<Self> {
+        let (kind, at) = match text.trim().split_once('@') {
+            Some((k, u)) => (k.trim(), Some(u.trim())),
+            None => (text.trim(), None),
+        };
+        let kind = match kind {
+            "max" | "maximum" => ExtremumKind::Maximum,
+            "min" | "minimum" => ExtremumKind::Minimum,
+            other => {
+                return Err(Error::new(
+                    ErrorKind::Parse,
+                    format!("extremum {other:?}: expected max, min, max@U or min@U"),
+                ));
+            }
+        };
+        let at = match at {
+            None => None,
+            Some(u) => Some(u.parse::<f64>().map_err(|_| {
+                Error::new(
+                    ErrorKind::Parse,
+                    format!("extremum {text:?}: {u:?} is not a number"),
+                )
+            })?),
+        };
+        Ok(Self { kind, at })
+    }
+}
+
+/// What the constrained fit minimises.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum Objective {
+    /// The sum of squared distances from the data to the curve (thesis (6.16), with
+    /// parameter correction).
+    LeastSquares,
+    /// The largest distance from the data to the curve, approached by Lawson's iteratively
+    /// reweighted least squares (the measure of thesis Table 6.1).
+    #[default]
+    MaxDeviation,
+}
+
+/// Settings of [`smooth`](super::smooth).
+#[derive(Clone, Debug)]
+pub struct SmoothingOptions {
+    /// Degree of the curve (at least 3: the conditions involve `c‴`).
+    pub degree: usize,
+    /// Number of control points.
+    pub control_points: usize,
+    /// The allowed curvature extrema, in the order of the data; kinds alternate.
+    pub extrema: Vec<Extremum>,
+    /// What is minimised.
+    pub objective: Objective,
+    /// Exponents `β` of the knot density `|C′| (κ L + c)^β`
+    /// ([`spline_fit::curvature_knots`]) tried in turn: the next one when no curve is found
+    /// (or the curve leaves the data) with the previous one, or every one with
+    /// [`SmoothingOptions::thorough`].
+    pub knot_exponents: Vec<f64>,
+    /// Floor `c` of the knot density.
+    pub knot_floor: f64,
+    /// Try every knot density and keep the closest curve (instead of the first found).
+    pub thorough: bool,
+    /// Centring steps of phase I, at most.
+    pub max_rounds: usize,
+    /// Passes of refinement of the active conditions, at most.
+    pub max_refinements: usize,
+    /// Settings of the interior-point solver.
+    pub barrier: BarrierOptions,
+    /// The data are a closed contour (the last point joins the first; a repeated first point
+    /// at the end counts once): the result is a periodic curve, the allowed extrema alternate
+    /// around it and are as many maxima as minima.
+    pub closed: bool,
+}
+
+impl SmoothingOptions {
+    /// Cubic curves with `control_points` control points and one curvature maximum placed
+    /// automatically (the nose of an airfoil).
+    #[must_use]
+    pub fn new(control_points: usize) -> Self {
+        Self {
+            degree: 3,
+            control_points,
+            extrema: vec![Extremum::maximum()],
+            objective: Objective::default(),
+            knot_exponents: vec![0.3, 0.5, 0.7],
+            knot_floor: 0.6,
+            thorough: false,
+            max_rounds: 40,
+            max_refinements: 6,
+            barrier: BarrierOptions {
+                gap_tolerance: 1e-7,
+                max_newton_iterations: 60,
+                ..BarrierOptions::default()
+            },
+            closed: false,
+        }
+    }
+}
+
+/// A curvature extremum of the result.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct CurvatureExtremum {
+    /// Its parameter.
+    pub param: f64,
+    /// The point of the curve there.
+    pub point: Vector2<f64>,
+    /// Maximum or minimum of the oriented curvature.
+    pub kind: ExtremumKind,
+}
+
+/// The result of [`smooth`](super::smooth).
+#[derive(Clone, Debug)]
+pub struct SmoothedCurve {
+    /// The smoothed curve, on `[0, 1]` (a closed one opened at its closing point: the same
+    /// points, clamped at both ends).
+    pub curve: Curve2<f64>,
+    /// For closed data ([`SmoothingOptions::closed`]), the smoothed curve as a periodic
+    /// B-spline of period 1 (`curve` is it opened at `0`).
+    pub periodic: Option<PeriodicBSpline<f64, Vector2<f64>>>,
+    /// The data point (after consecutive repetitions are dropped) where the curve starts: `0`,
+    /// unless the closing point of a closed contour moved into a monotone stretch of the
+    /// curvature.
+    pub first_point: usize,
+    /// The deviation from the data both ways: data → curve by closest points and curve →
+    /// data polyline.
+    pub deviation: TwoSidedDeviation<f64>,
+    /// The curvature extrema of the result.
+    pub extrema: Vec<CurvatureExtremum>,
+    /// The inflections of the result.
+    pub inflections: Vec<f64>,
+    /// The number of curvature extrema of the least-squares fit of the same size.
+    pub start_extrema: usize,
+    /// `+1` if the data run counter-clockwise (the oriented curvature is the signed one),
+    /// `−1` otherwise.
+    pub orientation: f64,
+    /// The exponent of the knot density of the result.
+    pub knot_exponent: f64,
+    /// Levels of the coarse-to-fine continuation.
+    pub levels: usize,
+    /// Refinement passes that split active pieces.
+    pub refinements: usize,
+    /// Sign conditions in the final problem.
+    pub conditions: usize,
+    /// Newton steps of the interior-point method in all (phase I included, every attempt).
+    pub newton_steps: usize,
+}
+
+/// The number of extrema as words: "1 curvature extremum", "2 curvature extrema".
+pub(crate) fn extrema_words(k: usize) -> String {
+    if k == 1 {
+        "1 curvature extremum".to_owned()
+    } else {
+        format!("{k} curvature extrema")
+    }
+}
