@@ -12,7 +12,7 @@ use spline_io::airfoil::parse_airfoil;
 use spline_io::exchange::CurveRecord;
 use spline_shape::{
     AdaptiveOptions, Extremum, Objective, SmoothedCurve, SmoothingOptions,
-    optimise_perimeter_over_area, smooth as erase, smooth_to_tolerance,
+    optimise_perimeter_over_area, smooth as erase, smooth_fewest_extrema, smooth_to_tolerance,
 };
 use std::io::IsTerminal;
 use std::path::{Path, PathBuf};
@@ -25,19 +25,22 @@ pub struct SmoothArgs {
     #[arg(required = true, value_name = "FILE|DIR")]
     inputs: Vec<String>,
     /// Number of control points of the curve.
-    #[arg(long, conflicts_with = "max_deviation")]
+    #[arg(long)]
     control_points: Option<usize>,
     /// Instead of a number of control points: the fewest that bring every data point within
-    /// this distance of the curve.
+    /// this distance of the curve. With --curvature-extrema auto: the tolerance of the
+    /// extrema (with --control-points).
     #[arg(long, value_name = "D")]
     max_deviation: Option<f64>,
     /// Degree of the curve (at least 3).
     #[arg(long, default_value_t = 3)]
     degree: usize,
     /// Number of curvature extrema the curve may have (alternating maximum, minimum, …,
-    /// placed automatically); --extremum gives them one by one instead.
-    #[arg(long, value_name = "K")]
-    curvature_extrema: Option<usize>,
+    /// placed automatically), or `auto`: the fewest (1, 2, …; closed 2, 4, …, up to 8) that
+    /// bring every data point within --max-deviation (default 0.2 % of the diagonal of the
+    /// data's bounding box, 2 mm on a 1 m chord); --extremum gives them one by one instead.
+    #[arg(long, value_name = "K|auto")]
+    curvature_extrema: Option<String>,
     /// An allowed extremum: max, min, max@U or min@U (U in (0, 1)); repeat, in the order of
     /// the data. Default: one maximum (the nose of an airfoil).
     #[arg(long = "extremum", value_name = "KIND[@U]")]
@@ -67,9 +70,22 @@ pub struct SmoothArgs {
     jobs: Option<usize>,
 }
 
+/// Whether the extrema are `auto`.
+fn auto_extrema(args: &SmoothArgs) -> bool {
+    args.curvature_extrema.as_deref().map(str::trim) == Some("auto")
+}
+
 fn options(args: &SmoothArgs) -> Result<SmoothingOptions> {
+    let auto = auto_extrema(args);
     let control = match (args.control_points, args.max_deviation) {
         (Some(n), None) => n,
+        (Some(n), Some(_)) if auto => n,
+        (None, Some(_)) if auto => {
+            return Err(Error::new(
+                ErrorKind::InvalidArgument,
+                "--curvature-extrema auto needs --control-points N",
+            ));
+        }
         (None, Some(_)) => 0,
         (None, None) => {
             return Err(Error::new(
@@ -77,7 +93,12 @@ fn options(args: &SmoothArgs) -> Result<SmoothingOptions> {
                 "give --control-points N or --max-deviation D",
             ));
         }
-        (Some(_), Some(_)) => unreachable!("clap refuses both"),
+        (Some(_), Some(_)) => {
+            return Err(Error::new(
+                ErrorKind::InvalidArgument,
+                "give --control-points N or --max-deviation D, not both (both only with --curvature-extrema auto)",
+            ));
+        }
     };
     let mut options = SmoothingOptions::new(control);
     options.degree = args.degree;
@@ -95,8 +116,19 @@ fn options(args: &SmoothArgs) -> Result<SmoothingOptions> {
         .iter()
         .map(|t| t.parse::<Extremum>().map_err(|e| e.context("--extremum")))
         .collect::<Result<_>>()?;
+    let count = match args.curvature_extrema.as_deref() {
+        Some(_) if auto => None,
+        Some(text) => Some(io::parse_arg::<usize>("--curvature-extrema", text)?),
+        None => None,
+    };
+    if auto && !args.extrema.is_empty() {
+        return Err(Error::new(
+            ErrorKind::InvalidArgument,
+            "--curvature-extrema auto chooses the extrema: give no --extremum",
+        ));
+    }
     options
-        .request_extrema(args.curvature_extrema, given)
+        .request_extrema(count, given)
         .map_err(|e| e.context("--curvature-extrema"))?;
     Ok(options)
 }
@@ -128,9 +160,11 @@ fn run_one(
     path: &str,
     options: &SmoothingOptions,
     tolerance: Option<f64>,
+    auto: bool,
 ) -> Result<SmoothedCurve> {
     let points = read_planar(path)?;
     match tolerance {
+        _ if auto => smooth_fewest_extrema(&points, tolerance, options),
         Some(d) => smooth_to_tolerance(&points, d, options),
         None => erase(&points, options),
     }
@@ -142,7 +176,7 @@ fn report(result: &SmoothedCurve) -> Value {
         .periodic
         .as_ref()
         .map_or(&result.curve, |periodic| periodic.wrapped());
-    json!({
+    let mut value = json!({
         "curve": CurveRecord::from_bspline(curve),
         "closed": result.periodic.is_some(),
         "first_point": result.first_point,
@@ -167,7 +201,13 @@ fn report(result: &SmoothedCurve) -> Value {
         "least_squares_curvature_extrema": result.start_extrema,
         "newton_steps": result.newton_steps,
         "levels": result.levels,
-    })
+    });
+    // Only when there is something to say (the reports of curves that follow the data stay
+    // as they were).
+    if !result.warnings.is_empty() {
+        value["warnings"] = json!(result.warnings);
+    }
+    value
 }
 
 /// The `.dat` files of a directory, sorted.
@@ -197,7 +237,10 @@ pub fn smooth(args: &SmoothArgs) -> Result<()> {
     }
     if inputs.len() == 1 && !directory && args.out.is_none() {
         io::check_stdout_open()?;
-        let result = run_one(&inputs[0], &options, args.max_deviation)?;
+        let result = run_one(&inputs[0], &options, args.max_deviation, auto_extrema(args))?;
+        for warning in &result.warnings {
+            eprintln!("spline: warning: {warning}");
+        }
         return io::print_json(&report(&result));
     }
     let Some(out) = &args.out else {
@@ -271,17 +314,19 @@ fn batch(
             .zip(names.par_iter())
             .map(|(input, name)| {
                 let t0 = Instant::now();
-                let outcome = run_one(input, options, args.max_deviation).and_then(|result| {
-                    let mut value = report(&result);
-                    value["name"] = json!(name);
-                    let path = out.join(format!("{name}.json"));
-                    let shown = path.display().to_string();
-                    io::write_file(io::create_file(&shown)?, &shown, &io::encode(&value)?)?;
-                    Ok(result)
-                });
+                let auto = auto_extrema(args);
+                let outcome =
+                    run_one(input, options, args.max_deviation, auto).and_then(|result| {
+                        let mut value = report(&result);
+                        value["name"] = json!(name);
+                        let path = out.join(format!("{name}.json"));
+                        let shown = path.display().to_string();
+                        io::write_file(io::create_file(&shown)?, &shown, &io::encode(&value)?)?;
+                        Ok(result)
+                    });
                 let seconds = t0.elapsed().as_secs_f64();
                 bar.inc(1);
-                let line = match &outcome {
+                let mut line = match &outcome {
                     Ok(r) => json!({
                         "name": name,
                         "input": input,
@@ -303,6 +348,11 @@ fn batch(
                         "error": e.to_string(),
                     }),
                 };
+                if let Ok(r) = &outcome
+                    && !r.warnings.is_empty()
+                {
+                    line["warnings"] = json!(r.warnings);
+                }
                 (line.to_string(), outcome.is_ok())
             })
             .collect()

@@ -60,8 +60,10 @@ pub use constrained_surface::{
     ConstrainedSurfaceFit, Region, SurfaceApproximation, SurfaceConstraint,
 };
 pub use eraser::{
-    CurvatureExtremum, Extremum, ExtremumKind, MAX_CURVATURE_EXTREMA, Objective, SampledExtremum,
-    SmoothedCurve, SmoothingOptions, sampled_curvature_extrema, smooth, smooth_to_tolerance,
+    AUTO_EXTREMA_TOLERANCE, CurvatureExtremum, DEVIATION_WARNING_FACTOR, DEVIATION_WARNING_FLOOR,
+    Extremum, ExtremumKind, MAX_CURVATURE_EXTREMA, Objective, SampledExtremum, SmoothedCurve,
+    SmoothingOptions, sampled_curvature_extrema, smooth, smooth_fewest_extrema,
+    smooth_to_tolerance,
 };
 pub use flecnodal::{FlecnodalCircles, control_flecnodal_circles};
 pub use problem::{ApproximationProblem, Sign};

@@ -317,3 +317,59 @@ fn smoothing_a_closed_contour() {
     let message = odd.assert_clean_error();
     assert!(message.contains("as many maxima as minima"), "{message}");
 }
+
+#[test]
+fn smoothing_that_cannot_follow_the_data_warns() {
+    // A sharp-nosed plate (UIUC goe417a) with one maximum: a warning in the report and on
+    // standard error; an ordinary airfoil's report has no warnings field at all.
+    let plate = airfoil("plates/goe417a");
+    let run = spline(&["smooth", &plate, "--control-points", "20"]);
+    let out = run.json();
+    let warnings = out["warnings"].as_array().unwrap();
+    assert_eq!(warnings.len(), 1, "{warnings:?}");
+    assert!(out["max_deviation"].as_f64().unwrap() > 8e-3);
+    let warning = warnings[0].as_str().unwrap();
+    assert!(
+        run.stderr.contains("warning:") && run.stderr.contains(warning),
+        "{}",
+        run.stderr
+    );
+    let calm = spline(&["smooth", &airfoil("clarkv"), "--control-points", "20"]);
+    assert!(calm.json().get("warnings").is_none());
+    assert!(calm.stderr.is_empty(), "{}", calm.stderr);
+    // `auto`: the fewest extrema within the default tolerance, two on the plate.
+    let auto = spline(&[
+        "smooth",
+        &plate,
+        "--control-points",
+        "20",
+        "--curvature-extrema",
+        "auto",
+    ])
+    .json();
+    assert_eq!(auto["extrema"].as_array().unwrap().len(), 2);
+    assert!(auto["max_deviation"].as_f64().unwrap() < 2e-3);
+    assert!(auto.get("warnings").is_none());
+    // With --max-deviation as the tolerance; a tolerance nothing reaches is a clean error.
+    let tight = spline(&[
+        "smooth",
+        &plate,
+        "--control-points",
+        "20",
+        "--curvature-extrema",
+        "auto",
+        "--max-deviation",
+        "1e-6",
+    ]);
+    let message = tight.assert_clean_error();
+    assert!(message.contains("within"), "{message}");
+    let neither = spline(&[
+        "smooth",
+        &plate,
+        "--control-points",
+        "20",
+        "--max-deviation",
+        "0.001",
+    ]);
+    assert!(neither.assert_clean_error().contains("not both"));
+}

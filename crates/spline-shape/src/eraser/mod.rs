@@ -27,6 +27,7 @@
 mod closed;
 mod distances;
 mod driver;
+mod fewest_extrema;
 mod input;
 mod pieces;
 mod placement;
@@ -38,10 +39,11 @@ mod topology;
 mod types;
 mod verify;
 
+pub use fewest_extrema::{AUTO_EXTREMA_TOLERANCE, smooth_fewest_extrema};
 pub use smooth::smooth;
 pub use tolerance::smooth_to_tolerance;
 pub use types::{
-    CurvatureExtremum, Extremum, ExtremumKind, MAX_CURVATURE_EXTREMA, Objective, SmoothedCurve,
-    SmoothingOptions,
+    CurvatureExtremum, DEVIATION_WARNING_FACTOR, DEVIATION_WARNING_FLOOR, Extremum, ExtremumKind,
+    MAX_CURVATURE_EXTREMA, Objective, SmoothedCurve, SmoothingOptions,
 };
 pub use verify::{SampledExtremum, sampled_curvature_extrema};

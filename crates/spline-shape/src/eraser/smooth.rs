@@ -4,7 +4,8 @@ use super::driver::attempt;
 use super::input::{check_options, distinct, frame, polygon_area};
 use super::topology::{Closed, Open, Start, Topology};
 use super::types::{
-    CurvatureExtremum, ExtremumKind, SmoothedCurve, SmoothingOptions, extrema_words,
+    CurvatureExtremum, DEVIATION_WARNING_FACTOR, DEVIATION_WARNING_FLOOR, ExtremumKind,
+    SmoothedCurve, SmoothingOptions, extrema_words,
 };
 use nalgebra::Vector2;
 use spline_algebra::planar_features;
@@ -102,6 +103,10 @@ fn run<T: Topology>(points: &[Vector2<f64>], options: &SmoothingOptions) -> Resu
     let start_extrema = planar_features(&preliminary, 1e-10)
         .map(|f| f.curvature_extrema.len())
         .unwrap_or(0);
+    let least_squares_deviation = two_sided_deviation(&preliminary, &T::polyline(&unit))?
+        .to_curve
+        .max
+        * size;
     let fixed: Vec<(f64, usize)> = placed.iter().map(|&u| (u, p - 2)).collect();
 
     // 3. Attempts with knots that follow the shape, densities in turn (a closed curve's `N`
@@ -171,6 +176,8 @@ fn run<T: Topology>(points: &[Vector2<f64>], options: &SmoothingOptions) -> Resu
                 extrema,
                 inflections,
                 start_extrema,
+                least_squares_deviation,
+                warnings: Vec::new(),
                 orientation,
                 knot_exponent: exponent,
                 levels: found.levels,
@@ -186,6 +193,16 @@ fn run<T: Topology>(points: &[Vector2<f64>], options: &SmoothingOptions) -> Resu
     match best {
         Some(mut result) => {
             result.newton_steps = newton_steps;
+            let max = result.deviation.to_curve.max;
+            if max > DEVIATION_WARNING_FACTOR * least_squares_deviation
+                && max > DEVIATION_WARNING_FLOOR * size
+            {
+                result.warnings.push(format!(
+                    "the curve is {max:.3e} from the data, {:.1} times the least-squares fit's {least_squares_deviation:.3e} with the same {n} control points: {} cannot follow the turns of the data (allow more extrema, or more control points)",
+                    max / least_squares_deviation,
+                    extrema_words(placed.len()),
+                ));
+            }
             Ok(result)
         }
         None => Err(Error::new(

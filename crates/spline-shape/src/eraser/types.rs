@@ -12,6 +12,20 @@ use std::str::FromStr;
 /// slot of the placement; far more than any shape needs).
 pub const MAX_CURVATURE_EXTREMA: usize = 1000;
 
+/// A smoothed curve whose largest deviation exceeds this factor times that of the
+/// least-squares fit with the same control points, and [`DEVIATION_WARNING_FLOOR`] of the
+/// data's size, carries a warning ([`SmoothedCurve::warnings`]). With 20 control points and
+/// one maximum: 8.1 and 17.6 times on the sharp-nosed plates UIUC goe417a and goe531 (9.6
+/// and 11.2 mm from a chord of 1 m), 12 to 39 times on glennmartin3, m23 and e377 of
+/// `data/airfoils` (5.5 to 15 mm; m23 and e377 come within 0.3 mm with two extrema);
+/// ratios up to 10 occur on smooth airfoils whose least-squares fit is very close (0.3 mm),
+/// hence the floor.
+pub const DEVIATION_WARNING_FACTOR: f64 = 4.0;
+
+/// Deviations below this fraction of the diagonal of the data's bounding box never warn
+/// (`0.005`: 5 mm on an airfoil of chord 1 m; [`DEVIATION_WARNING_FACTOR`]).
+pub const DEVIATION_WARNING_FLOOR: f64 = 5e-3;
+
 /// A maximum or a minimum of the curvature.
 ///
 /// The curvature is oriented so that it is positive where the data turn counter-clockwise
@@ -208,6 +222,15 @@ pub struct SmoothedCurve {
     pub inflections: Vec<f64>,
     /// The number of curvature extrema of the least-squares fit of the same size.
     pub start_extrema: usize,
+    /// The largest data → curve distance of that least-squares fit (with parameter
+    /// correction, the start of the eraser): how close the curve could come without the
+    /// conditions on its curvature.
+    pub least_squares_deviation: f64,
+    /// Sentences for the caller, empty when all is well: one when the allowed extrema cost
+    /// more than [`DEVIATION_WARNING_FACTOR`] times [`SmoothedCurve::least_squares_deviation`]
+    /// (the data have more turns of the curvature than allowed, or turns sharper than the
+    /// curve can follow with them).
+    pub warnings: Vec<String>,
     /// `+1` if the data run counter-clockwise (the oriented curvature is the signed one),
     /// `−1` otherwise.
     pub orientation: f64,
