@@ -11,15 +11,16 @@ use clap::Args;
 use nalgebra::Vector2;
 use serde_json::{Value, json};
 use spline_algebra::{
-    CurveIntersection, intersect_curves, intersect_curves_relative, offset_cusps,
-    self_intersections, self_intersections_relative,
+    CurveIntersection, intersect_curves, intersect_curves_relative, self_intersections,
+    self_intersections_relative,
 };
 use spline_core::{Error, ErrorKind, Result};
 use spline_fit::{
-    SmoothingParameter, offset_curve, reduce_degree, reparametrize_by_arc_length, smoothing_spline,
+    SmoothingParameter, reduce_degree, reparametrize_by_arc_length, smoothing_spline,
     smoothing_to_residual,
 };
 use spline_geom::{ArcLengthTable, BSpline, PlanarCurve};
+use spline_shape::{OffsetOptions, offset_planar_curve};
 
 #[derive(Args)]
 pub struct OffsetArgs {
@@ -165,7 +166,7 @@ fn padded(p: &Vector2<f64>) -> Pt {
     Pt::from_fn(|i, _| if i < 2 { p[i] } else { 0.0 })
 }
 
-/// `spline offset CURVE --distance D`.
+/// `spline offset CURVE --distance D`: one call of `spline_shape::offset_planar_curve`.
 pub fn offset(args: &OffsetArgs) -> Result<()> {
     let Planar::Polynomial(curve) = read_planar(&args.curve, "offset")? else {
         return Err(Error::new(
@@ -173,24 +174,21 @@ pub fn offset(args: &OffsetArgs) -> Result<()> {
             format!("{}: offset needs a B-spline curve (no weights)", args.curve),
         ));
     };
-    let (a, b) = curve.domain();
-    let cusps = offset_cusps(&curve, args.distance, 1e-12 * (b - a))?;
-    let at: Vec<f64> = cusps
-        .iter()
-        .filter(|c| c.sign_change)
-        .map(|c| c.u)
-        .collect();
-    let fit = offset_curve(&curve, args.distance, args.degree, args.tolerance, &at)?;
+    let options = OffsetOptions {
+        degree: args.degree,
+        tolerance: args.tolerance,
+    };
+    let offset = offset_planar_curve(&curve, args.distance, &options)?;
     let record = Sized {
-        value: fit.curve.map_control_points(padded),
+        value: offset.curve.map_control_points(padded),
         dim: 2,
     }
     .json()?;
     print_json(&json!({
         "curve": record,
-        "cusps": cusps.iter().map(|c| c.u).collect::<Vec<_>>(),
-        "cusp_points": cusps.iter().map(|c| [c.point.x, c.point.y]).collect::<Vec<_>>(),
-        "max_error": fit.max_error,
+        "cusps": offset.cusps.iter().map(|c| c.u).collect::<Vec<_>>(),
+        "cusp_points": offset.cusps.iter().map(|c| [c.point.x, c.point.y]).collect::<Vec<_>>(),
+        "max_error": offset.max_error,
     }))
 }
 

@@ -11,6 +11,8 @@
 //!   constraints on partial derivatives and convexity (thesis §5.5–5.6).
 //! - [`eraser`]: the selective eraser of curvature extrema of planar curves (thesis ch. 6),
 //!   e.g. airfoil smoothing.
+//! - [`offset`]: offsets of curves with their cusps, within a tolerance (the tool calls it
+//!   once).
 
 /// The settings shared by the constrained approximations of functions and of surfaces
 /// (their builders' `refinement` and `options`), written once.
@@ -40,6 +42,7 @@ pub mod constrained_spatial;
 pub mod constrained_surface;
 pub mod eraser;
 pub mod flecnodal;
+pub mod offset;
 mod problem;
 pub mod revolution;
 
@@ -66,6 +69,7 @@ pub use eraser::{
     smooth_to_tolerance,
 };
 pub use flecnodal::{FlecnodalCircles, control_flecnodal_circles};
+pub use offset::{CUSP_ACCURACY, CurveOffset, OffsetCusps, OffsetOptions, offset_planar_curve};
 pub use problem::{ApproximationProblem, Sign};
 pub use revolution::{
     MeridianControl, ParabolicCircles, RidgeControl, TranslationControl, control_parabolic_circles,
