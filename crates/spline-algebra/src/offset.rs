@@ -42,7 +42,9 @@ pub struct OffsetCusp<T> {
 /// rounding merges or moves its zeros); each is polished by Newton's method on `φ` and kept
 /// where $\lvert \kappa d - 1 \rvert \le 10^{-6}$ with $d\,h_4 > 0$. `accuracy` is the
 /// parameter accuracy of the isolation (the polish then goes to rounding). Curves of degree
-/// 1 have none.
+/// 1 have none. Scale-invariant: the curve and the distance are first divided by a power of
+/// four near their size, so a curve scaled by any factor from 1e-300 to 1e300 (with its
+/// distance) has the same cusps.
 ///
 /// ```
 /// use nalgebra::Vector2;
@@ -81,6 +83,25 @@ pub fn offset_cusps<T: Scalar>(
     }
     if curve.degree() < 2 || distance == T::zero() {
         return Ok(Vec::new());
+    }
+    // F grows as the sixth power of the coordinates (under- or overflow beyond about
+    // 1e±50): the curve and the distance are divided by a power of four near their size
+    // (exact), so the cusps are those of the unscaled problem, their points scaled back.
+    let largest = curve
+        .control_points()
+        .iter()
+        .fold(distance.abs(), |m, p| m.max(p.amax()));
+    let scale: T = cast(spline_core::power_of_two_scale(to_f64(largest)));
+    if scale != T::one() {
+        let mut scaled = curve.clone();
+        for p in scaled.control_points_mut() {
+            *p /= scale;
+        }
+        let mut cusps = offset_cusps(&scaled, distance / scale, accuracy)?;
+        for cusp in &mut cusps {
+            cusp.point *= scale;
+        }
+        return Ok(cusps);
     }
     let invariants = PlanarInvariants::new(curve.knots())?;
     let points = curve.control_points();

@@ -4,9 +4,11 @@
 use crate::lsq::LeastSquares;
 use crate::params::check_degree;
 use spline_core::{
-    ControlPoint, Error, ErrorKind, KnotVector, Result, Scalar, cast, from_count, to_f64,
+    ControlPoint, Error, ErrorKind, KnotVector, Result, Scalar, cast, from_count,
+    power_of_two_scale, to_f64,
 };
 use spline_geom::BSpline;
+use std::cell::Cell;
 
 /// The most pieces [`AdaptiveApproximation`] allows by default.
 pub const MAX_ADAPTIVE_PIECES: usize = 100_000;
@@ -15,7 +17,10 @@ pub const MAX_ADAPTIVE_PIECES: usize = 100_000;
 /// within a tolerance: least squares on `2 (p + 1)` samples per knot span, ends pinned
 /// ($C(a) = f(a)$, $C(b) = f(b)$), the deviation measured at `4 (p + 1)` other points per
 /// span, and every span whose deviation exceeds **half** the tolerance split in two; until
-/// every span meets it. The fit is $C^{p-1}$ except at `corners` (multiplicity `p`, `C⁰`),
+/// every span meets it. The tolerance is absolute (in the units of the map's values); the
+/// computation is scale-invariant: the values are divided by a power of four near their
+/// size before the least squares and the deviations, so a map scaled by any factor from
+/// 1e-300 to 1e300, with its tolerance, gives the same fit scaled. The fit is $C^{p-1}$ except at `corners` (multiplicity `p`, `C⁰`),
 /// where `f` may have a kink (the cusps of an offset).
 ///
 /// ```
@@ -133,13 +138,35 @@ impl<T: Scalar> AdaptiveApproximation<T> {
         breaks.push(b);
         breaks.sort_by(|x, y| x.partial_cmp(y).unwrap_or(std::cmp::Ordering::Equal));
         breaks.dedup();
-        let target = self.tolerance * cast(0.5);
+        // The values are divided by a power of four near the size of the first samples
+        // (exact), so that the fit and its deviations are those of the unscaled map: no
+        // underflow of the least squares at 1e-300, no overflow at 1e300.
+        let scale: Cell<Option<T>> = Cell::new(None);
+        let scaled = |us: &[T]| -> Result<Vec<P>> {
+            let mut points = f(us)?;
+            let s = scale.get().unwrap_or_else(|| {
+                let largest = points.iter().fold(T::zero(), |m, q| m.max(q.max_abs()));
+                let s = cast(power_of_two_scale(to_f64(largest)));
+                scale.set(Some(s));
+                s
+            });
+            let inverse = T::one() / s;
+            for q in &mut points {
+                *q = *q * inverse;
+            }
+            Ok(points)
+        };
         let mut passes = 0;
         loop {
-            let (curve, errors) = self.fit_on(p, &breaks, &f)?;
-            let worst = errors.iter().fold(T::zero(), |m, &e| m.max(e));
+            let (mut curve, errors) = self.fit_on(p, &breaks, &scaled)?;
+            let s = scale.get().unwrap_or_else(T::one);
+            let target = self.tolerance * cast(0.5) / s;
+            let worst = errors.iter().fold(T::zero(), |m, &e| m.max(e)) * s;
             let bad: Vec<usize> = (0..errors.len()).filter(|&k| errors[k] > target).collect();
             if bad.is_empty() {
+                for q in curve.control_points_mut() {
+                    *q = *q * s;
+                }
                 return Ok(AdaptiveFit {
                     curve,
                     max_error: worst,

@@ -42,7 +42,7 @@ fn one_sided_tangents<T: Scalar, C: PlanarCurve<T> + ?Sized>(
                 .fold(T::zero(), nalgebra::RealField::max);
             let degenerate = cast::<T>(1e-12) * size;
             if l.amax() > degenerate && r.amax() > degenerate {
-                return Ok((l.normalize(), r.normalize()));
+                return Ok((unit(l), unit(r)));
             }
         }
     }
@@ -50,7 +50,13 @@ fn one_sided_tangents<T: Scalar, C: PlanarCurve<T> + ?Sized>(
     let mut right = [Vector2::zeros(); 2];
     curve.derivatives_into(k - delta, &mut left)?;
     curve.derivatives_into(k + delta, &mut right)?;
-    Ok((left[1].normalize(), right[1].normalize()))
+    Ok((unit(left[1]), unit(right[1])))
+}
+
+/// `v / |v|` without underflow or overflow of the squares (`v` divided by its largest
+/// coordinate first: legs of 1e-300 have directions too).
+fn unit<T: Scalar>(v: Vector2<T>) -> Vector2<T> {
+    (v / v.amax()).normalize()
 }
 
 /// A B-spline of degree `degree` (3 is a good choice) on the curve's domain within `tolerance` of the offset
