@@ -4,6 +4,7 @@ mod assemble;
 mod normal;
 #[cfg(feature = "parallel")]
 mod parallel;
+mod scattered;
 
 #[cfg(feature = "parallel")]
 pub use assemble::PARALLEL_MIN_POINTS;
@@ -11,6 +12,7 @@ pub(crate) use assemble::penalty_rows;
 pub use normal::{GridLeastSquares, GridNormalEquations, NormalEquations};
 #[cfg(feature = "parallel")]
 pub(crate) use parallel::chunk_len;
+pub(crate) use scattered::scattered_normal_equations;
 
 use crate::params::check_degree;
 use crate::params::{
