@@ -6,6 +6,7 @@
 mod reference_values;
 
 use super::*;
+use crate::lsq::LsqMethod;
 use reference_values as r;
 use spline_geom::Extrapolate;
 
