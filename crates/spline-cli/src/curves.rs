@@ -29,7 +29,8 @@ pub struct OffsetArgs {
     /// Signed distance: positive to the left of the direction of travel.
     #[arg(long, allow_hyphen_values = true)]
     distance: f64,
-    /// Largest distance between the result and the exact offset.
+    /// Largest distance between the result and the exact offset (absolute, in the units of
+    /// the points).
     #[arg(long, default_value_t = 1e-6)]
     tolerance: f64,
     /// Degree of the result.
@@ -47,7 +48,9 @@ pub struct ArclengthArgs {
     /// Give the curve parametrised by arc length instead (within --tolerance).
     #[arg(long)]
     reparametrize: bool,
-    /// Accuracy of lengths, or the tolerance of the reparametrised curve.
+    /// Relative accuracy of lengths (a fraction of the length: the same digits at every
+    /// scale); with --reparametrize, the absolute tolerance of the reparametrised curve (in
+    /// the units of the points).
     #[arg(long, default_value_t = 1e-9)]
     tolerance: f64,
 }
@@ -59,7 +62,8 @@ pub struct ReduceArgs {
     /// How much to lower the degree.
     #[arg(long, default_value_t = 1)]
     times: usize,
-    /// Largest distance between the result and the curve.
+    /// Largest distance between the result and the curve (absolute, in the units of the
+    /// points).
     #[arg(long)]
     tolerance: f64,
     /// Add knots where the curve's own knots do not reach the tolerance.

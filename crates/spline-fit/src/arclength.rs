@@ -1,7 +1,7 @@
 //! Reparametrisation by arc length within a tolerance.
 
 use crate::adaptive::{AdaptiveApproximation, AdaptiveFit};
-use spline_core::{Result, Scalar, cast};
+use spline_core::{ControlPoint, Result, Scalar, cast};
 use spline_geom::{ArcLengthTable, ParamCurve};
 
 /// A B-spline curve $G$ of degree `p` on $[0, L]$ ($L$ the length of `curve`) with
@@ -44,8 +44,20 @@ pub fn reparametrize_by_arc_length<T: Scalar, C: ParamCurve<T> + ?Sized>(
         ));
     }
     // Lengths far more accurate than the positions asked for (a length error δ moves the
-    // point by δ along the curve).
-    let table = ArcLengthTable::new(curve, tolerance * cast(1e-3))?;
+    // point by δ along the curve): a thousandth of the tolerance, relative to the length of
+    // the control polygon (at least the curve's for B-splines), at least 8 ε.
+    let polygon = curve.control_polygon();
+    let size = polygon
+        .windows(2)
+        .fold(T::zero(), |s, w| s + (w[1] - w[0]).length());
+    let relative = if size > T::zero() {
+        (tolerance * cast(1e-3) / size)
+            .min(cast(1e-3))
+            .max(cast(8.0 * f64::EPSILON))
+    } else {
+        cast(1e-3)
+    };
+    let table = ArcLengthTable::new(curve, relative)?;
     let total = table.total();
     let at = table.at_breaks();
     let breaks: Vec<T> = at[1..at.len() - 1]

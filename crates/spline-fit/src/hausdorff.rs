@@ -4,7 +4,7 @@
 
 use crate::project::closest_point;
 use crate::report::Deviation;
-use spline_core::{ControlPoint, Error, ErrorKind, Result, Scalar, cast, from_count};
+use spline_core::{ControlPoint, Error, ErrorKind, Result, Scalar, cast, from_count, to_f64};
 use spline_geom::BSpline;
 
 /// Samples per non-empty knot span for the curve → data direction, before refining the
@@ -167,20 +167,38 @@ pub fn two_sided_deviation<T: Scalar, P: ControlPoint<T>>(
             "a deviation needs at least one data point",
         ));
     }
+    // Curve and data divided by a power of four near their size (exact): the distances are
+    // those of the unscaled problem times the scale (no squares underflowing at 1e-300 or
+    // overflowing at 1e300).
+    let largest = points
+        .iter()
+        .chain(curve.control_points())
+        .fold(T::zero(), |m, q| m.max(q.max_abs()));
+    let scale: T = cast(spline_core::power_of_two_scale(to_f64(largest)));
+    let inverse = T::one() / scale;
+    let unit_curve = curve.map_control_points(|c| *c * inverse);
+    let unit_points: Vec<P> = points.iter().map(|q| *q * inverse).collect();
     let mut distances = Vec::with_capacity(points.len());
     let mut params = Vec::with_capacity(points.len());
-    for q in points {
-        let hit = closest_point(curve, *q)?;
+    for q in &unit_points {
+        let hit = closest_point(&unit_curve, *q)?;
         distances.push(hit.distance);
         params.push(hit.param);
     }
-    let (to_data, to_data_param, to_data_excess) = curve_to_polyline(curve, points)?;
+    let (to_data, to_data_param, to_data_excess) = curve_to_polyline(&unit_curve, &unit_points)?;
+    let mut to_curve = Deviation::from_distances(distances);
+    to_curve.max *= scale;
+    to_curve.rms *= scale;
+    to_curve.sum_squares *= scale * scale;
+    for d in &mut to_curve.distances {
+        *d *= scale;
+    }
     Ok(TwoSidedDeviation {
-        to_curve: Deviation::from_distances(distances),
+        to_curve,
         params,
-        to_data,
+        to_data: to_data * scale,
         to_data_param,
-        to_data_excess,
+        to_data_excess: to_data_excess * scale,
     })
 }
 

@@ -123,7 +123,14 @@ impl<T: Scalar, P: ControlPoint<T>> Slab<T, P> {
             Some(n) => gap(self.w, rest.dot(n)),
             None => (rest.length() - self.w.1).max(T::zero()),
         };
-        (ga * ga + gb * gb + gw * gw).sqrt()
+        // Divided by the largest gap first: no overflow of the squares at 1e300.
+        let m = ga.max(gb).max(gw);
+        if m > T::zero() {
+            let (ga, gb, gw) = (ga / m, gb / m, gw / m);
+            m * (ga * ga + gb * gb + gw * gw).sqrt()
+        } else {
+            T::zero()
+        }
     }
 }
 

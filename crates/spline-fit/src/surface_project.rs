@@ -3,7 +3,9 @@
 //! iteration on the leaves.
 
 use crate::slab::Slab;
-use spline_core::{ControlPoint, Error, ErrorKind, Result, Scalar, cast, to_f64};
+use spline_core::{
+    ControlPoint, Error, ErrorKind, Result, Scalar, cast, power_of_two_scale, to_f64,
+};
 use spline_geom::{Direction, ParamSurface, Surface};
 use std::cmp::Ordering;
 use std::collections::BinaryHeap;
@@ -70,13 +72,12 @@ pub(crate) fn bounding_box<T: Scalar, P: ControlPoint<T>>(
 
 /// The distance from `q` to the box `[lo, hi]` (zero inside).
 pub(crate) fn box_distance<T: Scalar, P: ControlPoint<T>>(lo: &P, hi: &P, q: &P) -> T {
-    let mut sum = T::zero();
-    for c in 0..P::DIM {
+    // The length of the gap vector, without overflow or underflow of its squares.
+    P::from_coords(|c| {
         let x = q.coord(c);
-        let d = (lo.coord(c) - x).max(x - hi.coord(c)).max(T::zero());
-        sum += d * d;
-    }
-    sum.sqrt()
+        (lo.coord(c) - x).max(x - hi.coord(c)).max(T::zero())
+    })
+    .length()
 }
 
 /// A bounding-box hierarchy over a surface: the Bézier patches of its container, split by
@@ -475,7 +476,18 @@ fn newton_in<T: Scalar, S: ParamSurface<T>>(
     let eps = T::default_epsilon();
     let half: T = cast(0.5);
     let (mut u, mut v) = start;
-    let mut d = partials(surface, (u, v))?;
+    // The iteration runs on the points divided by a power of four near their size (exact):
+    // the squares and the Hessian's determinant (fourth powers) neither overflow at 1e150
+    // nor underflow at 1e-150, and the steps are those of the unscaled problem.
+    let first = partials(surface, (u, v))?;
+    let size = first
+        .iter()
+        .fold(target.max_abs(), |m, p| m.max(p.max_abs()));
+    let scale: T = cast(power_of_two_scale(to_f64(size)));
+    let inverse = T::one() / scale;
+    let target = &(*target * inverse);
+    let scaled = |d: [S::Point; 6]| d.map(|p| p * inverse);
+    let mut d = scaled(first);
     let mut f = (d[0] - *target).length_squared();
     let clamp = |x: T, a: T, b: T| x.max(a).min(b);
     for _ in 0..MAX_NEWTON {
@@ -535,7 +547,7 @@ fn newton_in<T: Scalar, S: ParamSurface<T>>(
             if cu == u && cv == v {
                 break;
             }
-            let dc = partials(surface, (cu, cv))?;
+            let dc = scaled(partials(surface, (cu, cv))?);
             let fc = (dc[0] - *target).length_squared();
             if fc < f || (model.is_some() && halving == 0 && fc <= f + noise) {
                 moved = (cu - u).abs() > eps * (u.abs() + (u1 - u0))
@@ -554,7 +566,7 @@ fn newton_in<T: Scalar, S: ParamSurface<T>>(
     Ok(SurfaceProjection {
         u,
         v,
-        point: d[0],
-        distance: (d[0] - *target).length(),
+        point: d[0] * scale,
+        distance: (d[0] - *target).length() * scale,
     })
 }

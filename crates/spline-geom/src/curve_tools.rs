@@ -189,7 +189,8 @@ pub(crate) fn distance_to_segment<T: Scalar, P: ControlPoint<T>>(q: &P, a: &P, b
 }
 
 /// The parameter `u` at which the arc length from the start of the domain is `length`, to
-/// the absolute accuracy `accuracy` in length ([`ArcLengthTable::param_at`]).
+/// the relative accuracy `accuracy` (a fraction of the curve's length;
+/// [`ArcLengthTable::param_at`]).
 ///
 /// ```
 /// use nalgebra::Vector2;
@@ -220,11 +221,17 @@ pub struct ArcLengthTable<'a, T, C: ?Sized> {
     curve: &'a C,
     breaks: Vec<T>,
     cumulative: Vec<T>,
+    /// The relative accuracy given.
     accuracy: T,
+    /// The absolute accuracy in length it means for this curve (`accuracy` times the
+    /// length).
+    absolute: T,
 }
 
 impl<'a, T: Scalar, C: ParamCurve<T> + ?Sized> ArcLengthTable<'a, T, C> {
-    /// The table of `curve` for lengths to the absolute `accuracy`.
+    /// The table of `curve` for lengths to the relative `accuracy` (a fraction of the
+    /// curve's length, [`crate::DEFAULT_ACCURACY`] a good choice: scale-invariant, and each
+    /// piece's quadrature asks only its own fraction, whatever the number of pieces).
     ///
     /// # Errors
     /// [`ErrorKind::InvalidTolerance`] unless the accuracy is positive and finite; the errors
@@ -238,8 +245,7 @@ impl<'a, T: Scalar, C: ParamCurve<T> + ?Sized> ArcLengthTable<'a, T, C> {
             ));
         }
         let breaks = curve.breaks();
-        let pieces = spline_core::from_count::<T>(breaks.len().max(2) - 1);
-        let quadrature = accuracy * cast(0.1) / pieces;
+        let quadrature = accuracy * cast(0.1);
         let mut cumulative = Vec::with_capacity(breaks.len());
         cumulative.push(T::zero());
         // Each piece's quadrature on its own bounds: `arc_length_between` would list the
@@ -255,11 +261,13 @@ impl<'a, T: Scalar, C: ParamCurve<T> + ?Sized> ArcLengthTable<'a, T, C> {
             let last = cumulative[cumulative.len() - 1];
             cumulative.push(last + adaptive_length(w, quadrature, speed)?);
         }
+        let absolute = accuracy * cumulative[cumulative.len() - 1];
         Ok(Self {
             curve,
             breaks,
             cumulative,
             accuracy,
+            absolute,
         })
     }
 
@@ -311,9 +319,9 @@ impl<'a, T: Scalar, C: ParamCurve<T> + ?Sized> ArcLengthTable<'a, T, C> {
         let total = self.total();
         // Lengths within the accuracy of an end are that end (two quadratures of the same
         // length differ by rounding).
-        let s = if s > total && s <= total + self.accuracy {
+        let s = if s > total && s <= total + self.absolute {
             total
-        } else if s < T::zero() && s >= -self.accuracy {
+        } else if s < T::zero() && s >= -self.absolute {
             T::zero()
         } else {
             s
@@ -367,7 +375,7 @@ impl<'a, T: Scalar, C: ParamCurve<T> + ?Sized> ArcLengthTable<'a, T, C> {
             if f.abs() < (best.1 - s).abs() {
                 best = (u, su);
             }
-            if f.abs() <= self.accuracy {
+            if f.abs() <= self.absolute {
                 return Ok((u, su));
             }
             if f > T::zero() {

@@ -148,8 +148,8 @@ pub trait ParamCurve<T: Scalar> {
         params
     }
 
-    /// The arc length of the whole curve to the absolute `accuracy`
-    /// ([`ParamCurve::arc_length_between`]).
+    /// The arc length of the whole curve to the relative `accuracy`
+    /// ([`ParamCurve::arc_length_between`]; [`crate::DEFAULT_ACCURACY`] is a good choice).
     ///
     /// # Errors
     /// As [`ParamCurve::arc_length_between`].
@@ -158,9 +158,11 @@ pub trait ParamCurve<T: Scalar> {
         self.arc_length_between(a, b, accuracy)
     }
 
-    /// The arc length between parameters `a ≤ b` to the absolute `accuracy`:
+    /// The arc length between parameters `a ≤ b` to the relative `accuracy` (a fraction
+    /// of the length: the same digits at every scale of the coordinates):
     /// $\int_a^b \lVert C'(u) \rVert\\,du$ by adaptive Gauss–Legendre quadrature on each
-    /// piece (the speed is smooth inside a piece), bisecting where two estimates differ.
+    /// piece (the speed is smooth inside a piece), bisecting where two estimates differ by
+    /// more than `accuracy` times the piece's length.
     ///
     /// # Errors
     /// [`ErrorKind::NonFinite`]/[`ErrorKind::OutOfDomain`] for the bounds;

@@ -244,7 +244,7 @@ macro_rules! curve_shortcuts {
                 ParamCurve::curvature_magnitude(self, u)
             }
 
-            /// The arc length of the whole curve to the absolute `accuracy`
+            /// The arc length of the whole curve to the relative `accuracy`
             /// ([`ParamCurve::arc_length`]).
             ///
             /// # Errors

@@ -6,7 +6,7 @@ use crate::surface_project::{BoxTree, Node, bounding_box};
 use nalgebra::{Matrix3, Vector3};
 #[cfg(doc)]
 use spline_core::ErrorKind;
-use spline_core::{Result, Scalar, cast, to_f64};
+use spline_core::{ControlPoint, Result, Scalar, cast, power_of_two_scale, to_f64};
 use spline_geom::{Bezier, ParamCurve, ParamSurface};
 
 /// Splits of one Bézier piece of the curve at most.
@@ -41,7 +41,7 @@ fn curve_leaves<T: Scalar, C: ParamCurve<T, Point = Vector3<T>>>(
         .map(|(lo, hi, cp)| Bezier::with_interval(cp, lo, hi))
         .collect::<Result<_>>()?;
     let all = bounding_box(curve.control_polygon().into_iter());
-    let min_size = (all.1 - all.0).norm() * cast::<T>(1.0 / 24.0);
+    let min_size = ControlPoint::length(&(all.1 - all.0)) * cast::<T>(1.0 / 24.0);
     let mut leaves = Vec::new();
     let mut stack: Vec<(Bezier<T, C::Coefficient>, usize)> =
         pieces.into_iter().map(|p| (p, 0)).collect();
@@ -141,6 +141,10 @@ where
     let leaves = curve_leaves(curve)?;
     let scale = scale_of_boxes(&tree, leaves.iter().map(|l| (l.0, l.1)));
     let distance = tolerances.distance_for(scale);
+    // The equations are solved on the points divided by a power of four near the objects'
+    // size (exact): the normal equations (squares of the derivatives) neither overflow at
+    // 1e300 nor underflow at 1e-300.
+    let inverse = T::one() / cast::<T>(power_of_two_scale(to_f64(scale)));
     let (ta, tb) = curve.domain();
     let ((ua, ub), (va, vb)) = surface.domain();
     let lower = Vector3::new(ta, ua, va);
@@ -161,11 +165,12 @@ where
                 surface.derivatives_into(x[1], x[2], 1, &mut sd)?;
                 // sd[k * 2 + l] = ∂^{k+l} S / ∂u^k ∂v^l.
                 Ok((
-                    cd[0] - sd[0],
-                    Matrix3::from_columns(&[cd[1], -sd[2], -sd[1]]),
+                    (cd[0] - sd[0]) * inverse,
+                    Matrix3::from_columns(&[cd[1], -sd[2], -sd[1]]) * inverse,
                 ))
             };
             let (x, f) = lm_solve(residual, start, (lower, upper))?;
+            let f = f / inverse;
             if !(f <= distance) {
                 continue;
             }
@@ -173,10 +178,10 @@ where
             curve.derivatives_into(x[0], &mut cd)?;
             let mut sd = [Vector3::zeros(); 4];
             surface.derivatives_into(x[1], x[2], 1, &mut sd)?;
-            let normal = sd[2].cross(&sd[1]);
-            let (tn, nn) = (cd[1].norm(), normal.norm());
+            let (tangent, normal) = (cd[1] * inverse, (sd[2] * inverse).cross(&(sd[1] * inverse)));
+            let (tn, nn) = (tangent.norm(), normal.norm());
             let tangential = !(tn > T::zero() && nn > T::zero())
-                || (cd[1].dot(&normal) / (tn * nn)).abs() < tolerances.angle;
+                || (tangent.dot(&normal) / (tn * nn)).abs() < tolerances.angle;
             let hit = CurveSurfaceHit {
                 t: x[0],
                 u: x[1],
@@ -188,11 +193,11 @@ where
             // tolerance (the distance grows quadratically away from it).
             let near = |h: &CurveSurfaceHit<T>| {
                 let radius = if h.tangential && hit.tangential {
-                    (distance * scale).sqrt() * cast::<T>(10.0)
+                    distance.sqrt() * scale.sqrt() * cast::<T>(10.0)
                 } else {
                     distance * cast::<T>(10.0)
                 };
-                (h.point - hit.point).norm() <= radius
+                ControlPoint::length(&(h.point - hit.point)) <= radius
                     && (h.t - hit.t).abs() <= (tb - ta) * cast::<T>(1e-4)
             };
             match hits.iter_mut().find(|(h, _)| near(h)) {

@@ -9,7 +9,7 @@ pub use march::{IntersectionCurve, MAX_TRACE_POINTS, intersect_surfaces};
 
 use crate::surface_project::BoxTree;
 use nalgebra::{SMatrix, SVector, Vector3};
-use spline_core::{Error, Result, Scalar, cast, to_f64};
+use spline_core::{ControlPoint, Error, Result, Scalar, cast, to_f64};
 
 /// Tolerances of the intersection algorithms.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -81,7 +81,8 @@ fn scale_of_boxes<T: Scalar>(
         lo = lo.inf(&a);
         hi = hi.sup(&b);
     }
-    (hi - lo).norm().max(cast(f64::MIN_POSITIVE))
+    // The length without overflow of the squares (objects of size 1e300).
+    ControlPoint::length(&(hi - lo)).max(cast(f64::MIN_POSITIVE))
 }
 
 /// Levenberg–Marquardt for `N` unknowns and `M` equations inside the box `bounds`: returns

@@ -119,7 +119,8 @@ pub(crate) fn distinct(points: &[Vector2<f64>]) -> Result<Vec<Vector2<f64>>> {
     Ok(out)
 }
 
-/// Centre and diagonal of the bounding box.
+/// Centre and diagonal of the bounding box, without underflow or overflow at any scale the
+/// numbers hold (data at 1e-300 or 1e300 have a diagonal too).
 pub(crate) fn frame(points: &[Vector2<f64>]) -> (Vector2<f64>, f64) {
     let mut lo = points[0];
     let mut hi = points[0];
@@ -127,7 +128,10 @@ pub(crate) fn frame(points: &[Vector2<f64>]) -> (Vector2<f64>, f64) {
         lo = lo.inf(q);
         hi = hi.sup(q);
     }
-    ((lo + hi) * 0.5, (hi - lo).norm())
+    (
+        lo * 0.5 + hi * 0.5,
+        spline_core::ControlPoint::length(&(hi * 0.5 - lo * 0.5)) * 2.0,
+    )
 }
 
 /// Twice the signed area of the polygon closed by its chord (positive counter-clockwise).
