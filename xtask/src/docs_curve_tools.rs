@@ -83,12 +83,12 @@ pub(crate) fn render(out: &Path) -> Result<(), String> {
     plot.add_curve_styled(&other, "curve2");
     let hits = intersect_curves(&curve, &other, 1e-9).map_err(|e| e.to_string())?;
     plot.add_markers(
-        &hits.iter().map(|h| h.point).collect::<Vec<_>>(),
+        &hits.points.iter().map(|h| h.point).collect::<Vec<_>>(),
         "inflection",
     );
     let loops = self_intersections(&other, 1e-9).map_err(|e| e.to_string())?;
     plot.add_markers(
-        &loops.iter().map(|h| h.point).collect::<Vec<_>>(),
+        &loops.points.iter().map(|h| h.point).collect::<Vec<_>>(),
         "extremum",
     );
     crate::write_doc(out, "intersections.svg", &plot.render())?;

@@ -93,8 +93,9 @@ mod zero_set;
 pub use bilinear::SparseBilinear;
 pub use bounds::tight_box;
 pub use curve_intersection::{
-    CurveIntersection, MAX_INTERSECTION_PAIRS, TANGENTIAL_SINE, intersect_curves,
-    intersect_curves_relative, planar_extent, self_intersections, self_intersections_relative,
+    CurveIntersection, CurveIntersections, CurveOverlap, MAX_INTERSECTION_PAIRS, TANGENTIAL_SINE,
+    intersect_curves, intersect_curves_relative, planar_extent, self_intersections,
+    self_intersections_relative,
 };
 pub use curves::{Differentiated, Form, Invariant, PlanarInvariants};
 pub use features::{

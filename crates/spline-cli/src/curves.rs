@@ -11,7 +11,7 @@ use clap::Args;
 use nalgebra::Vector2;
 use serde_json::{Value, json};
 use spline_algebra::{
-    CurveIntersection, intersect_curves, intersect_curves_relative, self_intersections,
+    CurveIntersections, intersect_curves, intersect_curves_relative, self_intersections,
     self_intersections_relative,
 };
 use spline_core::{Error, ErrorKind, Result};
@@ -96,15 +96,26 @@ pub struct SmoothingArgs {
     degree: usize,
 }
 
-fn hits_json(hits: &[CurveIntersection<f64>]) -> Value {
-    Value::Array(
-        hits.iter()
-            .map(|h| {
-                json!({"u": h.u, "v": h.v, "point": [h.point.x, h.point.y],
-                       "tangential": h.tangential, "gap": h.gap})
-            })
-            .collect(),
-    )
+/// The points, then the overlaps (`"overlap": true`, intervals on both curves), in one
+/// array sorted by `u` (an overlap by the start of its interval).
+fn hits_json(hits: &CurveIntersections<f64>) -> Value {
+    let mut out: Vec<(f64, Value)> = hits
+        .points
+        .iter()
+        .map(|h| {
+            let value = json!({"u": h.u, "v": h.v, "point": [h.point.x, h.point.y],
+                               "tangential": h.tangential, "gap": h.gap});
+            (h.u, value)
+        })
+        .collect();
+    out.extend(hits.overlaps.iter().map(|o| {
+        let (p, q) = o.points;
+        let value = json!({"overlap": true, "u": [o.u.0, o.u.1], "v": [o.v.0, o.v.1],
+                           "reversed": o.reversed, "points": [[p.x, p.y], [q.x, q.y]]});
+        (o.u.0, value)
+    }));
+    out.sort_by(|x, y| x.0.total_cmp(&y.0));
+    Value::Array(out.into_iter().map(|(_, v)| v).collect())
 }
 
 /// A contact tolerance as given (`--tolerance`, absolute) or by default (relative to size).
@@ -118,7 +129,7 @@ fn pair<A: PlanarCurve<f64>>(
     a: &A,
     b: &Planar,
     contact: Contact,
-) -> Result<Vec<CurveIntersection<f64>>> {
+) -> Result<CurveIntersections<f64>> {
     match (b, contact) {
         (Planar::Polynomial(b), Contact::Absolute(t)) => intersect_curves(a, b, t),
         (Planar::Rational(b), Contact::Absolute(t)) => intersect_curves(a, b, t),

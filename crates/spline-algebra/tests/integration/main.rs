@@ -10,6 +10,7 @@ mod features;
 mod intersections;
 mod maps;
 mod offset_cusps;
+mod overlaps;
 mod periodic_features;
 mod products;
 mod revolution;
