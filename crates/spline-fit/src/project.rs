@@ -46,6 +46,9 @@ fn box_diagonal<T: Scalar, P: ControlPoint<T>>(points: &[P]) -> T {
     sum.sqrt()
 }
 
+/// Halvings of a Bézier piece at most in the closest-point search (pieces `2⁻⁶⁰` of it).
+const MAX_DEPTH: usize = 60;
+
 /// The point of `curve` (any kind: B-spline, Bézier or NURBS, [`ParamCurve`]) closest to
 /// `target`, with its parameter and distance.
 ///
@@ -53,8 +56,10 @@ fn box_diagonal<T: Scalar, P: ControlPoint<T>>(points: &[P]) -> T {
 /// cut into its Bézier pieces, pieces are subdivided (de Casteljau, in homogeneous space for
 /// rational curves) while the distance to the bounding box of their control points — a
 /// lower bound by the convex hull property —
-/// can still beat the best distance found, down to pieces a thousandth of the curve's size;
-/// then on every surviving piece a Newton iteration on
+/// can still beat the best distance found, down to pieces a thousandth of the curve's size
+/// and a quarter of the best distance (so that a piece holds one local minimum of the
+/// distance near the best: the global one, not a neighbour as on a swallowtail of an
+/// offset); then on every surviving piece a Newton iteration on
 /// $g(u) = \langle C(u) - Q, C'(u) \rangle$ is run, safeguarded to stay in the piece and to
 /// decrease the distance (falling back to halved steps where $C'$ vanishes, as at cusps),
 /// to machine precision. Ties go to the smallest parameter.
@@ -121,6 +126,7 @@ pub fn closest_point<T: Scalar, C: ParamCurve<T>>(
         segments.into_iter().map(|s| (s, 0)).collect();
     let mut leaves: Vec<(T, T, T)> = Vec::new();
     let half: T = cast(0.5);
+    let quarter: T = cast(0.25);
     while let Some((piece, depth)) = stack.pop() {
         let cp = project(piece.control_points());
         let bound = box_distance(&cp, &target);
@@ -128,7 +134,12 @@ pub fn closest_point<T: Scalar, C: ParamCurve<T>>(
             continue;
         }
         let (lo, hi) = piece.interval();
-        if box_diagonal(&cp) <= min_size || depth >= 40 || !(lo < hi) {
+        // A leaf is small against the curve and against the best distance so far: a piece
+        // as large as the distance can hold several local minima (two arcs of a
+        // swallowtail), of which Newton's method would find one.
+        let diagonal = box_diagonal(&cp);
+        let small = diagonal <= min_size && diagonal <= best.distance * quarter;
+        if small || depth >= MAX_DEPTH || !(lo < hi) {
             leaves.push((bound, lo, hi));
             continue;
         }

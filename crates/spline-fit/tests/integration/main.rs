@@ -4,6 +4,7 @@
 #![allow(unreachable_pub)]
 
 mod arclength;
+mod closest_global;
 mod errors;
 mod geometry;
 mod offsets;
