@@ -27,23 +27,21 @@ fn coordinate_range<T: Scalar, P: ControlPoint<T>>(points: &[P], c: usize) -> (T
 /// Distance from `q` to the axis-aligned box of the control points (a lower bound of the
 /// distance to the piece by the convex hull property).
 fn box_distance<T: Scalar, P: ControlPoint<T>>(points: &[P], q: &P) -> T {
-    let mut sum = T::zero();
-    for c in 0..P::DIM {
+    // The length of the gap vector, without overflow or underflow of its squares.
+    P::from_coords(|c| {
         let (lo, hi) = coordinate_range(points, c);
         let x = q.coord(c);
-        let d = (lo - x).max(x - hi).max(T::zero());
-        sum += d * d;
-    }
-    sum.sqrt()
+        (lo - x).max(x - hi).max(T::zero())
+    })
+    .length()
 }
 
 fn box_diagonal<T: Scalar, P: ControlPoint<T>>(points: &[P]) -> T {
-    let mut sum = T::zero();
-    for c in 0..P::DIM {
+    P::from_coords(|c| {
         let (lo, hi) = coordinate_range(points, c);
-        sum += (hi - lo) * (hi - lo);
-    }
-    sum.sqrt()
+        hi - lo
+    })
+    .length()
 }
 
 /// Halvings of a Bézier piece at most in the closest-point search (pieces `2⁻⁶⁰` of it).
@@ -237,7 +235,7 @@ fn newton<T: Scalar, C: ParamCurve<T>>(
 ) -> Result<(T, C::Point)> {
     let mut best = (lo, T::max_value().unwrap_or_else(|| cast(f64::MAX)));
     for u in [lo, (lo + hi) * cast::<T>(0.5), hi] {
-        let f = (curve.eval(u)? - *target).length_squared();
+        let f = (curve.eval(u)? - *target).length();
         if f < best.1 {
             best = (u, f);
         }
@@ -255,9 +253,24 @@ fn newton_from<T: Scalar, C: ParamCurve<T>>(
 ) -> Result<(T, C::Point)> {
     let half: T = cast(0.5);
     let mut ders = [C::Point::origin(); 3];
-    let dist2 = |ders: &[C::Point; 3]| (ders[0] - *target).length_squared();
     let mut t = start;
     curve.derivatives_into(t, &mut ders)?;
+    // The iteration runs on points divided by a power of four near their size (exact): no
+    // squares underflowing at 1e-300 or overflowing at 1e300, the steps of the unscaled
+    // problem.
+    let size = ders
+        .iter()
+        .fold(target.max_abs(), |m, p| m.max(p.max_abs()));
+    let scale: T = cast(spline_core::power_of_two_scale(spline_core::to_f64(size)));
+    let inverse = T::one() / scale;
+    let target = &(*target * inverse);
+    let scaled = |d: &mut [C::Point; 3]| {
+        for p in d.iter_mut() {
+            *p = *p * inverse;
+        }
+    };
+    scaled(&mut ders);
+    let dist2 = |ders: &[C::Point; 3]| (ders[0] - *target).length_squared();
     let mut f = dist2(&ders);
     let width = hi - lo;
     let eps = T::default_epsilon();
@@ -284,6 +297,7 @@ fn newton_from<T: Scalar, C: ParamCurve<T>>(
             }
             let mut d = [C::Point::origin(); 3];
             curve.derivatives_into(cand, &mut d)?;
+            scaled(&mut d);
             let fc = dist2(&d);
             // A full Newton step is taken unless it clearly increases the distance (near
             // the minimum, rounding makes the distance flat while g still converges).
@@ -300,5 +314,5 @@ fn newton_from<T: Scalar, C: ParamCurve<T>>(
             break;
         }
     }
-    Ok((t, ders[0]))
+    Ok((t, ders[0] * scale))
 }

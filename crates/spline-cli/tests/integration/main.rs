@@ -12,6 +12,7 @@ mod functions;
 mod overlap_tools;
 mod readme;
 mod reliability;
+mod scale;
 mod shape;
 mod studio;
 mod surface_features;
