@@ -6,3 +6,4 @@
 mod features;
 mod limits;
 mod reference;
+mod scale;
