@@ -96,6 +96,32 @@ impl SpanTable {
         bucket.min(count - 1)
     }
 
+    /// The bucket formula's origin and scale: the bucket of `u` is
+    /// $\min(\lfloor \max(0, (u - \text{start}) \cdot \text{scale}) \rfloor, \text{count} - 1)$
+    /// with `(start, scale)` these and `count` the length of [`SpanTable::buckets`]. For
+    /// kernels that look spans up lane by lane (spline-geom's batch across SIMD lanes).
+    #[must_use]
+    pub fn bucket_scale(&self) -> (f64, f64) {
+        (self.start, self.buckets_per_unit)
+    }
+
+    /// The bucket of `u` by the formula of [`SpanTable::bucket_scale`].
+    #[must_use]
+    pub fn bucket<T: Scalar>(&self, u: T) -> usize {
+        Self::bucket_of(self.start, self.buckets_per_unit, self.buckets.len(), u)
+    }
+
+    /// Per bucket: the span at its left edge and the span starting at the one distinct knot
+    /// value inside it (the left span again when it holds none), or `None` for a bucket
+    /// holding several distinct knot values (where [`SpanTable::span`] walks the knots). A
+    /// parameter `u` below the domain's end in a bucket `[left, next]` lies in span `next`
+    /// if `u ≥ u_next`, in span `left` otherwise.
+    pub fn buckets(&self) -> impl ExactSizeIterator<Item = Option<[usize; 2]>> + '_ {
+        self.buckets
+            .iter()
+            .map(|&[left, next]| (next != SEVERAL).then_some([left, next]))
+    }
+
     /// The span of `u` (right limits inside the domain, the last non-empty span at its end),
     /// as [`KnotVector::span_in_domain`] finds it; parameters outside the domain get the first
     /// or last span.

@@ -39,6 +39,7 @@ mod construct;
 mod curve_tools;
 mod evaluator;
 mod homogeneous;
+mod lanes;
 mod mesh;
 mod nd;
 mod nurbs;

@@ -11,7 +11,9 @@
 //! the domain's end, where the form would extrapolate a span to its right end, is left to the
 //! triangular scheme.
 //!
-//! Batches use the form; the one-point evaluation uses only the table (its values stay the
+//! Batches use the form, eight parameters at a time across SIMD lanes where the CPU has
+//! AVX2 and the scalar is `f64` (`lanes/`, the same values bit for bit), one at a time
+//! otherwise; the one-point evaluation uses only the table (its values stay the
 //! triangular scheme's, bit for bit: curve intersection in spline-algebra relies on their
 //! rounding matching the derivatives').
 //!
@@ -23,6 +25,7 @@
 //! value: equality, `Debug` and serialisation ignore it, clones share it until they change.
 
 use crate::BSpline;
+use crate::lanes::{self, LaneForm};
 use spline_core::{ControlPoint, KnotVector, Scalar, SpanTable, from_count};
 use std::sync::atomic::{AtomicUsize, Ordering};
 use std::sync::{Arc, Mutex, OnceLock, PoisonError};
@@ -52,6 +55,8 @@ pub(crate) struct Pieces<T, P> {
     /// `falling[j][k]` $= k!/(k-j)!$ for `j ≤ k ≤ p`: the factor of `c_k` in the `j`-th
     /// derivative.
     falling: [[T; MAX_CACHED_DEGREE + 1]; MAX_CACHED_DEGREE + 1],
+    /// The same form laid out for the batch across SIMD lanes (`f64` only).
+    lanes: LaneForm,
 }
 
 impl<T: Scalar, P: ControlPoint<T>> Pieces<T, P> {
@@ -70,8 +75,13 @@ impl<T: Scalar, P: ControlPoint<T>> Pieces<T, P> {
             end,
             coefficients: Vec::new(),
             falling: [[T::zero(); MAX_CACHED_DEGREE + 1]; MAX_CACHED_DEGREE + 1],
+            lanes: LaneForm::default(),
         };
-        pieces.fill_coefficients(curve).then_some(pieces)
+        if !pieces.fill_coefficients(curve) {
+            return None;
+        }
+        pieces.fill_lanes(curve);
+        Some(pieces)
     }
 
     /// Makes these the pieces of `curve`, reusing the storage (no allocation when the curve
@@ -82,7 +92,20 @@ impl<T: Scalar, P: ControlPoint<T>> Pieces<T, P> {
             return false;
         }
         self.table.rebuild(curve.knots());
+        self.fill_lanes(curve);
         true
+    }
+
+    /// The form laid out for the lanes (inactive where they do not apply).
+    #[cfg(test)]
+    pub(crate) fn lanes(&self) -> &LaneForm {
+        &self.lanes
+    }
+
+    /// The form for the lanes, once the coefficients and the table are built.
+    fn fill_lanes(&mut self, curve: &BSpline<T, P>) {
+        self.lanes
+            .fill(&self.table, curve.knots(), &self.coefficients, self.order);
     }
 
     /// Everything but the span table: the Taylor coefficients, the degree and the domain;
@@ -228,6 +251,23 @@ impl<T: Scalar, P: ControlPoint<T>> Pieces<T, P> {
     /// through `exact`.
     #[inline]
     pub(crate) fn eval_many_map<Q>(
+        &self,
+        knots: &KnotVector<T>,
+        params: &[T],
+        out: &mut [Q],
+        map: impl Fn(P) -> Q,
+        exact: impl Fn(T) -> P,
+    ) {
+        if lanes::eval_many_map(&self.lanes, params, out, &map, &exact) {
+            return;
+        }
+        self.eval_many_scalar(knots, params, out, map, exact);
+    }
+
+    /// [`Pieces::eval_many_map`] without the lanes: the scalar batch, the reference of the
+    /// lanes' tests.
+    #[inline]
+    pub(crate) fn eval_many_scalar<Q>(
         &self,
         knots: &KnotVector<T>,
         params: &[T],

@@ -7,6 +7,7 @@ mod arclength_cost;
 mod constructions;
 mod curves;
 mod in_place;
+mod lanes;
 mod nurbs;
 mod periodic;
 mod periodic_refine;
