@@ -157,13 +157,14 @@ pub fn intersect_curves<T: Scalar, A: PlanarCurve<T>, B: PlanarCurve<T>>(
         starts: Vec::new(),
         overlaps: Vec::new(),
     };
-    let reach = Reach::Neighbours;
-    subdivide(a, b, &pa, &pb, tolerance, reach, &mut found, &mut pairs)?;
     let setting = Setting {
         tolerance,
         size: planar_extent(a)?.max(planar_extent(b)?),
         same: false,
     };
+    let limits = (tolerance, setting.shortest());
+    let reach = Reach::Neighbours;
+    subdivide(a, b, &pa, &pb, limits, reach, &mut found, &mut pairs)?;
     let (overlaps, more) = overlap::overlaps(a, b, found.overlaps, &setting)?;
     let (ua, ub) = a.domain();
     let (va, vb) = b.domain();
@@ -321,19 +322,20 @@ pub fn self_intersections<T: Scalar, C: PlanarCurve<T>>(
         starts: Vec::new(),
         overlaps: Vec::new(),
     };
-    for i in 0..monotone.len() {
-        let later = &monotone[i + 1..];
-        let single = std::slice::from_ref(&monotone[i]);
-        let reach = Reach::Piece;
-        subdivide(
-            curve, curve, single, later, tolerance, reach, &mut found, &mut pairs,
-        )?;
-    }
     let setting = Setting {
         tolerance,
         size,
         same: true,
     };
+    let limits = (tolerance, setting.shortest());
+    for i in 0..monotone.len() {
+        let later = &monotone[i + 1..];
+        let single = std::slice::from_ref(&monotone[i]);
+        let reach = Reach::Piece;
+        subdivide(
+            curve, curve, single, later, limits, reach, &mut found, &mut pairs,
+        )?;
+    }
     let (overlaps, more) = overlap::overlaps(curve, curve, found.overlaps, &setting)?;
     let mut points = Vec::new();
     for s in found.starts.into_iter().chain(more) {

@@ -143,6 +143,13 @@ impl<T: Scalar> Setting<T> {
     pub(super) fn radius(&self) -> T {
         (self.tolerance * self.size * cast(8.0)).sqrt()
     }
+
+    /// The shortest overlap: `8 √(tolerance · size)` (and four tolerances). Two curves that
+    /// touch stay within the tolerance over about `√(8 tolerance / Δκ)`, less than this
+    /// unless their curvatures agree within about `1/size` there.
+    pub(super) fn shortest(&self) -> T {
+        ((self.tolerance * self.size).sqrt() * cast(8.0)).max(self.tolerance * cast(4.0))
+    }
 }
 
 /// Where `a(s)` lies on `b` within the tolerance, from the foot `guess`: its foot.
@@ -315,10 +322,7 @@ fn check_runs<T: Scalar, A: PlanarCurve<T>, B: PlanarCurve<T>>(
         }
         let (pa, pb) = (a.eval(lo.0)?, a.eval(hi.0)?);
         let length = (pb - pa).norm();
-        // A tangency keeps two curves within the tolerance over about √(8 tol / Δκ): much
-        // shorter than this unless their curvatures agree within ~1/size there.
-        let shortest = (setting.tolerance * setting.size).sqrt() * cast(8.0);
-        let long = length > shortest && !is_contact(a, b, lo, hi, setting.tolerance)?;
+        let long = length > setting.shortest() && !is_contact(a, b, lo, hi, setting.tolerance)?;
         if long {
             out.push(CurveOverlap {
                 u: (lo.0, hi.0),
@@ -337,8 +341,11 @@ fn check_runs<T: Scalar, A: PlanarCurve<T>, B: PlanarCurve<T>>(
 }
 
 /// Whether the distance between the curves along `[lo.0, hi.0]` grows from a minimum like
-/// that of two curves touching (at least an eighth of the tolerance over the middle half,
-/// four times the smallest) rather than staying flat as along an overlap.
+/// that of two curves touching rather than staying flat as along an overlap: it spans at
+/// least half the tolerance, and it is at the rounding of the points (a thousandth of the
+/// tolerance) at fewer than half of 17 samples. Two arcs that coincide are at rounding
+/// along most of the run (their ends diverging over a short part of it); two arcs a
+/// constant distance apart within the tolerance do not vary.
 fn is_contact<T: Scalar, A: PlanarCurve<T>, B: PlanarCurve<T>>(
     a: &A,
     b: &B,
@@ -358,11 +365,10 @@ fn is_contact<T: Scalar, A: PlanarCurve<T>, B: PlanarCurve<T>>(
         *gap = d;
     }
     let smallest = gaps.iter().fold(gaps[0], |m, &g| m.min(g));
-    let middle = gaps[N / 4..=3 * N / 4]
-        .iter()
-        .fold(T::zero(), |m, &g| m.max(g));
-    Ok(middle >= tolerance * cast(0.125)
-        && middle >= smallest * cast(4.0) + tolerance * cast(0.0625))
+    let largest = gaps.iter().fold(gaps[0], |m, &g| m.max(g));
+    let rounding = tolerance * cast(1e-3);
+    let at_rounding = gaps.iter().filter(|&&g| g <= rounding).count();
+    Ok(largest - smallest >= tolerance * cast(0.5) && 2 * at_rounding < N + 1)
 }
 
 /// Whether an intersection at `(u, v)` belongs to one of the overlaps (its parameters in

@@ -29,14 +29,14 @@ pub(super) enum Reach {
 /// Subdivides pairs of pieces whose boxes overlap until both pieces are flat (within a
 /// quarter of the tolerance), one lies on the other curve within the tolerance, or they
 /// cannot be split; collects a start for Newton's method where flat chords come within the
-/// tolerance, and the pieces of overlaps.
+/// tolerance, and the pieces of overlaps (tested on pieces larger than `shortest`).
 #[allow(clippy::too_many_arguments)]
 pub(super) fn subdivide<T: Scalar, A: PlanarCurve<T>, B: PlanarCurve<T>>(
     a: &A,
     b: &B,
     pa: &[Piece<T, A::Coefficient>],
     pb: &[Piece<T, B::Coefficient>],
-    tolerance: T,
+    (tolerance, shortest): (T, T),
     reach: Reach,
     found: &mut Found<T>,
     pairs: &mut usize,
@@ -64,10 +64,10 @@ pub(super) fn subdivide<T: Scalar, A: PlanarCurve<T>, B: PlanarCurve<T>>(
                 ),
             ));
         }
-        // One piece on the other curve along its whole length (pieces not much larger
-        // than the tolerance are left to Newton's method).
-        let big = tolerance * cast(4.0);
-        if x.size() > big && y.size() > big {
+        // One piece on the other curve along its whole length. Pieces shorter than an
+        // overlap can be (a tangency stays within the tolerance over less than `shortest`)
+        // are left to the subdivision and Newton's method.
+        if x.size() > shortest && y.size() > shortest {
             let (x0, x1) = x.interval();
             let (y0, y1) = y.interval();
             let (ylo, yhi) = widen((y0, y1), (db0, db1), reach);
