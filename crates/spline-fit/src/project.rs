@@ -136,7 +136,10 @@ pub fn closest_point<T: Scalar, C: ParamCurve<T>>(
         // as large as the distance can hold several local minima (two arcs of a
         // swallowtail), of which Newton's method would find one.
         let diagonal = box_diagonal(&cp);
-        let small = diagonal <= min_size && diagonal <= best.distance * quarter;
+        // (Below 1e-9 of the curve's size Newton's method converges from anywhere in the
+        // piece: points on the curve need not be chased to the depth limit.)
+        let small = diagonal <= min_size
+            && (diagonal <= best.distance * quarter || diagonal <= size * cast::<T>(1e-9));
         if small || depth >= MAX_DEPTH || !(lo < hi) {
             leaves.push((bound, lo, hi));
             continue;
