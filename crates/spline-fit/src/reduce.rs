@@ -8,7 +8,9 @@ use spline_geom::ParamCurve;
 /// squares on the curve's own breaks ([`AdaptiveApproximation`]; breaks where the derivative
 /// jumps stay `C⁰` corners). With `refine`, spans that miss the tolerance are split (knots
 /// are added); without, the knots stay those of the curve and a tolerance out of reach is
-/// an error that gives the best deviation reached on them.
+/// an error that gives the best deviation reached on them. The tolerance is absolute (in the
+/// units of the points); the computation is scale-invariant (a curve scaled by 1e-300, with
+/// its tolerance, gives the same reduction scaled and its true deviation, not 0).
 ///
 /// ```
 /// use nalgebra::Vector2;
