@@ -105,7 +105,8 @@ pub use interpolate::{
     interpolate_with_knots,
 };
 pub use intersect::{
-    CurveSurfaceHit, IntersectionCurve, MAX_TRACE_POINTS, Tolerances, intersect_curve_surface,
+    CurveSurfaceHit, CurveSurfaceIntersections, CurveSurfaceOverlap, IntersectionCurve,
+    MAX_TRACE_POINTS, Tolerances, intersect_curve_surface, intersect_curve_surface_with_overlaps,
     intersect_surfaces,
 };
 #[cfg(feature = "parallel")]

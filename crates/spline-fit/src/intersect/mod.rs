@@ -2,9 +2,13 @@
 //! curve–curve intersection lives with the curves).
 
 mod curve_surface;
+mod curve_surface_overlap;
 mod march;
 
 pub use curve_surface::{CurveSurfaceHit, intersect_curve_surface};
+pub use curve_surface_overlap::{
+    CurveSurfaceIntersections, CurveSurfaceOverlap, intersect_curve_surface_with_overlaps,
+};
 pub use march::{IntersectionCurve, MAX_TRACE_POINTS, intersect_surfaces};
 
 use crate::surface_project::BoxTree;

@@ -5,6 +5,7 @@
 
 mod arclength;
 mod closest_global;
+mod curve_surface_overlaps;
 mod errors;
 mod geometry;
 mod offsets;
