@@ -9,7 +9,7 @@ use serde_json::json;
 use spline_core::{Error, ErrorKind, Result};
 use spline_fit::{
     ScatteredOptions, SurfaceProjector, Tolerances, closest_point, fit_scattered, gordon,
-    intersect_curve_surface, intersect_surfaces, skin, skin_rational, sweep,
+    intersect_curve_surface_with_overlaps, intersect_surfaces, skin, skin_rational, sweep,
 };
 use spline_geom::{NurbsCurve, NurbsSurface, ParamCurve, ParamSurface, Surface};
 
@@ -188,14 +188,27 @@ fn curve_surface(
     let c3: NurbsCurve<f64, 3> = c
         .value
         .map_control_points::<3>(|p| Vector3::new(p[0], p[1], p[2]));
-    let hits = match s {
-        Spatial::Plain(s) => intersect_curve_surface(&c3, s, t)?,
-        Spatial::Rational(s) => intersect_curve_surface(&c3, s, t)?,
+    let found = match s {
+        Spatial::Plain(s) => intersect_curve_surface_with_overlaps(&c3, s, t)?,
+        Spatial::Rational(s) => intersect_curve_surface_with_overlaps(&c3, s, t)?,
     };
-    Ok(hits
+    // Points, then arcs of the curve in the surface, sorted by (the start of) t.
+    let mut out: Vec<(f64, serde_json::Value)> = found
+        .points
         .iter()
-        .map(|h| json!({"t": h.t, "u": h.u, "v": h.v, "point": [h.point.x, h.point.y, h.point.z], "tangential": h.tangential}))
-        .collect())
+        .map(|h| (h.t, json!({"t": h.t, "u": h.u, "v": h.v, "point": [h.point.x, h.point.y, h.point.z], "tangential": h.tangential})))
+        .collect();
+    out.extend(found.overlaps.iter().map(|o| {
+        let (p, q) = o.points;
+        let ((u0, v0), (u1, v1)) = o.uv;
+        (
+            o.t.0,
+            json!({"overlap": true, "t": [o.t.0, o.t.1], "uv": [[u0, v0], [u1, v1]],
+                       "points": [[p.x, p.y, p.z], [q.x, q.y, q.z]]}),
+        )
+    }));
+    out.sort_by(|x, y| x.0.total_cmp(&y.0));
+    Ok(out.into_iter().map(|(_, v)| v).collect())
 }
 
 fn surface_surface(a: &Spatial, b: &Spatial, t: &Tolerances<f64>) -> Result<serde_json::Value> {

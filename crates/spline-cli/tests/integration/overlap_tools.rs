@@ -80,3 +80,26 @@ fn closest_point_on_the_swallowtail_is_global() {
     assert!(d < 4.72e-8 && d > 4.0e-8, "{out}");
     assert!((num(&out[0]["u"]) - 0.16).abs() < 1e-3, "{out}");
 }
+
+/// A curve lying in a surface over an interval: one overlap entry with its interval, and
+/// the crossing elsewhere as a point (a polyline in the plane z = 0 over t in [0.5, 1], then
+/// up and back down across it at t = 2.5).
+#[test]
+fn a_curve_in_a_surface_is_one_overlap_entry() {
+    let plane = temp_file(
+        "plane.json",
+        r#"{"degree": [1, 1], "knots": [[0,0,1,1],[0,0,1,1]], "control_points": [[[0,0,0],[0,1,0]],[[1,0,0],[1,1,0]]]}"#,
+    );
+    let curve = temp_file(
+        "polyline.json",
+        r#"{"degree": 1, "knots": [0,0,1,2,3,3], "control_points": [[-0.5,0.5,0],[0.5,0.5,0],[0.8,0.5,1],[0.9,0.5,-1]]}"#,
+    );
+    let out = spline(&["intersect", &curve, &plane]).json();
+    let entries = out.as_array().unwrap();
+    assert_eq!(entries.len(), 2, "{out}");
+    let o = &entries[0];
+    assert_eq!(o["overlap"], json!(true), "{o}");
+    assert!((num(&o["t"][0]) - 0.5).abs() < 1e-8 && (num(&o["t"][1]) - 1.0).abs() < 1e-8);
+    assert!((num(&entries[1]["t"]) - 2.5).abs() < 1e-12, "{out}");
+    assert!((num(&entries[1]["point"][0]) - 0.85).abs() < 1e-12, "{out}");
+}
