@@ -43,12 +43,15 @@ fn scaled_curve(name: &str, s: f64) -> String {
     temp_file(name, &curve.to_string())
 }
 
+/// A crossing: the parameters on both curves and the point of the unscaled pair.
+type Crossing = (f64, f64, [f64; 2]);
+
 /// `x1e20_*` (a pair of cubics × 1e20) keeps its 2 crossings and `x1e-20_*`
 /// (`unscaled0078_*` × 1e-20) has its 3, no false ones. scipy: polyline crossings of 2001
 /// samples each, polished by `fsolve` on the unscaled pairs.
 #[test]
 fn curve_intersections_scaled_by_1e20_and_1e_minus_20() {
-    let cases: [(&str, f64, &[(f64, f64, [f64; 2])]); 2] = [
+    let cases: [(&str, f64, &[Crossing]); 2] = [
         (
             "x1e20",
             1e20,
