@@ -5,10 +5,10 @@
 use crate::fitting::read_values;
 use crate::io::{Pt, parse_arg, print_json};
 use crate::objects::Object;
-use crate::objects::{Sized, read_curve};
-use crate::plot::{Planar, planar_of, read_planar};
+use crate::objects::{Sized, read_curve, read_object};
+use crate::plot::{Planar, planar_of};
 use clap::Args;
-use nalgebra::Vector2;
+use nalgebra::{SVector, Vector3};
 use serde_json::{Value, json};
 use spline_algebra::{
     CurveIntersections, intersect_curves, intersect_curves_relative, self_intersections,
@@ -20,15 +20,23 @@ use spline_fit::{
     smoothing_to_residual,
 };
 use spline_geom::{ArcLengthTable, BSpline, PlanarCurve};
-use spline_shape::{OffsetOptions, offset_planar_curve};
+use spline_shape::{
+    CurveOffset, OffsetOptions, OffsetShape, offset_planar_curve, offset_space_curve,
+};
 
 #[derive(Args)]
 pub struct OffsetArgs {
-    /// A planar B-spline curve (JSON), or - for standard input.
+    /// A curve (JSON: B-spline or NURBS, planar or 3-D with --direction), or - for
+    /// standard input.
     curve: String,
-    /// Signed distance: positive to the left of the direction of travel.
+    /// Signed distance: positive to the left of the direction of travel (planar curves), or
+    /// along T × V (3-D curves).
     #[arg(long, allow_hyphen_values = true)]
     distance: f64,
+    /// The reference direction V of a 3-D curve's offset, as x,y,z or a JSON array: the
+    /// point moves by the distance along T × V / |T × V| (Open CASCADE's offset curves).
+    #[arg(long, allow_hyphen_values = true)]
+    direction: Option<String>,
     /// Largest distance between the result and the exact offset (absolute, in the units of
     /// the points).
     #[arg(long, default_value_t = 1e-6)]
@@ -177,32 +185,110 @@ pub fn intersect_curve_objects(
 /// the box of their control points), unless `--tolerance` gives an absolute one.
 pub const CURVE_CONTACT_TOLERANCE: f64 = 1e-9;
 
-fn padded(p: &Vector2<f64>) -> Pt {
-    Pt::from_fn(|i, _| if i < 2 { p[i] } else { 0.0 })
-}
-
-/// `spline offset CURVE --distance D`: one call of `spline_shape::offset_planar_curve`.
+/// `spline offset CURVE --distance D [--direction X,Y,Z]`: one call of
+/// `spline_shape::offset_planar_curve` (planar curves) or `offset_space_curve` (3-D curves,
+/// along the direction), printing its record.
 pub fn offset(args: &OffsetArgs) -> Result<()> {
-    let Planar::Polynomial(curve) = read_planar(&args.curve, "offset")? else {
-        return Err(Error::new(
-            ErrorKind::InvalidArgument,
-            format!("{}: offset needs a B-spline curve (no weights)", args.curve),
-        ));
-    };
     let options = OffsetOptions {
         degree: args.degree,
         tolerance: args.tolerance,
     };
-    let offset = offset_planar_curve(&curve, args.distance, &options)?;
-    let record = Sized {
-        value: offset.curve.map_control_points(padded),
-        dim: 2,
+    let object = read_object(&args.curve)?;
+    let dim = match &object {
+        Object::Curve(c) => c.dim,
+        Object::Nurbs(c) => c.dim,
+        Object::Surface(_) | Object::NurbsSurface(_) => {
+            return Err(Error::new(
+                ErrorKind::InvalidArgument,
+                format!("{}: offset needs a curve, got a surface", args.curve),
+            ));
+        }
+    };
+    match (dim, &args.direction) {
+        (2, None) => {
+            let offset = match planar_of(object, &args.curve, "offset")? {
+                Planar::Polynomial(c) => offset_planar_curve(&c, args.distance, &options)?,
+                Planar::Rational(c) => offset_planar_curve(&c, args.distance, &options)?,
+            };
+            print_offset(&offset)
+        }
+        (3, Some(text)) => {
+            let direction = Vector3::from(parse_direction(text)?);
+            let to3 = |p: &Pt| Vector3::new(p[0], p[1], p[2]);
+            let offset = match object {
+                Object::Curve(c) => offset_space_curve(
+                    &c.value.map_control_points(to3),
+                    args.distance,
+                    &direction,
+                    &options,
+                )?,
+                Object::Nurbs(c) => offset_space_curve(
+                    &c.value.map_control_points(to3),
+                    args.distance,
+                    &direction,
+                    &options,
+                )?,
+                Object::Surface(_) | Object::NurbsSurface(_) => unreachable!("checked above"),
+            };
+            print_offset(&offset)
+        }
+        (3, None) => Err(Error::new(
+            ErrorKind::InvalidArgument,
+            format!(
+                "{}: the offset of a 3-D curve needs --direction X,Y,Z (the point moves along T × V)",
+                args.curve
+            ),
+        )),
+        (2, Some(_)) => Err(Error::new(
+            ErrorKind::InvalidArgument,
+            format!(
+                "{}: --direction is for 3-D curves; a planar curve is offset in its plane",
+                args.curve
+            ),
+        )),
+        (other, _) => Err(Error::new(
+            ErrorKind::DimensionMismatch,
+            format!(
+                "{}: offset needs a curve in 2-D or 3-D, got {other} coordinates",
+                args.curve
+            ),
+        )),
     }
-    .json()?;
+}
+
+/// `--direction`: `x,y,z` or a JSON array.
+fn parse_direction(text: &str) -> Result<[f64; 3]> {
+    let trimmed = text.trim();
+    if trimmed.starts_with('[') {
+        parse_arg("--direction", trimmed)
+    } else {
+        parse_arg("--direction", &format!("[{trimmed}]"))
+    }
+}
+
+/// Prints the record of an offset: the curve, the cusps and their points, the error bound.
+fn print_offset<const D: usize>(offset: &CurveOffset<f64, D>) -> Result<()> {
+    let pad = |q: &SVector<f64, D>| Pt::from_fn(|i, _| if i < D { q[i] } else { 0.0 });
+    let record = match &offset.curve {
+        OffsetShape::Polynomial(c) => Sized {
+            value: c.map_control_points(pad),
+            dim: D,
+        }
+        .json()?,
+        OffsetShape::Rational(c) => Sized {
+            value: c.map_control_points(pad),
+            dim: D,
+        }
+        .json()?,
+    };
     print_json(&json!({
         "curve": record,
         "cusps": offset.cusps.iter().map(|c| c.u).collect::<Vec<_>>(),
-        "cusp_points": offset.cusps.iter().map(|c| [c.point.x, c.point.y]).collect::<Vec<_>>(),
+        "cusp_points": offset
+            .cusps
+            .iter()
+            .map(|c| c.point.iter().copied().collect::<Vec<_>>())
+            .collect::<Vec<_>>(),
         "max_error": offset.max_error,
     }))
 }

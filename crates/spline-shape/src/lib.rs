@@ -69,7 +69,10 @@ pub use eraser::{
     smooth_to_tolerance,
 };
 pub use flecnodal::{FlecnodalCircles, control_flecnodal_circles};
-pub use offset::{CUSP_ACCURACY, CurveOffset, OffsetCusps, OffsetOptions, offset_planar_curve};
+pub use offset::{
+    CUSP_ACCURACY, CurveOffset, Cusp, OffsetOptions, OffsetShape, OffsetSource,
+    offset_planar_curve, offset_space_curve,
+};
 pub use problem::{ApproximationProblem, Sign};
 pub use revolution::{
     MeridianControl, ParabolicCircles, RidgeControl, TranslationControl, control_parabolic_circles,

@@ -261,10 +261,110 @@ fn offset_of_the_parabola_with_its_cusps() {
         "-1",
     ])
     .assert_clean_error();
+    // A space curve needs the direction its offsets are perpendicular to, a plane curve
+    // has one already.
+    spline(&[
+        "offset",
+        &parabola(),
+        "--distance",
+        "0.1",
+        "--direction",
+        "0,0,1",
+    ])
+    .assert_clean_error();
+    let space = file(
+        &json!({"degree": 1, "knots": [0, 0, 1, 1], "control_points": [[0, 0, 0], [1, 0, 0]]}),
+    );
+    spline(&["offset", &space, "--distance", "0.1"]).assert_clean_error();
+    spline(&[
+        "offset",
+        &space,
+        "--distance",
+        "0.1",
+        "--direction",
+        "1,0,0",
+    ])
+    .assert_clean_error();
+}
+
+#[test]
+fn offset_of_a_quarter_circle_is_the_concentric_arc() {
     let nurbs = file(
         &json!({"degree": 2, "knots": [0, 0, 0, 1, 1, 1], "control_points": [[1, 0], [1, 1], [0, 1]], "weights": [1, std::f64::consts::FRAC_1_SQRT_2, 1]}),
     );
-    spline(&["offset", &nurbs, "--distance", "0.1"]).assert_clean_error();
+    for (distance, radius) in [(0.1, 0.9), (-0.25, 1.25)] {
+        let out = spline(&["offset", &nurbs, "--distance", &distance.to_string()]).json();
+        assert!(out["cusps"].as_array().unwrap().is_empty());
+        assert!(num(&out["max_error"]) <= 1e-12);
+        let curve = file(&out["curve"]);
+        let us: Vec<f64> = (0..=64).map(|i| f64::from(i) / 64.0).collect();
+        let values = spline(&["eval", &curve, "--at", &json!(us).to_string()]).json();
+        for (k, &u) in us.iter().enumerate() {
+            let (x, y) = (num(&values[k][0][0]), num(&values[k][0][1]));
+            let r = x.hypot(y);
+            assert!((r - radius).abs() <= 1e-14, "u = {u}: radius {r}");
+            assert!(
+                x >= -1e-15 && y >= -1e-15,
+                "u = {u}: ({x}, {y}) leaves the quadrant"
+            );
+        }
+    }
+}
+
+#[test]
+fn offset_of_a_space_cubic_along_the_binormal_of_a_direction() {
+    // c(u) a cubic Bézier; the offset is c + d (c' × V) / |c' × V| with V = e_z.
+    let points = [
+        [0.0, 0.0, 0.0],
+        [1.0, 1.0, 0.5],
+        [2.0, -1.0, 1.0],
+        [3.0, 0.0, 1.5],
+    ];
+    let cubic =
+        file(&json!({"degree": 3, "knots": [0, 0, 0, 0, 1, 1, 1, 1], "control_points": points}));
+    let distance = 0.1;
+    let out = spline(&[
+        "offset",
+        &cubic,
+        "--distance",
+        "0.1",
+        "--direction",
+        "0,0,1",
+        "--tolerance",
+        "1e-8",
+    ])
+    .json();
+    assert!(num(&out["max_error"]) <= 1e-8);
+    let curve = file(&out["curve"]);
+    let us: Vec<f64> = (0..=100).map(|i| f64::from(i) / 100.0).collect();
+    let values = spline(&["eval", &curve, "--at", &json!(us).to_string()]).json();
+    for (k, &u) in us.iter().enumerate() {
+        let v = 1.0 - u;
+        let basis = [v * v * v, 3.0 * u * v * v, 3.0 * u * u * v, u * u * u];
+        let slope = [
+            -3.0 * v * v,
+            3.0 * v * (v - 2.0 * u),
+            3.0 * u * (2.0 * v - u),
+            3.0 * u * u,
+        ];
+        let mut c = [0.0; 3];
+        let mut t = [0.0; 3];
+        for (j, p) in points.iter().enumerate() {
+            for i in 0..3 {
+                c[i] += basis[j] * p[i];
+                t[i] += slope[j] * p[i];
+            }
+        }
+        // t × e_z = (t_y, -t_x, 0)
+        let n = t[0].hypot(t[1]);
+        let exact = [c[0] + distance * t[1] / n, c[1] - distance * t[0] / n, c[2]];
+        let got = &values[k][0];
+        let e = (0..3)
+            .map(|i| (num(&got[i]) - exact[i]).powi(2))
+            .sum::<f64>()
+            .sqrt();
+        assert!(e <= 1e-8, "u = {u}: {e:e}");
+    }
 }
 
 #[test]
