@@ -105,7 +105,7 @@ pub use features::{
 pub use maps::SplineMap;
 pub use nalgebra_sparse::CsrMatrix;
 pub use offset::{OffsetCusp, offset_cusps};
-pub use parametric_ridges::{SurfaceRidges, surface_ridges};
+pub use parametric_ridges::{SurfaceRidges, surface_ridges, surface_ridges_with_umbilics};
 pub use product::{
     ProductJacobians, ProductMap, Square, bernstein_product, common_space, difference, dot_product,
     linear_combination, product, product_knots, product_with_jacobians, scale, square, sum,

@@ -10,25 +10,20 @@
 //! exact Bernstein patches of moderate degree), as enclosures over boxes from their
 //! Bernstein bounds (to exclude boxes) and pointwise (to locate the ridges in the boxes left).
 
-use crate::ridge_function::{
-    Interval, Jet, NEAR_UMBILIC, Patch, RidgeValue, VANISHING, best_form, degenerate,
-    degenerate_umbilic, ridge_value, singular_edges, snapped,
-};
+mod march;
+
+use crate::ridge_function::{Patch, best_form, degenerate, snapped};
 use crate::surface_numerators::curvature_numerators;
+use crate::umbilics::CommonZeros;
 use crate::zero_set::{UvPolyline, bezier_patches, chain};
+use march::{Marcher, march_all};
 use spline_core::{Error, ErrorKind, Result};
 use spline_geom::NurbsSurface;
-use std::collections::HashMap;
 
 /// Finest subdivision of a patch: `2^MAX_LEVEL` boxes per patch width.
 const MAX_LEVEL: u32 = 8;
 /// Coarsest: `2^MIN_LEVEL` boxes per patch width, whatever `samples` asks.
 const MIN_LEVEL: u32 = 4;
-/// A crossing is kept when the gradient of the curvature is within this cosine of orthogonal
-/// to the principal direction there (from the better-conditioned direction form: a zero of
-/// a direction form is not a ridge, and there the cosine is of order one). At a root the
-/// cosine is rounding, up to about `10⁻⁵` where the terms of `g` cancel strongly.
-const GENUINE: f64 = 1e-3;
 
 /// The ridges of a parametric surface ([`surface_ridges`]).
 #[derive(Clone, Debug, Default, PartialEq)]
@@ -100,6 +95,21 @@ pub struct SurfaceRidges {
 /// [`ErrorKind::InvalidArgument`] if `samples` is 0 or above 10 000; as
 /// [`crate::curvature_numerators`] and [`crate::umbilics`].
 pub fn surface_ridges(surface: &NurbsSurface<f64, 3>, samples: usize) -> Result<SurfaceRidges> {
+    let umbilics = crate::umbilics(surface)?;
+    surface_ridges_with_umbilics(surface, samples, &umbilics)
+}
+
+/// [`surface_ridges`] with the surface's umbilics already found by [`crate::umbilics`] (a
+/// caller that reports them too need not search twice).
+///
+/// # Errors
+/// [`ErrorKind::InvalidArgument`] if `samples` is 0 or above 10 000; as
+/// [`crate::curvature_numerators`].
+pub fn surface_ridges_with_umbilics(
+    surface: &NurbsSurface<f64, 3>,
+    samples: usize,
+    umbilics: &CommonZeros,
+) -> Result<SurfaceRidges> {
     if samples == 0 || samples > 10_000 {
         return Err(Error::new(
             ErrorKind::InvalidArgument,
@@ -121,7 +131,6 @@ pub fn surface_ridges(surface: &NurbsSurface<f64, 3>, samples: usize) -> Result<
         let w = surface.homogeneous().map_control_points(|c| c.weight);
         Some(bezier_patches(&w, &bu, &bv)?)
     };
-    let umbilics = crate::umbilics(surface)?;
     let mut umbilic_points = umbilics.points.clone();
     umbilic_points.extend(&umbilics.poles);
     let area_scale = n
@@ -133,7 +142,6 @@ pub fn surface_ridges(surface: &NurbsSurface<f64, 3>, samples: usize) -> Result<
         umbilics: umbilic_points.clone(),
         ..SurfaceRidges::default()
     };
-    let mut pieces: [Vec<UvPolyline>; 2] = [Vec::new(), Vec::new()];
     let all_factors: Vec<[Patch; 7]> = (0..columns[0].len())
         .map(|k| {
             let first = &columns[0][k];
@@ -150,46 +158,21 @@ pub fn surface_ridges(surface: &NurbsSurface<f64, 3>, samples: usize) -> Result<
             })
         })
         .collect();
-    for (colour, sigma) in [(0usize, -1.0), (1, 1.0)] {
-        let mut marchers: Vec<Marcher<'_>> = all_factors
-            .iter()
-            .map(|factors| Marcher {
-                factors,
-                sigma,
-                level,
-                singular_edges: singular_edges(factors, 1e-12 * area_scale),
-                slopes: factors.clone().map(|f| {
-                    let b = f.bounds();
-                    b.map(|x| x.lo.abs().max(x.hi.abs()))
-                }),
-                corners: HashMap::new(),
-                crossings: HashMap::new(),
-            })
-            .collect();
+    let (pairs, mut found) = march_all(&all_factors, level, area_scale, &umbilic_points);
+    let (red, blue): (Vec<Marcher<'_>>, Vec<Marcher<'_>>) =
+        pairs.into_iter().map(|[r, b]| (r, b)).unzip();
+    let mut pieces: [Vec<UvPolyline>; 2] = [Vec::new(), Vec::new()];
+    for (colour, mut marchers) in [red, blue].into_iter().enumerate() {
         let constant_list = if colour == 0 {
             &mut out.red_constant
         } else {
             &mut out.blue_constant
         };
-        for marcher in &mut marchers {
-            let (u, v) = (marcher.factors[0].u, marcher.factors[0].v);
-            if marcher.vanishes() {
-                constant_list.push([[u.0, v.0], [u.1, v.1]]);
-                continue;
-            }
-            let mut leaves = Vec::new();
-            marcher.exclude(marcher.factors, 0, (0, 0), &mut leaves);
-            let mut constant = Vec::new();
-            for leaf in leaves {
-                marcher.leaf(
-                    leaf,
-                    &umbilic_points,
-                    &mut pieces[colour],
-                    &mut out.singular,
-                    &mut constant,
-                );
-            }
-            constant_list.extend(marcher.merged(constant));
+        for patch in &mut found {
+            let f = std::mem::take(&mut patch[colour]);
+            pieces[colour].extend(f.pieces);
+            out.singular.extend(f.singular);
+            constant_list.extend(f.constant);
         }
         jumps(&mut marchers, bv.len() - 1, &mut pieces[colour]);
     }
@@ -212,14 +195,6 @@ pub fn surface_ridges(surface: &NurbsSurface<f64, 3>, samples: usize) -> Result<
     out.blue = chain(blue, tol);
     Ok(out)
 }
-
-/// Within this fraction of a patch from an edge where the parametrisation is singular, the
-/// ridge function is evaluated at this distance.
-const POLE_ZONE: f64 = 1e-2;
-/// Rounding of a jet evaluated from Bernstein coefficients is about `10⁻¹⁶` of their bound;
-/// the scale of the ridge function counts `10⁻⁵` of it, so that rounding alone stays below
-/// [`VANISHING`] of the scale.
-const ROUNDING_FLOOR: f64 = 1e-5;
 
 /// Ridges along patch boundaries where the ridge function jumps in sign (the third
 /// derivatives of the surface jump across a simple knot): at the finest grid nodes of each
@@ -266,323 +241,6 @@ fn jumps(marchers: &mut [Marcher<'_>], patches_v: usize, pieces: &mut Vec<UvPoly
                     (false, _) => run = None,
                 }
             }
-        }
-    }
-}
-
-/// The marching of one colour over one patch.
-struct Marcher<'a> {
-    factors: &'a [Patch; 7],
-    sigma: f64,
-    level: u32,
-    /// Bounds of `|f|`, `|∂f/∂u|`, `|∂f/∂v|` of each factor on the patch.
-    slopes: [[f64; 3]; 7],
-    /// `[u = u₀, u = u₁, v = v₀, v = v₁]`: edges along which `Â` vanishes (poles).
-    singular_edges: [bool; 4],
-    corners: HashMap<(usize, usize), Option<RidgeValue<f64>>>,
-    crossings: HashMap<(usize, usize, bool, usize), Option<[f64; 2]>>,
-}
-
-impl Marcher<'_> {
-    fn point(&self, i: usize, j: usize) -> [f64; 2] {
-        let n = (1usize << self.level) as f64;
-        let (u, v) = (self.factors[0].u, self.factors[0].v);
-        [
-            u.0 + (u.1 - u.0) * i as f64 / n,
-            v.0 + (v.1 - v.0) * j as f64 / n,
-        ]
-    }
-
-    /// The ridge function at a point; within [`POLE_ZONE`] of a patch edge where the
-    /// parametrisation is singular, at that distance from the edge (the formula loses its
-    /// digits as `Â → 0`).
-    fn value(&self, p: [f64; 2]) -> Option<RidgeValue<f64>> {
-        let (u, v) = (self.factors[0].u, self.factors[0].v);
-        let mut q = p;
-        for (k, (a, b)) in [(0, u), (1, v)] {
-            let d = POLE_ZONE * (b - a);
-            if self.singular_edges[2 * k] && q[k] < a + d {
-                q[k] = a + d;
-            }
-            if self.singular_edges[2 * k + 1] && q[k] > b - d {
-                q[k] = b - d;
-            }
-        }
-        let jets: [Jet<f64>; 7] = std::array::from_fn(|i| self.factors[i].jet(q[0], q[1]));
-        let mut r = ridge_value(&jets, self.sigma, f64::abs);
-        // The rounding scale: the same formula on magnitudes, each jet's magnitude raised by
-        // `ROUNDING_FLOOR` of its bound on the patch (at a point of symmetry every partial
-        // derivative along one direction vanishes, and with them the local magnitudes of the
-        // terms, while rounding does not).
-        let symmetric = |x: f64, floor: f64| {
-            let m = x.abs() + ROUNDING_FLOOR * floor;
-            Interval { lo: -m, hi: m }
-        };
-        let magnitudes: [Jet<Interval>; 7] =
-            std::array::from_fn(|i| [0, 1, 2].map(|k| symmetric(jets[i][k], self.slopes[i][k])));
-        let m = ridge_value(&magnitudes, self.sigma, |x| x);
-        r.scale = [m.g[0].hi, m.g[1].hi];
-        let finite =
-            r.g.iter()
-                .chain(&r.t2)
-                .chain(&r.scale)
-                .all(|x| x.is_finite());
-        finite.then_some(r)
-    }
-
-    /// Whether the ridge condition vanishes identically on the patch (probed at 25 interior
-    /// points away from any grid), or the patch is umbilic throughout.
-    fn vanishes(&self) -> bool {
-        let (u, v) = (self.factors[0].u, self.factors[0].v);
-        let fractions = [0.0713, 0.2981, 0.5127, 0.7339, 0.9207];
-        fractions.iter().all(|&a| {
-            fractions.iter().all(|&b| {
-                let p = [u.0 + a * (u.1 - u.0), v.0 + b * (v.1 - v.0)];
-                match self.value(p) {
-                    None => true,
-                    Some(r) => degenerate(&r),
-                }
-            })
-        })
-    }
-
-    /// Boxes (at the finest level, by index) whose enclosure of `g` contains zero for both
-    /// direction forms.
-    fn exclude(
-        &self,
-        box_factors: &[Patch; 7],
-        depth: u32,
-        index: (usize, usize),
-        leaves: &mut Vec<(usize, usize)>,
-    ) {
-        let bounds = box_factors.clone().map(|p| p.bounds());
-        let r = ridge_value(&bounds, self.sigma, |x| x);
-        if !r.g[0].contains_zero() || !r.g[1].contains_zero() {
-            return;
-        }
-        if depth == self.level {
-            leaves.push(index);
-            return;
-        }
-        let halves = box_factors.clone().map(|p| p.halves(true));
-        for (a, side) in [0usize, 1].into_iter().zip([true, false]) {
-            let column: [Patch; 7] = std::array::from_fn(|i| {
-                if side {
-                    halves[i].0.clone()
-                } else {
-                    halves[i].1.clone()
-                }
-            });
-            let quarters = column.map(|p| p.halves(false));
-            for b in 0..2 {
-                let child: [Patch; 7] = std::array::from_fn(|i| {
-                    if b == 0 {
-                        quarters[i].0.clone()
-                    } else {
-                        quarters[i].1.clone()
-                    }
-                });
-                self.exclude(
-                    &child,
-                    depth + 1,
-                    (2 * index.0 + a, 2 * index.1 + b),
-                    leaves,
-                );
-            }
-        }
-    }
-
-    /// Degenerate boxes merged into rectangles: runs along `v`, then equal runs along `u`.
-    fn merged(&self, mut boxes: Vec<(usize, usize)>) -> Vec<[[f64; 2]; 2]> {
-        boxes.sort_unstable();
-        let mut runs: Vec<(usize, usize, usize)> = Vec::new(); // (i, j0, j1) half-open
-        for (i, j) in boxes {
-            match runs.last_mut() {
-                Some(r) if r.0 == i && r.2 == j => r.2 = j + 1,
-                _ => runs.push((i, j, j + 1)),
-            }
-        }
-        let mut rects: Vec<(usize, usize, usize, usize)> = Vec::new(); // i0, i1, j0, j1
-        for (i, j0, j1) in runs {
-            match rects
-                .iter_mut()
-                .find(|r| r.1 == i && r.2 == j0 && r.3 == j1)
-            {
-                Some(r) => r.1 = i + 1,
-                None => rects.push((i, i + 1, j0, j1)),
-            }
-        }
-        rects
-            .into_iter()
-            .map(|(i0, i1, j0, j1)| [self.point(i0, j0), self.point(i1, j1)])
-            .collect()
-    }
-
-    fn corner(&mut self, i: usize, j: usize) -> Option<RidgeValue<f64>> {
-        if let Some(r) = self.corners.get(&(i, j)) {
-            return *r;
-        }
-        let r = self.value(self.point(i, j));
-        self.corners.insert((i, j), r);
-        r
-    }
-
-    /// Whether the ridge condition with the better direction form vanishes at `p`.
-    fn genuine(&self, p: [f64; 2]) -> bool {
-        self.value(p).is_some_and(|r| {
-            let best = usize::from(r.t2[1] > r.t2[0]);
-            let cosine = r.g[best].abs() / (r.grad2 * r.t2[best]).sqrt();
-            (cosine <= GENUINE || r.g[best].abs() <= VANISHING * r.scale[best])
-                && r.delta > NEAR_UMBILIC * r.h2
-        })
-    }
-
-    /// The genuine zero of `g` (form `form`) on the edge from grid node `a` to the next node
-    /// along `u` (`along_u`) or `v`, if the ends have opposite signs.
-    fn crossing(&mut self, a: (usize, usize), along_u: bool, form: usize) -> Option<[f64; 2]> {
-        let key = (a.0, a.1, along_u, form);
-        if let Some(c) = self.crossings.get(&key) {
-            return *c;
-        }
-        let b = if along_u {
-            (a.0 + 1, a.1)
-        } else {
-            (a.0, a.1 + 1)
-        };
-        let found = (|| {
-            let fa = snapped(&self.corner(a.0, a.1)?, form);
-            let fb = snapped(&self.corner(b.0, b.1)?, form);
-            if (fa >= 0.0) == (fb >= 0.0) {
-                return None;
-            }
-            let (pa, pb) = (self.point(a.0, a.1), self.point(b.0, b.1));
-            let at = |t: f64| [pa[0] + t * (pb[0] - pa[0]), pa[1] + t * (pb[1] - pa[1])];
-            let f = |t: f64| self.value(at(t)).map(|r| snapped(&r, form));
-            // Illinois (regula falsi with halving of the retained end).
-            let (mut t0, mut t1, mut f0, mut f1) = (0.0f64, 1.0f64, fa, fb);
-            let mut side = 0i32;
-            for _ in 0..100 {
-                if t1 - t0 <= 1e-15 {
-                    break;
-                }
-                let mut t = (t0 * f1 - t1 * f0) / (f1 - f0);
-                if !(t > t0 && t < t1) {
-                    t = 0.5 * (t0 + t1);
-                }
-                let ft = f(t)?;
-                if (ft >= 0.0) == (f0 >= 0.0) {
-                    t0 = t;
-                    f0 = ft;
-                    if side == 1 {
-                        f1 *= 0.5;
-                    }
-                    side = 1;
-                } else {
-                    t1 = t;
-                    f1 = ft;
-                    if side == -1 {
-                        f0 *= 0.5;
-                    }
-                    side = -1;
-                }
-            }
-            let p = at(0.5 * (t0 + t1));
-            self.genuine(p).then_some(p)
-        })();
-        self.crossings.insert(key, found);
-        found
-    }
-
-    /// The pieces of ridge in the finest box `(i, j)`.
-    fn leaf(
-        &mut self,
-        (i, j): (usize, usize),
-        umbilics: &[[f64; 2]],
-        pieces: &mut Vec<UvPolyline>,
-        singular: &mut Vec<[f64; 2]>,
-        constant: &mut Vec<(usize, usize)>,
-    ) {
-        let nodes = [(i, j), (i + 1, j), (i + 1, j + 1), (i, j + 1)];
-        let values: Vec<Option<RidgeValue<f64>>> =
-            nodes.iter().map(|&(a, b)| self.corner(a, b)).collect();
-        let Some(values) = values.into_iter().collect::<Option<Vec<_>>>() else {
-            let (p, q) = (self.point(i, j), self.point(i + 1, j + 1));
-            singular.push([0.5 * (p[0] + q[0]), 0.5 * (p[1] + q[1])]);
-            return;
-        };
-        if values.iter().all(degenerate) {
-            constant.push((i, j));
-            return;
-        }
-        // The direction form that stays farther from zero over the corners.
-        let strength = |form: usize| {
-            values
-                .iter()
-                .map(|r| r.t2[form] / (r.t2[0] + r.t2[1]).max(f64::MIN_POSITIVE))
-                .fold(f64::INFINITY, f64::min)
-        };
-        let form = usize::from(strength(1) > strength(0));
-        // Edges in order around the box: bottom (v = v_j), right, top, left.
-        let edges = [
-            self.crossing((i, j), true, form),
-            self.crossing((i + 1, j), false, form),
-            self.crossing((i, j + 1), true, form),
-            self.crossing((i, j), false, form),
-        ];
-        // A ridge along a grid line (a line of symmetry): the edge vanishes at both ends and
-        // in the middle.
-        for (a, b) in [(0usize, 1usize), (1, 2), (3, 2), (0, 3)] {
-            let others = (0..4).filter(|&c| c != a && c != b);
-            let definite = others.clone().all(|c| snapped(&values[c], form) != 0.0);
-            if definite && snapped(&values[a], form) == 0.0 && snapped(&values[b], form) == 0.0 {
-                let (pa, pb) = (
-                    self.point(nodes[a].0, nodes[a].1),
-                    self.point(nodes[b].0, nodes[b].1),
-                );
-                let mid = [0.5 * (pa[0] + pb[0]), 0.5 * (pa[1] + pb[1])];
-                if self
-                    .value(mid)
-                    .is_some_and(|r| snapped(&r, form) == 0.0 && !degenerate_umbilic(&r))
-                {
-                    pieces.push(vec![pa, pb]);
-                }
-            }
-        }
-        let found: Vec<(usize, [f64; 2])> = edges
-            .iter()
-            .enumerate()
-            .filter_map(|(k, c)| c.map(|p| (k, p)))
-            .collect();
-        let (lo, hi) = (self.point(i, j), self.point(i + 1, j + 1));
-        let inside = umbilics.iter().find(|p| {
-            let du = 1e-9 * (hi[0] - lo[0]);
-            let dv = 1e-9 * (hi[1] - lo[1]);
-            p[0] >= lo[0] - du && p[0] <= hi[0] + du && p[1] >= lo[1] - dv && p[1] <= hi[1] + dv
-        });
-        if let Some(u) = inside {
-            for (_, p) in &found {
-                pieces.push(vec![*p, *u]);
-            }
-            return;
-        }
-        match found.len() {
-            0 => {}
-            2 => pieces.push(vec![found[0].1, found[1].1]),
-            4 => {
-                let centre = [0.5 * (lo[0] + hi[0]), 0.5 * (lo[1] + hi[1])];
-                let same = self.value(centre).is_some_and(|r| {
-                    (snapped(&r, form) >= 0.0) == (snapped(&values[0], form) >= 0.0)
-                });
-                let p: Vec<[f64; 2]> = found.iter().map(|x| x.1).collect();
-                if same {
-                    pieces.push(vec![p[0], p[1]]);
-                    pieces.push(vec![p[2], p[3]]);
-                } else {
-                    pieces.push(vec![p[3], p[0]]);
-                    pieces.push(vec![p[1], p[2]]);
-                }
-            }
-            _ => singular.push([0.5 * (lo[0] + hi[0]), 0.5 * (lo[1] + hi[1])]),
         }
     }
 }

@@ -210,10 +210,12 @@ pub(crate) struct Patch {
     pub(crate) v: (f64, f64),
 }
 
-/// The Bernstein basis of degree `p` at `t ∈ [0, 1]` and its derivative.
-fn bernstein(p: usize, t: f64) -> (Vec<f64>, Vec<f64>) {
+/// The Bernstein basis of degree `p` at `t ∈ [0, 1]` and its derivative, into `b` and `db`
+/// (at least `p + 1` long).
+fn bernstein_into(p: usize, t: f64, b: &mut [f64], db: &mut [f64]) {
     // Degree p − 1 first (for the derivative), then one more step.
-    let mut b = vec![0.0; p + 1];
+    b[..=p].fill(0.0);
+    db[..=p].fill(0.0);
     b[0] = 1.0;
     for d in 1..p {
         for i in (0..=d).rev() {
@@ -221,7 +223,6 @@ fn bernstein(p: usize, t: f64) -> (Vec<f64>, Vec<f64>) {
             b[i] = left + b[i] * (1.0 - t);
         }
     }
-    let mut db = vec![0.0; p + 1];
     if p > 0 {
         for i in 0..=p {
             let left = if i > 0 { b[i - 1] } else { 0.0 };
@@ -234,7 +235,35 @@ fn bernstein(p: usize, t: f64) -> (Vec<f64>, Vec<f64>) {
             b[i] = left + own;
         }
     }
-    (b, db)
+}
+
+/// Degrees up to this use a basis on the stack in [`Patch::jet`].
+const STACK_DEGREE: usize = 47;
+
+/// A Bernstein basis and its derivative at one parameter, for one degree and interval.
+struct Basis {
+    key: (usize, f64, f64),
+    b: [f64; STACK_DEGREE + 1],
+    db: [f64; STACK_DEGREE + 1],
+}
+
+impl Basis {
+    fn new() -> Self {
+        Self {
+            key: (usize::MAX, 0.0, 0.0),
+            b: [0.0; STACK_DEGREE + 1],
+            db: [0.0; STACK_DEGREE + 1],
+        }
+    }
+
+    /// Recomputes the basis unless it is already that of degree `p` at `x` on `(a, b)`.
+    fn at(&mut self, p: usize, x: f64, (a, b): (f64, f64)) {
+        let key = (p, a, b);
+        if self.key != key {
+            bernstein_into(p, (x - a) / (b - a), &mut self.b, &mut self.db);
+            self.key = key;
+        }
+    }
 }
 
 impl Patch {
@@ -264,15 +293,52 @@ impl Patch {
 
     /// Value and partial derivatives at `(u, v)`.
     pub(crate) fn jet(&self, u: f64, v: f64) -> Jet<f64> {
+        if self.p > STACK_DEGREE || self.q > STACK_DEGREE {
+            let (mut bu, mut dbu) = (vec![0.0; self.p + 1], vec![0.0; self.p + 1]);
+            let (mut bv, mut dbv) = (vec![0.0; self.q + 1], vec![0.0; self.q + 1]);
+            bernstein_into(
+                self.p,
+                (u - self.u.0) / (self.u.1 - self.u.0),
+                &mut bu,
+                &mut dbu,
+            );
+            bernstein_into(
+                self.q,
+                (v - self.v.0) / (self.v.1 - self.v.0),
+                &mut bv,
+                &mut dbv,
+            );
+            return self.combine(&bu, &dbu, &bv, &dbv);
+        }
+        let (mut bu, mut bv) = (Basis::new(), Basis::new());
+        bu.at(self.p, u, self.u);
+        bv.at(self.q, v, self.v);
+        self.combine(&bu.b, &bu.db, &bv.b, &bv.db)
+    }
+
+    /// The jets of several patches at one point, each basis computed once per degree and
+    /// interval (equal to [`Patch::jet`] of each, bit for bit).
+    pub(crate) fn jets<const N: usize>(patches: &[Patch; N], u: f64, v: f64) -> [Jet<f64>; N] {
+        let (mut bu, mut bv) = (Basis::new(), Basis::new());
+        std::array::from_fn(|i| {
+            let f = &patches[i];
+            if f.p > STACK_DEGREE || f.q > STACK_DEGREE {
+                return f.jet(u, v);
+            }
+            bu.at(f.p, u, f.u);
+            bv.at(f.q, v, f.v);
+            f.combine(&bu.b, &bu.db, &bv.b, &bv.db)
+        })
+    }
+
+    /// Value and partial derivatives from the bases in `u` and `v` and their derivatives.
+    fn combine(&self, bu: &[f64], dbu: &[f64], bv: &[f64], dbv: &[f64]) -> Jet<f64> {
         let (wu, wv) = (self.u.1 - self.u.0, self.v.1 - self.v.0);
-        let (bu, dbu) = bernstein(self.p, (u - self.u.0) / wu);
-        let (bv, dbv) = bernstein(self.q, (v - self.v.0) / wv);
         let nv = self.q + 1;
         let mut out = [0.0; 3];
-        for i in 0..=self.p {
+        for (i, row) in self.c.chunks_exact(nv).enumerate().take(self.p + 1) {
             let (mut r0, mut r1) = (0.0, 0.0);
-            for j in 0..=self.q {
-                let c = self.c[i * nv + j];
+            for (j, &c) in row.iter().enumerate() {
                 r0 += c * bv[j];
                 r1 += c * dbv[j];
             }
@@ -350,9 +416,7 @@ impl Patch {
                 }
             }
         }
-        let (mut a, mut b) = (self.clone(), self.clone());
-        a.c = left;
-        b.c = right;
+        let (mut a, mut b) = (Self { c: left, ..*self }, Self { c: right, ..*self });
         if along_u {
             let mid = 0.5 * (self.u.0 + self.u.1);
             a.u.1 = mid;

@@ -6,6 +6,7 @@ use crate::tensor::ridge_polynomials;
 use crate::zero_set::{UvPolyline, zero_set};
 use spline_core::Result;
 use spline_geom::Surface;
+use std::collections::HashMap;
 
 /// The ridges of a function ([`ridges`]).
 #[derive(Clone, Debug, Default, PartialEq)]
@@ -99,6 +100,8 @@ pub fn ridges(s: &Surface<f64, f64>, samples: usize) -> Result<Ridges> {
     let tol = 1e-6 * (u1 - u0).max(v1 - v0);
     for (pass, poly) in [&first, &second].into_iter().enumerate() {
         let set = zero_set(poly, samples)?;
+        // On the second pass, the segments of the ridges kept from the first, by cell.
+        let near_kept = Segments::new(kept.iter().map(|(_, line)| line.as_slice()), tol);
         out.singular.extend(&set.singular);
         let mut fresh = Vec::new();
         for curve in &set.curves {
@@ -113,8 +116,7 @@ pub fn ridges(s: &Surface<f64, f64>, samples: usize) -> Result<Ridges> {
             for p in curve {
                 let c = classify(s, p[0], p[1])?;
                 // On the second pass, points already on a ridge of the first are duplicates.
-                let duplicate =
-                    pass == 1 && kept.iter().any(|(_, line)| near_polyline(p, line, tol));
+                let duplicate = pass == 1 && near_kept.near(p);
                 let c = if duplicate { None } else { c };
                 if c != colour {
                     flush(&mut run, colour);
@@ -138,6 +140,76 @@ pub fn ridges(s: &Surface<f64, f64>, samples: usize) -> Result<Ridges> {
     Ok(out)
 }
 
+/// The segments of some polylines by square cell, each listed in every cell its box
+/// (widened by `tol`) meets, so that [`Segments::near`] looks at the segments of one cell
+/// instead of all of them.
+struct Segments<'a> {
+    tol: f64,
+    side: f64,
+    cells: HashMap<(i64, i64), Vec<&'a [[f64; 2]]>>,
+}
+
+impl<'a> Segments<'a> {
+    fn new(lines: impl Iterator<Item = &'a [[f64; 2]]>, tol: f64) -> Self {
+        let segments: Vec<&[[f64; 2]]> = lines.flat_map(|l| l.windows(2)).collect();
+        // Cells about as large as a typical segment, never smaller than the tolerance.
+        let total: f64 = segments
+            .iter()
+            .map(|w| (w[1][0] - w[0][0]).abs().max((w[1][1] - w[0][1]).abs()))
+            .filter(|x| x.is_finite())
+            .sum();
+        let mean = total / segments.len().max(1) as f64;
+        let side = mean.max(2.0 * tol);
+        let side = if side > 0.0 && side.is_finite() {
+            side
+        } else {
+            1.0
+        };
+        let mut out = Self {
+            tol,
+            side,
+            cells: HashMap::new(),
+        };
+        for w in segments {
+            let lo = out.cell([
+                w[0][0].min(w[1][0]) - 2.0 * tol,
+                w[0][1].min(w[1][1]) - 2.0 * tol,
+            ]);
+            let hi = out.cell([
+                w[0][0].max(w[1][0]) + 2.0 * tol,
+                w[0][1].max(w[1][1]) + 2.0 * tol,
+            ]);
+            // Widened by twice the tolerance against rounding. A segment across more cells than this (or with invalid ends) goes everywhere.
+            let span = hi.0.saturating_sub(lo.0).saturating_add(1) as f64
+                * hi.1.saturating_sub(lo.1).saturating_add(1) as f64;
+            if !(span <= 4096.0) {
+                out.cells.entry((i64::MIN, i64::MIN)).or_default().push(w);
+                continue;
+            }
+            for i in lo.0..=hi.0 {
+                for j in lo.1..=hi.1 {
+                    out.cells.entry((i, j)).or_default().push(w);
+                }
+            }
+        }
+        out
+    }
+
+    fn cell(&self, p: [f64; 2]) -> (i64, i64) {
+        (
+            (p[0] / self.side).floor() as i64,
+            (p[1] / self.side).floor() as i64,
+        )
+    }
+
+    /// Whether `p` is within `tol` of one of the segments.
+    fn near(&self, p: &[f64; 2]) -> bool {
+        let own = self.cells.get(&self.cell(*p)).into_iter().flatten();
+        let everywhere = self.cells.get(&(i64::MIN, i64::MIN)).into_iter().flatten();
+        own.chain(everywhere).any(|w| near_polyline(p, w, self.tol))
+    }
+}
+
 /// Whether `p` is within `tol` of the polyline.
 fn near_polyline(p: &[f64; 2], line: &[[f64; 2]], tol: f64) -> bool {
     line.windows(2).any(|w| {
@@ -151,4 +223,61 @@ fn near_polyline(p: &[f64; 2], line: &[[f64; 2]], tol: f64) -> bool {
         };
         (a[0] + t * dx - p[0]).hypot(a[1] + t * dy - p[1]) <= tol
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::{Segments, near_polyline};
+
+    /// Whether a point is near one of the polylines' segments, through the cells and by
+    /// looking at every segment, agree on points scattered near and far from short and long
+    /// segments.
+    #[test]
+    fn cells_find_every_near_segment() {
+        let mut seed = 0x2545_f491_4f6c_dd1d_u64;
+        let mut next = move || {
+            seed ^= seed << 13;
+            seed ^= seed >> 7;
+            seed ^= seed << 17;
+            (seed >> 11) as f64 / (1u64 << 53) as f64
+        };
+        for tol in [1e-6, 1e-3, 0.02] {
+            let lines: Vec<Vec<[f64; 2]>> = (0..60)
+                .map(|k| {
+                    let mut p = [next(), next()];
+                    // Mostly short steps, some long ones (a line across many cells).
+                    let step = if k % 10 == 0 { 0.5 } else { 0.01 };
+                    (0..20)
+                        .map(|_| {
+                            p = [p[0] + step * (next() - 0.5), p[1] + step * (next() - 0.5)];
+                            p
+                        })
+                        .collect()
+                })
+                .collect();
+            let index = Segments::new(lines.iter().map(Vec::as_slice), tol);
+            let (mut near, mut far) = (0, 0);
+            for k in 0..20_000 {
+                let p = if k % 2 == 0 {
+                    // Near a vertex, within a few tolerances.
+                    let line = &lines[k % lines.len()];
+                    let q = line[(k / 2) % line.len()];
+                    [
+                        q[0] + 3.0 * tol * (next() - 0.5),
+                        q[1] + 3.0 * tol * (next() - 0.5),
+                    ]
+                } else {
+                    [next(), next()]
+                };
+                let expected = lines.iter().any(|l| near_polyline(&p, l, tol));
+                assert_eq!(index.near(&p), expected, "tol {tol}, point {p:?}");
+                if expected {
+                    near += 1;
+                } else {
+                    far += 1;
+                }
+            }
+            assert!(near > 1000 && far > 1000, "{near} near, {far} far");
+        }
+    }
 }

@@ -1,10 +1,11 @@
 //! Common zeros of two bivariate splines (Bernstein subdivision, then Newton's method), and
 //! the umbilics of a surface as the common zeros of its umbilic numerators.
 
+use crate::ridge_function::Patch;
 use crate::surface_numerators::curvature_numerators;
 use crate::zero_set::bezier_patches;
 use spline_core::{Error, ErrorKind, KnotVector, Result};
-use spline_geom::{Direction, NurbsSurface, Surface};
+use spline_geom::{NurbsSurface, Surface};
 
 /// Largest number of boxes examined before the zeros are declared not isolated.
 const BOX_BUDGET: usize = 200_000;
@@ -34,7 +35,7 @@ pub struct CommonZeros {
 /// `(u − u₀)` that make both vanish on a whole patch edge are divided out exactly (such a
 /// line of common zeros would otherwise stall the subdivision along the edge); then
 /// boxes are discarded where either function's coefficients have one strict sign and the
-/// others halved (de Casteljau, [`Surface::split`]) down to `10⁻⁷` of the patch; the
+/// others halved (de Casteljau at the midpoint) down to `10⁻⁷` of the patch; the
 /// centres of the remaining boxes start Newton's method on the divided functions, and the
 /// results are merged.
 ///
@@ -90,7 +91,7 @@ pub fn common_zeros(a: &Surface<f64, f64>, b: &Surface<f64, f64>) -> Result<Comm
         let (fa, fb) = divide_common_edges(fa, fb)?;
         search.candidates.clear();
         search.overflow = false;
-        search.boxes(&fa, &fb)?;
+        search.boxes(&Patch::of(&fa), &Patch::of(&fb));
         if search.overflow {
             continue;
         }
@@ -213,63 +214,59 @@ struct Search {
 }
 
 /// Whether the coefficients have one strict sign (no zero in the closed box).
-fn excluded(f: &Surface<f64, f64>) -> bool {
-    let c = f.control_points();
+fn excluded(c: &[f64]) -> bool {
     c.iter().all(|&x| x > 0.0) || c.iter().all(|&x| x < 0.0)
 }
 
+fn all_zero(c: &[f64]) -> bool {
+    c.iter().all(|&x| x == 0.0)
+}
+
 fn vanishes(f: &Surface<f64, f64>) -> bool {
-    f.control_points().iter().all(|&x| x == 0.0)
+    all_zero(f.control_points())
 }
 
 impl Search {
     /// Subdivides the patch pair over its whole domain.
-    fn boxes(&mut self, a: &Surface<f64, f64>, b: &Surface<f64, f64>) -> Result<()> {
-        let ((u0, u1), (v0, v1)) = a.domain();
-        self.split(a, b, [u1 - u0, v1 - v0])
+    fn boxes(&mut self, a: &Patch, b: &Patch) {
+        self.split(a, b, [a.u.1 - a.u.0, a.v.1 - a.v.0]);
     }
 
-    fn split(
-        &mut self,
-        a: &Surface<f64, f64>,
-        b: &Surface<f64, f64>,
-        size: [f64; 2],
-    ) -> Result<()> {
-        if excluded(a) || excluded(b) {
-            return Ok(());
+    /// Halves the boxes by de Casteljau's scheme on their Bernstein coefficients (the
+    /// midpoint insertion of `Surface::split`, without its knot vectors).
+    fn split(&mut self, a: &Patch, b: &Patch, size: [f64; 2]) {
+        if excluded(&a.c) || excluded(&b.c) {
+            return;
         }
-        if vanishes(a) && vanishes(b) {
+        let (za, zb) = (all_zero(&a.c), all_zero(&b.c));
+        if za && zb {
             // A region of common zeros.
             self.not_isolated = true;
-            return Ok(());
+            return;
         }
         // Where one function vanishes on the whole box the common zeros are the other's:
         // isolated only if few boxes reach the resolution (else a curve of them).
-        if (vanishes(a) || vanishes(b)) && self.candidates.len() > LONE_CANDIDATES {
+        if (za || zb) && self.candidates.len() > LONE_CANDIDATES {
             self.not_isolated = true;
             self.overflow = true;
-            return Ok(());
+            return;
         }
         if self.budget == 0 {
             self.not_isolated = true;
-            return Ok(());
+            return;
         }
         self.budget -= 1;
-        let ((u0, u1), (v0, v1)) = a.domain();
+        let ((u0, u1), (v0, v1)) = (a.u, a.v);
         let (wu, wv) = ((u1 - u0) / size[0], (v1 - v0) / size[1]);
         if wu <= RESOLUTION && wv <= RESOLUTION {
             self.candidates.push([0.5 * (u0 + u1), 0.5 * (v0 + v1)]);
-            return Ok(());
+            return;
         }
-        let (direction, mid) = if wu >= wv {
-            (Direction::U, 0.5 * (u0 + u1))
-        } else {
-            (Direction::V, 0.5 * (v0 + v1))
-        };
-        let (a0, a1) = a.split(direction, mid)?;
-        let (b0, b1) = b.split(direction, mid)?;
-        self.split(&a0, &b0, size)?;
-        self.split(&a1, &b1, size)
+        let along_u = wu >= wv;
+        let (a0, a1) = a.halves(along_u);
+        let (b0, b1) = b.halves(along_u);
+        self.split(&a0, &b0, size);
+        self.split(&a1, &b1, size);
     }
 }
 

@@ -65,7 +65,7 @@ pub fn surface_features(args: &SurfaceFeaturesArgs) -> Result<()> {
     for p in &umbilics.poles {
         points.push(pole(p, true)?);
     }
-    let ridges = spline_algebra::surface_ridges(&surface, args.samples)
+    let ridges = spline_algebra::surface_ridges_with_umbilics(&surface, args.samples, &umbilics)
         .map_err(|e| e.context(&args.surface))?;
     let mut coloured = Vec::new();
     let mut constant = Vec::new();

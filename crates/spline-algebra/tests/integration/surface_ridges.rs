@@ -414,3 +414,70 @@ proptest! {
         }
     }
 }
+
+/// A biquartic surface over `[0, 1]²` with `n × n` control points on uniform simple knots
+/// (so `(n − 4)²` patches, marched on several threads; C³, so no ridge lies along a patch
+/// boundary by a jump of the third derivatives): random heights over a sheared grid.
+fn random_net(n: usize, seed: u64) -> NurbsSurface<f64, 3> {
+    let mut state = seed;
+    let mut next = move || {
+        state ^= state << 13;
+        state ^= state >> 7;
+        state ^= state << 17;
+        (state >> 11) as f64 / (1u64 << 53) as f64
+    };
+    let spans = n - 4;
+    let knots: Vec<f64> = (0..n + 5)
+        .map(|i| (i.saturating_sub(4)).min(spans) as f64 / spans as f64)
+        .collect();
+    let k = KnotVector::new(4, knots).unwrap();
+    let points = (0..n * n)
+        .map(|i| {
+            let (a, b) = ((i / n) as f64, (i % n) as f64);
+            Vector3::new(a + 0.2 * b, b + 0.1 * next(), 0.6 * next())
+        })
+        .collect();
+    NurbsSurface::new(k.clone(), k, points, vec![1.0; n * n]).unwrap()
+}
+
+/// On surfaces of 16 and 25 patches (the marching split between threads, pieces chained
+/// across patches) the
+/// traced ridges and the sign changes of the independently sampled ridge condition agree
+/// both ways within two sample steps, and every traced line is a chain of short steps
+/// (pieces joined end to end, not across the domain).
+#[test]
+fn ridges_of_many_patches_match_dense_sampling() {
+    for (n, seed) in [(8, 11u64), (9, 23)] {
+        let s = random_net(n, seed);
+        let samples = 128;
+        let step = 1.0 / samples as f64;
+        let (changes, undecided) = sampled_ridges(&s, samples);
+        let r = surface_ridges(&s, 32).unwrap();
+        let mut traced_points = 0;
+        for (k, traced) in [&r.red, &r.blue].into_iter().enumerate() {
+            for line in traced {
+                for w in line.windows(2) {
+                    let gap = (w[1][0] - w[0][0]).abs().max((w[1][1] - w[0][1]).abs());
+                    assert!(gap <= 1.0 / (n - 4) as f64, "colour {k}: a jump of {gap}");
+                }
+            }
+            let points: Vec<[f64; 2]> = traced.iter().flatten().copied().collect();
+            traced_points += points.len();
+            let skip =
+                |c: &[f64; 2]| near(c, &undecided, 3.0 * step) || near(c, &r.umbilics, 3.0 * step);
+            for c in changes[k].iter().filter(|c| !skip(c)) {
+                assert!(
+                    near(c, &points, 2.0 * step),
+                    "n {n}, colour {k}: sampled sign change at {c:?} not traced"
+                );
+            }
+            for p in points.iter().filter(|p| !skip(p)) {
+                assert!(
+                    near(p, &changes[k], 2.0 * step),
+                    "n {n}, colour {k}: traced point {p:?} without a sampled sign change"
+                );
+            }
+        }
+        assert!(traced_points > 100, "n {n}: {traced_points} points");
+    }
+}
