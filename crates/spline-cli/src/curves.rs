@@ -21,16 +21,17 @@ use spline_fit::{
 };
 use spline_geom::{ArcLengthTable, BSpline, PlanarCurve};
 use spline_shape::{
-    CurveOffset, OffsetOptions, OffsetShape, offset_planar_curve, offset_space_curve,
+    CurveOffset, ExactOffset, OffsetOptions, OffsetShape, SurfaceOffset, SurfaceOffsetShape,
+    offset_planar_curve, offset_space_curve, offset_surface,
 };
 
 #[derive(Args)]
 pub struct OffsetArgs {
-    /// A curve (JSON: B-spline or NURBS, planar or 3-D with --direction), or - for
-    /// standard input.
+    /// A curve (JSON: B-spline or NURBS, planar or 3-D with --direction) or a surface in
+    /// 3-D (B-spline or NURBS), or - for standard input.
     curve: String,
-    /// Signed distance: positive to the left of the direction of travel (planar curves), or
-    /// along T × V (3-D curves).
+    /// Signed distance: positive to the left of the direction of travel (planar curves),
+    /// along T × V (3-D curves), or along the unit normal S_u × S_v (surfaces).
     #[arg(long, allow_hyphen_values = true)]
     distance: f64,
     /// The reference direction V of a 3-D curve's offset, as x,y,z or a JSON array: the
@@ -197,11 +198,15 @@ pub fn offset(args: &OffsetArgs) -> Result<()> {
     let dim = match &object {
         Object::Curve(c) => c.dim,
         Object::Nurbs(c) => c.dim,
-        Object::Surface(_) | Object::NurbsSurface(_) => {
-            return Err(Error::new(
-                ErrorKind::InvalidArgument,
-                format!("{}: offset needs a curve, got a surface", args.curve),
-            ));
+        Object::Surface(s) => {
+            return offset_of_surface(s.dim, args, |to3| {
+                offset_surface(&s.value.map_control_points(to3), args.distance, &options)
+            });
+        }
+        Object::NurbsSurface(s) => {
+            return offset_of_surface(s.dim, args, |to3| {
+                offset_surface(&s.value.map_control_points(to3), args.distance, &options)
+            });
         }
     };
     match (dim, &args.direction) {
@@ -228,7 +233,9 @@ pub fn offset(args: &OffsetArgs) -> Result<()> {
                     &direction,
                     &options,
                 )?,
-                Object::Surface(_) | Object::NurbsSurface(_) => unreachable!("checked above"),
+                Object::Surface(_) | Object::NurbsSurface(_) => {
+                    unreachable!("surfaces return above")
+                }
             };
             print_offset(&offset)
         }
@@ -264,6 +271,57 @@ fn parse_direction(text: &str) -> Result<[f64; 3]> {
     } else {
         parse_arg("--direction", &format!("[{trimmed}]"))
     }
+}
+
+/// The offset of a surface in space (`offset` computes it from the surface's points in
+/// 3-D) printed as its record: the surface, whether it is exact, the error bound.
+fn offset_of_surface(
+    dim: usize,
+    args: &OffsetArgs,
+    offset: impl FnOnce(&dyn Fn(&Pt) -> Vector3<f64>) -> Result<SurfaceOffset<f64>>,
+) -> Result<()> {
+    if dim != 3 {
+        return Err(Error::new(
+            ErrorKind::DimensionMismatch,
+            format!(
+                "{}: the offset of a surface needs a surface in 3-D, got {dim} coordinates",
+                args.curve
+            ),
+        ));
+    }
+    if args.direction.is_some() {
+        return Err(Error::new(
+            ErrorKind::InvalidArgument,
+            format!(
+                "{}: --direction is for 3-D curves; a surface is offset along its normal",
+                args.curve
+            ),
+        ));
+    }
+    let result = offset(&|p: &Pt| Vector3::new(p[0], p[1], p[2]))?;
+    let pad = |q: &Vector3<f64>| Pt::from_fn(|i, _| if i < 3 { q[i] } else { 0.0 });
+    let record = match &result.surface {
+        SurfaceOffsetShape::Polynomial(s) => Sized {
+            value: s.map_control_points(pad),
+            dim: 3,
+        }
+        .json()?,
+        SurfaceOffsetShape::Rational(s) => Sized {
+            value: s.map_control_points(pad),
+            dim: 3,
+        }
+        .json()?,
+    };
+    let exact = match result.exact {
+        ExactOffset::Approximate => "approximate",
+        ExactOffset::Plane => "plane",
+        ExactOffset::Sphere => "sphere",
+    };
+    print_json(&json!({
+        "surface": record,
+        "exact": exact,
+        "max_error": result.max_error,
+    }))
 }
 
 /// Prints the record of an offset: the curve, the cusps and their points, the error bound.

@@ -61,6 +61,7 @@
 //! None.
 
 mod adaptive;
+mod adaptive_surface;
 mod arclength;
 mod banded;
 mod bezier;
@@ -91,6 +92,9 @@ mod surface_project;
 mod sweep;
 
 pub use adaptive::{AdaptiveApproximation, AdaptiveFit, MAX_ADAPTIVE_PIECES};
+pub use adaptive_surface::{
+    AdaptiveSurfaceApproximation, AdaptiveSurfaceFit, MAX_ADAPTIVE_PATCHES,
+};
 pub use arclength::reparametrize_by_arc_length;
 pub use bezier::{BezierFit, bezier_interpolate, bezier_least_squares};
 pub use columns::{InterpBc, make_interp_spline, make_lsq_spline};

@@ -11,8 +11,9 @@
 //!   constraints on partial derivatives and convexity (thesis §5.5–5.6).
 //! - [`eraser`]: the selective eraser of curvature extrema of planar curves (thesis ch. 6),
 //!   e.g. airfoil smoothing.
-//! - [`offset`]: offsets of curves with their cusps, within a tolerance (the tool calls it
-//!   once).
+//! - [`offset`]: offsets of curves (planar and space, B-spline and NURBS) with their cusps,
+//!   and of surfaces; exact for arcs, planes and spheres, otherwise within a tolerance (the
+//!   tool calls it once).
 
 /// The settings shared by the constrained approximations of functions and of surfaces
 /// (their builders' `refinement` and `options`), written once.
@@ -70,8 +71,9 @@ pub use eraser::{
 };
 pub use flecnodal::{FlecnodalCircles, control_flecnodal_circles};
 pub use offset::{
-    CUSP_ACCURACY, CurveOffset, Cusp, OffsetOptions, OffsetShape, OffsetSource,
-    offset_planar_curve, offset_space_curve,
+    CUSP_ACCURACY, CurveOffset, Cusp, ExactOffset, OffsetOptions, OffsetShape, OffsetSource,
+    SurfaceOffset, SurfaceOffsetShape, SurfaceOffsetSource, offset_planar_curve,
+    offset_space_curve, offset_surface,
 };
 pub use problem::{ApproximationProblem, Sign};
 pub use revolution::{

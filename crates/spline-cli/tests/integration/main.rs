@@ -9,6 +9,7 @@ mod curve_tools;
 mod curves;
 mod fitting;
 mod functions;
+mod offset_surfaces;
 mod overlap_tools;
 mod readme;
 mod reliability;

@@ -3,6 +3,7 @@
 
 #![allow(unreachable_pub)]
 
+mod adaptive_surface;
 mod arclength;
 mod closest_global;
 mod curve_surface_overlaps;

@@ -8,6 +8,7 @@
 //! spline-fit does not depend on spline-algebra (nor the other way round).
 
 mod curve;
+mod surface;
 
 use curve::{
     Frame, check_not_parallel, circle_factor, circle_of, fit_space_offset, sampled_cusps,
@@ -17,6 +18,9 @@ use nalgebra::{SVector, Vector2, Vector3};
 use spline_algebra::offset_cusps;
 use spline_core::{Error, Result, Scalar, cast};
 use spline_geom::{BSpline, NurbsCurve, ParamCurve, PlanarCurve};
+pub use surface::{
+    ExactOffset, SurfaceOffset, SurfaceOffsetShape, SurfaceOffsetSource, offset_surface,
+};
 
 /// Parameter accuracy of the cusps, relative to the length of the domain.
 pub const CUSP_ACCURACY: f64 = 1e-12;

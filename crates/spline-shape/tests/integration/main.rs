@@ -11,6 +11,7 @@ mod eraser_closed;
 mod eraser_warnings;
 mod flecnodal;
 mod functions;
+mod offset_surfaces;
 mod parametric_convexity;
 mod revolution;
 mod spatial_convexity;
