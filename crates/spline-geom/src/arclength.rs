@@ -46,19 +46,23 @@ pub(crate) fn adaptive_length<T: Scalar>(
     let mut total = T::zero();
     for w in breaks.windows(2) {
         let whole = rule.integrate(w[0], w[1], &speed);
-        total += adaptive(&rule, (w[0], w[1]), whole, &speed, accuracy, 0)?;
+        // The piece's share: `accuracy` times its length, split between halves on bisection.
+        let budget = whole.abs() * accuracy;
+        total += adaptive(&rule, (w[0], w[1]), whole, &speed, budget, 0)?;
     }
     Ok(total)
 }
 
 /// The integral over `[a, b]` given the rule's estimate `whole` there (the halves'
-/// estimates are passed down on bisection, not computed again).
+/// estimates are passed down on bisection, not computed again), to the absolute `budget`
+/// (each half gets half of it: the errors of the accepted intervals add up to at most the
+/// piece's budget; no interval is asked for less than the rounding of its own value).
 fn adaptive<T: Scalar>(
     rule: &Quadrature<T>,
     (a, b): (T, T),
     whole: T,
     f: &impl Fn(T) -> T,
-    relative: T,
+    budget: T,
     depth: usize,
 ) -> Result<T> {
     let mid = (a + b) * cast(0.5);
@@ -66,7 +70,7 @@ fn adaptive<T: Scalar>(
     let right = rule.integrate(mid, b, f);
     let halves = left + right;
     // The halves estimate is far more accurate than `whole`; their difference bounds its error.
-    let tol = halves.abs() * relative.max(cast(8.0 * f64::EPSILON));
+    let tol = budget.max(halves.abs() * cast(8.0 * f64::EPSILON));
     if (halves - whole).abs() <= tol {
         return Ok(halves);
     }
@@ -74,12 +78,13 @@ fn adaptive<T: Scalar>(
         return Err(Error::new(
             ErrorKind::NoConvergence,
             format!(
-                "arc length did not reach the relative accuracy {:.1e} near u = {}",
-                to_f64(relative),
+                "arc length did not reach the accuracy {:.1e} near u = {}",
+                to_f64(budget),
                 to_f64(mid)
             ),
         ));
     }
-    Ok(adaptive(rule, (a, mid), left, f, relative, depth + 1)?
-        + adaptive(rule, (mid, b), right, f, relative, depth + 1)?)
+    let half = budget * cast(0.5);
+    Ok(adaptive(rule, (a, mid), left, f, half, depth + 1)?
+        + adaptive(rule, (mid, b), right, f, half, depth + 1)?)
 }
