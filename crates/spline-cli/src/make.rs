@@ -50,8 +50,8 @@ enum Shape {
     /// The surface of revolution of a profile curve about an axis (u along the profile,
     /// v in [0, 1] around the axis).
     Revolve(RevolveArgs),
-    /// A NURBS sphere: a half circle from the north to the south pole revolved about the z
-    /// axis (5 × 9 control points, degrees 2 and 2).
+    /// A NURBS sphere: a half circle from the north to the south pole revolved about the
+    /// axis through the poles (--axis, default z; 5 × 9 control points, degrees 2 and 2).
     Sphere(SphereArgs),
     /// A NURBS torus: a circle revolved about an axis through the center (9 × 9 control
     /// points, degrees 2 and 2).
@@ -230,6 +230,9 @@ struct SphereArgs {
     /// Radius (positive).
     #[arg(long, allow_hyphen_values = true)]
     radius: f64,
+    /// Direction of the axis through the poles, as a JSON array (non-zero).
+    #[arg(long, default_value = "[0, 0, 1]")]
+    axis: String,
 }
 
 #[derive(Args)]
@@ -463,9 +466,10 @@ fn make_json(shape: &Shape) -> Result<Json> {
         }
         Shape::Sphere(a) => {
             let c = point::<3>("--center", &a.center)?;
-            io::raw(&SurfaceRecord::from_nurbs_surface(&NurbsSurface::sphere(
-                c, a.radius,
-            )?))?
+            let axis = point::<3>("--axis", &a.axis)?;
+            io::raw(&SurfaceRecord::from_nurbs_surface(
+                &NurbsSurface::sphere_about(c, a.radius, axis)?,
+            ))?
         }
         Shape::Torus(a) => {
             let c = point::<3>("--center", &a.center)?;

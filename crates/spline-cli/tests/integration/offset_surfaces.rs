@@ -1,5 +1,6 @@
 //! `spline offset` on surfaces through the binary: a sphere exactly, a torus within the
-//! tolerance (its tube radius grows by the distance), folds and misplaced options refused.
+//! tolerance (its tube radius grows by the distance), folds and misplaced options refused;
+//! and `spline make sphere --axis` (its poles on the axis).
 
 use crate::common;
 
@@ -74,4 +75,63 @@ fn offset_of_a_torus_within_the_tolerance_and_its_fold() {
     let message = spline(&["offset", &path, "--distance", "0.1", "--direction", "0,0,1"])
         .assert_clean_error();
     assert!(message.contains("normal"), "{message}");
+}
+
+#[test]
+fn make_sphere_with_its_poles_on_an_axis() {
+    let default = spline(&["make", "sphere", "--center", "[1, 2, 3]", "--radius", "2"]).json();
+    let along_z = spline(&[
+        "make",
+        "sphere",
+        "--center",
+        "[1, 2, 3]",
+        "--radius",
+        "2",
+        "--axis",
+        "[0, 0, 5]",
+    ])
+    .json();
+    assert_eq!(default, along_z, "--axis z is the default sphere");
+    let axis = [1.0, -2.0, 2.0]; // length 3
+    let sphere = spline(&[
+        "make",
+        "sphere",
+        "--center",
+        "[1, 2, 3]",
+        "--radius",
+        "2",
+        "--axis",
+        "[1, -2, 2]",
+    ])
+    .json();
+    let points = points_of(&sphere, 11);
+    for p in &points {
+        let r = ((p[0] - 1.0).powi(2) + (p[1] - 2.0).powi(2) + (p[2] - 3.0).powi(2)).sqrt();
+        assert!((r - 2.0).abs() <= 1e-14, "{p:?}: {r}");
+    }
+    // The first row of the grid is u = 0 (the north pole), the last u = 1 (the south).
+    for (row, sign) in [(0, 1.0), (10, -1.0)] {
+        for p in &points[row * 11..(row + 1) * 11] {
+            let pole = [
+                1.0 + sign * 2.0 * axis[0] / 3.0,
+                2.0 + sign * 2.0 * axis[1] / 3.0,
+                3.0 + sign * 2.0 * axis[2] / 3.0,
+            ];
+            let e = (0..3).map(|i| (p[i] - pole[i]).powi(2)).sum::<f64>().sqrt();
+            assert!(e <= 1e-14, "{p:?} vs {pole:?}");
+        }
+    }
+    for bad in ["[0, 0, 0]", "[1, NaN, 0]", "[1, 2]"] {
+        spline(&[
+            "make",
+            "sphere",
+            "--center",
+            "[0, 0, 0]",
+            "--radius",
+            "1",
+            "--axis",
+            bad,
+        ])
+        .assert_clean_error();
+    }
 }

@@ -281,8 +281,33 @@ impl<T: Scalar> NurbsSurface<T, 3> {
     /// # Errors
     /// [`ErrorKind::NonFinite`]; [`ErrorKind::InvalidArgument`] unless `r > 0`.
     pub fn sphere(center: Vector3<T>, radius: T) -> Result<Self> {
+        Self::sphere_about(center, radius, Vector3::z())
+    }
+
+    /// The sphere of center `c` and radius `r` with its poles on the axis `(c, a)`: as
+    /// [`Self::sphere`] with `z` replaced by the unit axis $\hat a$ and `x` by the unit
+    /// vector perpendicular to it along the coordinate axis least aligned with it (for
+    /// $\hat a = z$: `x`, and the same surface as [`Self::sphere`]). The poles are
+    /// $S(0, v) = c + r \hat a$ and $S(1, v) = c - r \hat a$ (Open CASCADE's
+    /// `Geom_SphericalSurface` on a placement).
+    ///
+    /// ```
+    /// use nalgebra::Vector3;
+    /// use spline_geom::NurbsSurface;
+    /// let sphere = NurbsSurface::sphere_about(Vector3::zeros(), 2.0, Vector3::new(1.0, 1.0, 0.0))?;
+    /// let pole = sphere.eval(0.0, 0.3)?;
+    /// assert!((pole - Vector3::new(1.0, 1.0, 0.0) * 2f64.sqrt()).norm() < 1e-14);
+    /// # Ok::<(), spline_core::Error>(())
+    /// ```
+    ///
+    /// # Errors
+    /// [`ErrorKind::NonFinite`]; [`ErrorKind::InvalidArgument`] unless `r > 0`;
+    /// [`ErrorKind::DegenerateGeometry`] for a zero axis.
+    pub fn sphere_about(center: Vector3<T>, radius: T, axis: Vector3<T>) -> Result<Self> {
         check_vector(&center, "the center")?;
         check_positive(radius, "the radius")?;
+        let axis = Axis::new(center, axis)?;
+        let (pole, across) = (axis.direction(), perpendicular(&axis.direction()));
         let (one, zero, s) = (T::one(), T::zero(), cast::<T>(0.5).sqrt());
         let half = cast::<T>(0.5);
         let pts = [
@@ -296,11 +321,11 @@ impl<T: Scalar> NurbsSurface<T, 3> {
             2,
             vec![zero, zero, zero, half, half, one, one, one],
             pts.iter()
-                .map(|&(x, z)| center + Vector3::new(x, zero, z) * radius)
+                .map(|&(x, z)| center + (across * x + pole * z) * radius)
                 .collect(),
             vec![one, s, one, s, one],
         )?;
-        Self::revolution(&profile, &Axis::new(center, Vector3::z())?, T::two_pi())
+        Self::revolution(&profile, &axis, T::two_pi())
     }
 
     /// The torus of center `c` about the axis `(c, axis_direction)`: the circle of radius
