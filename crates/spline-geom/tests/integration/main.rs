@@ -5,6 +5,7 @@
 
 mod arclength_cost;
 mod constructions;
+mod constructions_surfaces;
 mod curves;
 mod in_place;
 mod lanes;
