@@ -10,6 +10,36 @@ use spline_core::{
 use spline_geom::BSpline;
 use std::cell::Cell;
 
+/// The power of two near the size of the first values a map returns (one until then): the
+/// adaptive fits divide every value by it (exact), so that their least squares and
+/// deviations are those of the unscaled map at any scale from 1e-300 to 1e300.
+pub(crate) struct FirstScale<T>(Cell<Option<T>>);
+
+impl<T: Scalar> FirstScale<T> {
+    pub(crate) fn new() -> Self {
+        Self(Cell::new(None))
+    }
+
+    /// The scale, one before the first values.
+    pub(crate) fn get(&self) -> T {
+        self.0.get().unwrap_or_else(T::one)
+    }
+
+    /// Divides `points` by the scale, fixed from them if they are the first values.
+    pub(crate) fn divide<P: ControlPoint<T>>(&self, points: &mut [P]) {
+        let s = self.0.get().unwrap_or_else(|| {
+            let largest = points.iter().fold(T::zero(), |m, q| m.max(q.max_abs()));
+            let s = cast(power_of_two_scale(to_f64(largest)));
+            self.0.set(Some(s));
+            s
+        });
+        let inverse = T::one() / s;
+        for q in points {
+            *q = *q * inverse;
+        }
+    }
+}
+
 /// The most pieces [`AdaptiveApproximation`] allows by default.
 pub const MAX_ADAPTIVE_PIECES: usize = 100_000;
 
@@ -141,25 +171,16 @@ impl<T: Scalar> AdaptiveApproximation<T> {
         // The values are divided by a power of four near the size of the first samples
         // (exact), so that the fit and its deviations are those of the unscaled map: no
         // underflow of the least squares at 1e-300, no overflow at 1e300.
-        let scale: Cell<Option<T>> = Cell::new(None);
+        let scale = FirstScale::new();
         let scaled = |us: &[T]| -> Result<Vec<P>> {
             let mut points = f(us)?;
-            let s = scale.get().unwrap_or_else(|| {
-                let largest = points.iter().fold(T::zero(), |m, q| m.max(q.max_abs()));
-                let s = cast(power_of_two_scale(to_f64(largest)));
-                scale.set(Some(s));
-                s
-            });
-            let inverse = T::one() / s;
-            for q in &mut points {
-                *q = *q * inverse;
-            }
+            scale.divide(&mut points);
             Ok(points)
         };
         let mut passes = 0;
         loop {
             let (mut curve, errors) = self.fit_on(p, &breaks, &scaled)?;
-            let s = scale.get().unwrap_or_else(T::one);
+            let s = scale.get();
             let target = self.tolerance * cast(0.5) / s;
             let worst = errors.iter().fold(T::zero(), |m, &e| m.max(e)) * s;
             let bad: Vec<usize> = (0..errors.len()).filter(|&k| errors[k] > target).collect();

@@ -2,11 +2,11 @@
 //! in both directions: the surface counterpart of [`crate::AdaptiveApproximation`] (offset
 //! surfaces use it).
 
+use crate::adaptive::FirstScale;
 use crate::lsq::LeastSquares;
 use crate::params::check_degree;
 use spline_core::{
-    ControlPoint, Error, ErrorKind, KnotVector, Result, Scalar, cast, from_count,
-    power_of_two_scale, to_f64,
+    ControlPoint, Error, ErrorKind, KnotVector, Result, Scalar, cast, from_count, to_f64,
 };
 use spline_geom::Surface;
 
@@ -113,7 +113,7 @@ impl<T: Scalar> AdaptiveSurfaceApproximation<T> {
         let repeats = (&self.breaks.0[..], &self.breaks.1[..]);
         let degrees = (self.degrees.0.max(1), self.degrees.1.max(1));
         // The values divided by a power of four near the size of the first samples (exact).
-        let scale = std::cell::Cell::new(None);
+        let scale = FirstScale::new();
         let scaled = |us: &[T], vs: &[T]| -> Result<Vec<P>> {
             let mut points = f(us, vs)?;
             if points.len() != us.len() * vs.len() {
@@ -127,22 +127,13 @@ impl<T: Scalar> AdaptiveSurfaceApproximation<T> {
                     ),
                 ));
             }
-            let s: T = scale.get().unwrap_or_else(|| {
-                let largest = points.iter().fold(T::zero(), |m, q| m.max(q.max_abs()));
-                let s = cast(power_of_two_scale(to_f64(largest)));
-                scale.set(Some(s));
-                s
-            });
-            let inverse = T::one() / s;
-            for q in &mut points {
-                *q = *q * inverse;
-            }
+            scale.divide(&mut points);
             Ok(points)
         };
         let mut passes = 0;
         loop {
             let (mut surface, errors) = fit_on(degrees, (&breaks_u, &breaks_v), repeats, &scaled)?;
-            let s = scale.get().unwrap_or_else(T::one);
+            let s = scale.get();
             let target = self.tolerance * cast(0.5) / s;
             let spans_v = breaks_v.len() - 1;
             let worst = errors.iter().fold(T::zero(), |m, &e| m.max(e)) * s;
