@@ -5,6 +5,10 @@ use nalgebra::Vector2;
 use spline_core::KnotVector;
 use std::cell::RefCell;
 
+/// Parameter steps of the foot-point iteration at or below this (the parameters are on
+/// `[0, 1]`) end it: a few units in the last place of the parameter.
+const FOOT_PARAMETER_RESOLUTION: f64 = 1e-14;
+
 /// One data point's squared distance at the current curve (buffers reused from one
 /// evaluation to the next).
 #[derive(Clone, Debug, Default)]
@@ -39,12 +43,15 @@ pub(super) struct Distances {
 impl Distances {
     /// The foot point of data point `j` near its cached parameter, with the derivatives of
     /// its squared distance when `derivatives`, written into `out` (its buffers reused: no
-    /// allocation once they have their size).
+    /// allocation once they have their size). With `found`, the foot point is already known
+    /// to be at `out.param` (found by an earlier call for the same control points): only the
+    /// derivatives are computed there.
     pub(super) fn foot_into(
         &self,
         control: &[Vector2<f64>],
         j: usize,
         derivatives: bool,
+        found: bool,
         out: &mut Foot,
     ) {
         let p = self.knots.degree();
@@ -55,10 +62,15 @@ impl Distances {
         let fixed = pinned || !self.project;
         let mut u = if pinned {
             if j == 0 { 0.0 } else { 1.0 }
+        } else if found {
+            out.param
         } else {
             self.params.borrow()[j]
         };
+        // The basis functions and their first two derivatives at `u` (`basis`) and at a
+        // candidate step (`trial`).
         let mut basis = [0.0; 3 * spline_core::MAX_ORDER];
+        let mut trial = [0.0; 3 * spline_core::MAX_ORDER];
         let eval = |u: f64, basis: &mut [f64]| -> (usize, [Vector2<f64>; 3]) {
             let span = self.knots.span_in_domain(u);
             self.knots
@@ -72,7 +84,7 @@ impl Distances {
             (span, d)
         };
         let (mut span, mut d) = eval(u, &mut basis);
-        if !fixed {
+        if !fixed && !found {
             let mut dist2 = (d[0] - q).norm_squared();
             for _ in 0..30 {
                 let r = d[0] - q;
@@ -90,13 +102,16 @@ impl Distances {
                     } else {
                         (u + step).clamp(0.0, 1.0)
                     };
-                    if candidate == u {
+                    // A step below the rounding of the parameter (on [0, 1]) changes nothing
+                    // the distance can see: the foot point is found.
+                    if (candidate - u).abs() <= FOOT_PARAMETER_RESOLUTION {
                         break;
                     }
-                    let (s2, d2) = eval(candidate, &mut basis);
+                    let (s2, d2) = eval(candidate, &mut trial);
                     let c2 = (d2[0] - q).norm_squared();
                     if c2 <= dist2 {
-                        moved = (candidate - u).abs() > 1e-15;
+                        moved = true;
+                        basis = trial;
                         u = candidate;
                         span = s2;
                         d = d2;
@@ -121,8 +136,6 @@ impl Distances {
         hessian.clear();
         if derivatives {
             // Basis values at u (the evaluation left them in `basis`).
-            self.knots
-                .basis_derivatives(span, u, 2, &mut basis[..3 * width]);
             let value = &basis[..width];
             let slope = &basis[width..2 * width];
             gradient.resize(n, 0.0);

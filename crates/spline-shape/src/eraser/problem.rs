@@ -295,11 +295,25 @@ impl EraserProblem {
     /// (into the cache's buffers: no allocation once they have their sizes).
     fn feet(&self, x: &DVector<f64>, derivatives: bool) -> std::cell::Ref<'_, FeetCache> {
         let key = &x.as_slice()[..2 * self.n];
-        let fresh = {
+        let (same, fresh) = {
             let cache = self.feet.borrow();
-            cache.control.as_slice() == key && (cache.derivatives || !derivatives)
+            let same = cache.control.as_slice() == key;
+            (same, same && (cache.derivatives || !derivatives))
         };
-        if !fresh {
+        if same && !fresh {
+            // The feet of these control points are known: only their derivatives are new.
+            let mut cache = self.feet.borrow_mut();
+            let FeetCache {
+                derivatives: with_derivatives,
+                feet,
+                points,
+                ..
+            } = &mut *cache;
+            *with_derivatives = true;
+            for (j, foot) in feet.iter_mut().enumerate() {
+                self.distances.foot_into(points, j, true, true, foot);
+            }
+        } else if !fresh {
             let mut cache = self.feet.borrow_mut();
             let FeetCache {
                 control,
@@ -313,7 +327,8 @@ impl EraserProblem {
             self.fill_control(x, points);
             feet.resize_with(self.distances.points.len(), Foot::default);
             for (j, foot) in feet.iter_mut().enumerate() {
-                self.distances.foot_into(points, j, derivatives, foot);
+                self.distances
+                    .foot_into(points, j, derivatives, false, foot);
             }
         }
         self.feet.borrow()
@@ -477,6 +492,19 @@ impl EraserProblem {
             let foot = &feet.feet[j];
             let nl = foot.gradient.len();
             let base = 2 * foot.first;
+            if !self.closed {
+                // The local variables are consecutive columns: add the (symmetric) block
+                // column by column.
+                let rows = out.nrows();
+                let matrix = out.as_mut_slice();
+                for (b, block) in foot.hessian.chunks_exact(nl).enumerate() {
+                    let start = (base + b) * rows + base;
+                    for (o, h) in matrix[start..start + nl].iter_mut().zip(block) {
+                        *o += w * h;
+                    }
+                }
+                continue;
+            }
             for a in 0..nl {
                 for b in 0..nl {
                     out[(self.column(base + a), self.column(base + b))] +=
