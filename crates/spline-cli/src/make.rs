@@ -56,14 +56,18 @@ enum Shape {
     /// A NURBS torus: a circle revolved about an axis through the center (9 × 9 control
     /// points, degrees 2 and 2).
     Torus(TorusArgs),
-    /// The surface through section curves (skinning, lofting): u along the sections.
+    /// The surface through section curves (skinning, lofting): u along the sections;
+    /// prints {surface, params} (the v of each section).
     Skin(SkinArgs),
-    /// A B-spline profile swept along a path with rotation-minimising frames.
+    /// A B-spline profile swept along a path with rotation-minimising frames; prints
+    /// {surface, params} (the v of each copy of the profile).
     Sweep(SweepArgs),
-    /// The Coons patch of four boundary curves: bottom (v = 0), top, left (u = 0), right.
+    /// The Coons patch of four boundary curves: bottom (v = 0), top, left (u = 0), right
+    /// (B-spline or NURBS; a NURBS patch when any curve has weights).
     Coons(CoonsArgs),
     /// The Gordon surface through a network of u-curves and v-curves (the first curve of
-    /// each family is the boundary where the other family starts).
+    /// each family is the boundary where the other family starts); prints {surface,
+    /// params_u, params_v, crossing_gap}.
     Gordon(GordonArgs),
 }
 

@@ -282,27 +282,34 @@ pub fn make_skin(paths: &[String], degree: usize) -> Result<Json> {
             ),
         ));
     }
-    if curves.iter().any(|c| c.rational) {
+    let (surface, params) = if curves.iter().any(|c| c.rational) {
         let sections: Vec<_> = curves.iter().map(|c| c.curve.value.clone()).collect();
-        Sized {
-            value: skin_rational(&sections, degree, None)?.surface,
+        let skinned = skin_rational(&sections, degree, None)?;
+        let record = Sized {
+            value: skinned.surface,
             dim,
         }
-        .json()
+        .json()?;
+        (record, skinned.params)
     } else {
         let sections: Vec<Curve> = curves.iter().map(AnyCurve::polynomial).collect();
-        Sized {
-            value: skin(&sections, degree, None)?.surface,
+        let skinned = skin(&sections, degree, None)?;
+        let record = Sized {
+            value: skinned.surface,
             dim,
         }
-        .json()
-    }
+        .json()?;
+        (record, skinned.params)
+    };
+    io::raw(&json!({"surface": surface, "params": params}))
 }
 
-/// `make coons`: the Coons patch of four B-spline curves (bottom, top, left, right).
+/// `make coons`: the Coons patch of four curves (bottom, top, left, right): a B-spline
+/// surface of B-spline curves, a NURBS surface when any curve is rational.
 ///
 /// # Errors
-/// As [`Surface::coons`]; not four curves.
+/// As [`Surface::coons`] and [`NurbsSurface::coons`]; not four curves, or curves of
+/// different dimensions.
 pub fn make_coons(paths: &[String]) -> Result<Json> {
     if paths.len() != 4 {
         return Err(invalid(format!(
@@ -310,9 +317,28 @@ pub fn make_coons(paths: &[String]) -> Result<Json> {
             paths.len()
         )));
     }
-    let (c, dim) = polynomial_curves(paths, "boundary curve")?;
+    let curves: Vec<AnyCurve> = paths.iter().map(|p| read_curve(p)).collect::<Result<_>>()?;
+    if !curves.iter().any(|c| c.rational) {
+        let (c, dim) = polynomial_curves(paths, "boundary curve")?;
+        return Sized {
+            value: Surface::coons(&c[0], &c[1], &c[2], &c[3])?,
+            dim,
+        }
+        .json();
+    }
+    let dim = curves[0].curve.dim;
+    if let Some(k) = curves.iter().position(|c| c.curve.dim != dim) {
+        return Err(Error::new(
+            ErrorKind::DimensionMismatch,
+            format!(
+                "{}: {} coordinates, the first boundary curve has {dim}",
+                paths[k], curves[k].curve.dim
+            ),
+        ));
+    }
+    let c: Vec<_> = curves.iter().map(|c| &c.curve.value).collect();
     Sized {
-        value: Surface::coons(&c[0], &c[1], &c[2], &c[3])?,
+        value: NurbsSurface::coons(c[0], c[1], c[2], c[3])?,
         dim,
     }
     .json()
@@ -336,11 +362,18 @@ pub fn make_gordon(
             format!("the u-curves have {dim} coordinates, the v-curves {dv}"),
         ));
     }
-    Sized {
-        value: gordon(&us, &vs, (degree, degree), tolerance)?.surface,
+    let network = gordon(&us, &vs, (degree, degree), tolerance)?;
+    let surface = Sized {
+        value: network.surface,
         dim,
     }
-    .json()
+    .json()?;
+    io::raw(&json!({
+        "surface": surface,
+        "params_u": network.params_u,
+        "params_v": network.params_v,
+        "crossing_gap": network.crossing_gap,
+    }))
 }
 
 /// `make sweep`: a B-spline profile swept along a path (B-spline or NURBS) in space.
@@ -357,13 +390,14 @@ pub fn make_sweep(profile: &str, path: &str, sections: usize) -> Result<Json> {
     let prof = p[0].map_control_points(to3);
     let path3: NurbsCurve<f64, 3> = along.curve.value.map_control_points::<3>(|q| to3(q));
     let s = sweep(&prof, &path3, sections, None)?;
-    Sized {
+    let surface = Sized {
         value: s
             .surface
             .map_control_points(|q| io::pad(q.as_slice()).expect("3 coordinates")),
         dim: 3,
     }
-    .json()
+    .json()?;
+    io::raw(&json!({"surface": surface, "params": s.params}))
 }
 
 /// `spline approximate-surface POINTS --control-points '[m, n]' ...`.

@@ -88,7 +88,23 @@ fn constructions() {
     let l2 = temp_file("s2.json", &line([0.0, 0.5, 1.0], [1.0, 0.5, 1.0]));
     let l3 = temp_file("s3.json", &line([0.0, 0.0, 3.0], [1.0, 0.0, 3.0]));
     let skinned = spline(&["make", "skin", "--curves", &l1, &l2, &l3, "--degree", "2"]).json();
-    assert_eq!(skinned["degree"][1], 2);
+    assert_eq!(skinned["surface"]["degree"][1], 2);
+    // The sections' parameters: averaged chord lengths 1.118… and 2.062… between them, and
+    // the surface there is the middle section.
+    let params: Vec<f64> = skinned["params"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(num)
+        .collect();
+    let (a, b) = (1.25f64.sqrt(), 4.25f64.sqrt());
+    assert_eq!(params.len(), 3);
+    assert!(params[0] == 0.0 && params[2] == 1.0 && (params[1] - a / (a + b)).abs() < 1e-15);
+    let sk = temp_file("skinned.json", &skinned.to_string());
+    let at = spline(&["eval", &sk, "--at", &format!("[[0.3,{}]]", params[1])]).json();
+    let p = &at[0][0][0];
+    assert!((num(&p[0]) - 0.3).abs() < 1e-14 && (num(&p[1]) - 0.5).abs() < 1e-14);
+    assert!((num(&p[2]) - 1.0).abs() < 1e-14, "{at}");
     // Sweep a segment along a straight path.
     let path = temp_file("path.json", &line([0.0, 0.0, 0.0], [0.0, 0.0, 4.0]));
     let prof = temp_file("prof.json", &line([-1.0, 0.0, 0.0], [1.0, 0.0, 0.0]));
@@ -118,7 +134,10 @@ fn constructions() {
         &right,
     ])
     .json();
-    assert!(g["control_points"].is_array());
+    assert!(g["surface"]["control_points"].is_array());
+    assert_eq!(g["params_u"], serde_json::json!([0.0, 1.0]));
+    assert_eq!(g["params_v"], serde_json::json!([0.0, 1.0]));
+    assert_eq!(g["crossing_gap"], 0.0);
     // Errors.
     spline(&["make", "coons", "--curves", &bottom, &top, &left, &l3]).assert_clean_error();
     spline(&["make", "skin", "--curves", &l1]).assert_clean_error();
@@ -240,7 +259,9 @@ fn skinning_rational_conics_keeps_the_weights_positive() {
     args.extend(sections.iter().map(String::as_str));
     let run = spline(&args);
     assert_eq!(run.status, 0, "{}", run.stderr);
-    let surface = run.json();
+    let report = run.json();
+    assert_eq!(report["params"].as_array().map(Vec::len), Some(4));
+    let surface = &report["surface"];
     let weights: Vec<f64> = surface["weights"]
         .as_array()
         .unwrap()
@@ -269,4 +290,41 @@ fn skinning_rational_conics_keeps_the_weights_positive() {
             assert!(num(&hit["distance"]) < 1e-9, "{hit}");
         }
     }
+}
+
+/// `make coons` with rational boundaries (issue 25 item 9): a NURBS patch through two
+/// circular arcs and two lines is the quarter cylinder between them, every boundary on it.
+#[test]
+fn rational_coons_is_the_cylinder_between_two_arcs() {
+    let h = 0.5f64.sqrt();
+    let arc = |z: f64| {
+        temp_file(
+            "arc.json",
+            &format!(
+                r#"{{"degree": 2, "knots": [0, 0, 0, 1, 1, 1], "control_points": [[1, 0, {z}], [1, 1, {z}], [0, 1, {z}]], "weights": [1, {h}, 1]}}"#
+            ),
+        )
+    };
+    let (bottom, top) = (arc(0.0), arc(2.0));
+    let left = temp_file("l.json", &line([1.0, 0.0, 0.0], [1.0, 0.0, 2.0]));
+    let right = temp_file("r.json", &line([0.0, 1.0, 0.0], [0.0, 1.0, 2.0]));
+    let patch = spline(&["make", "coons", "--curves", &bottom, &top, &left, &right]).json();
+    assert!(patch["weights"].is_array(), "{patch}");
+    let path = temp_file("coons.json", &patch.to_string());
+    let at = spline(&[
+        "eval",
+        &path,
+        "--at",
+        "[[0, 0.5], [0.3, 0.7], [0.8, 1], [1, 0.25]]",
+    ])
+    .json();
+    for (k, z) in [1.0, 1.4, 2.0, 0.5].iter().enumerate() {
+        let p = &at[k][0][0];
+        let (x, y) = (num(&p[0]), num(&p[1]));
+        assert!((x.hypot(y) - 1.0).abs() < 1e-14, "{at}");
+        assert!((num(&p[2]) - z).abs() < 1e-14, "{at}");
+    }
+    // A boundary that misses a corner is a clean error.
+    let off = temp_file("off.json", &line([0.0, 1.0, 0.0], [0.0, 1.0, 2.5]));
+    spline(&["make", "coons", "--curves", &bottom, &top, &left, &off]).assert_clean_error();
 }

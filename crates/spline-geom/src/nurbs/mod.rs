@@ -14,6 +14,7 @@ use spline_core::ErrorKind as _;
 use spline_core::{ControlPoint, Error, ErrorKind, Result, Scalar, cast, from_count};
 
 mod curve;
+mod mobius;
 mod surface;
 
 pub use curve::{NurbsCurve, NurbsCurve2, NurbsCurve3};

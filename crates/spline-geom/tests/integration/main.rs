@@ -15,6 +15,7 @@ mod nurbs_examples;
 mod periodic;
 mod periodic_refine;
 mod pieces;
+mod rational_coons;
 mod reference_surfaces;
 mod surface_evaluator;
 mod surface_mesh;
