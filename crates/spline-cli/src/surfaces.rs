@@ -9,7 +9,8 @@ use serde_json::json;
 use spline_core::{Error, ErrorKind, Result};
 use spline_fit::{
     ScatteredOptions, SurfaceProjector, Tolerances, closest_point, fit_scattered, gordon,
-    intersect_curve_surface_with_overlaps, intersect_surfaces, skin, skin_rational, sweep,
+    intersect_curve_surface_with_overlaps, intersect_surfaces_as_splines, skin, skin_rational,
+    sweep,
 };
 use spline_geom::{NurbsCurve, NurbsSurface, ParamCurve, ParamSurface, Surface};
 
@@ -212,24 +213,41 @@ fn curve_surface(
 }
 
 fn surface_surface(a: &Spatial, b: &Spatial, t: &Tolerances<f64>) -> Result<serde_json::Value> {
-    let curves = match (a, b) {
-        (Spatial::Plain(x), Spatial::Plain(y)) => intersect_surfaces(x, y, t)?,
-        (Spatial::Plain(x), Spatial::Rational(y)) => intersect_surfaces(x, y, t)?,
-        (Spatial::Rational(x), Spatial::Plain(y)) => intersect_surfaces(x, y, t)?,
-        (Spatial::Rational(x), Spatial::Rational(y)) => intersect_surfaces(x, y, t)?,
+    let found = match (a, b) {
+        (Spatial::Plain(x), Spatial::Plain(y)) => intersect_surfaces_as_splines(x, y, t)?,
+        (Spatial::Plain(x), Spatial::Rational(y)) => intersect_surfaces_as_splines(x, y, t)?,
+        (Spatial::Rational(x), Spatial::Plain(y)) => intersect_surfaces_as_splines(x, y, t)?,
+        (Spatial::Rational(x), Spatial::Rational(y)) => intersect_surfaces_as_splines(x, y, t)?,
     };
     let pairs = |v: &[(f64, f64)]| v.iter().map(|&(u, w)| [u, w]).collect::<Vec<_>>();
-    Ok(curves
+    let pad3 = |q: &Vector3<f64>| io::pad(q.as_slice()).expect("3 coordinates");
+    let pad2 = |q: &nalgebra::Vector2<f64>| io::pad(q.as_slice()).expect("2 coordinates");
+    found
         .iter()
-        .map(|c| {
-            json!({
+        .map(|found| {
+            let c = &found.traced;
+            let pieces = found
+                .pieces
+                .iter()
+                .map(|piece| {
+                    Ok(json!({
+                        "curve": Sized { value: piece.curve.map_control_points(pad3), dim: 3 }.json()?,
+                        "pcurve_a": Sized { value: piece.pcurve_a.map_control_points(pad2), dim: 2 }.json()?,
+                        "pcurve_b": Sized { value: piece.pcurve_b.map_control_points(pad2), dim: 2 }.json()?,
+                        "max_error": piece.max_error,
+                    }))
+                })
+                .collect::<Result<Vec<_>>>()?;
+            Ok(json!({
                 "points": c.points.iter().map(|p| [p.x, p.y, p.z]).collect::<Vec<_>>(),
                 "uv_a": pairs(&c.uv_a),
                 "uv_b": pairs(&c.uv_b),
                 "closed": c.closed,
-            })
+                "pieces": pieces,
+            }))
         })
-        .collect())
+        .collect::<Result<Vec<_>>>()
+        .map(serde_json::Value::Array)
 }
 
 /// Curves of the same dimension, all polynomial (for the constructions that combine

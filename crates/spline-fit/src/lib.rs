@@ -30,7 +30,8 @@
 //!   hierarchy of bounding boxes).
 //! - Intersections: curve–surface points, tangential ones flagged
 //!   ([`intersect_curve_surface`]), and surface–surface curves traced to a tolerance with
-//!   their parameters on both surfaces ([`intersect_surfaces`]).
+//!   their parameters on both surfaces ([`intersect_surfaces`]), also as B-spline curves in
+//!   space and in both parameter planes ([`intersect_surfaces_as_splines`]).
 //! - Smoothing splines: the penalised spline with its weight chosen by generalised
 //!   cross-validation ([`smoothing_spline`], scipy's `make_smoothing_spline`), and the
 //!   spline that meets a residual target with knots placed automatically
@@ -110,8 +111,9 @@ pub use interpolate::{
 };
 pub use intersect::{
     CurveSurfaceHit, CurveSurfaceIntersections, CurveSurfaceOverlap, IntersectionCurve,
-    MAX_TRACE_POINTS, Tolerances, intersect_curve_surface, intersect_curve_surface_with_overlaps,
-    intersect_surfaces,
+    IntersectionSpline, MAX_TRACE_POINTS, SurfaceIntersection, Tolerances, intersect_curve_surface,
+    intersect_curve_surface_with_overlaps, intersect_surfaces, intersect_surfaces_as_splines,
+    intersection_splines,
 };
 #[cfg(feature = "parallel")]
 pub use lsq::PARALLEL_MIN_POINTS;

@@ -62,6 +62,39 @@ fn intersections() {
         curves[0]["uv_a"].as_array().unwrap().len(),
         curves[0]["points"].as_array().unwrap().len()
     );
+    // The same curve as B-splines: in space, and on both surfaces' parameters, each a
+    // curve every reader takes.
+    let pieces = curves[0]["pieces"].as_array().unwrap();
+    assert_eq!(pieces.len(), 1);
+    assert!(num(&pieces[0]["max_error"]) <= 1e-5);
+    let curve = temp_file("ssi.json", &pieces[0]["curve"].to_string());
+    let ts = "[0, 0.1, 0.25, 0.5, 0.8, 1]";
+    let on_curve = spline(&["eval", &curve, "--at", ts]).json();
+    let on_a = spline(&[
+        "eval",
+        &temp_file("pa.json", &pieces[0]["pcurve_a"].to_string()),
+        "--at",
+        ts,
+    ])
+    .json();
+    for (k, value) in on_curve.as_array().unwrap().iter().enumerate() {
+        let p = &value[0];
+        let (x, y, z) = (num(&p[0]), num(&p[1]), num(&p[2]));
+        assert!(((x * x + y * y).sqrt() - 0.75f64.sqrt()).abs() < 1e-5 && (z - 0.5).abs() < 1e-5);
+        // The sphere at the image's parameters is the same point.
+        let uv = &on_a[k][0];
+        let at = spline(&[
+            "eval",
+            &s,
+            "--at",
+            &format!("[[{}, {}]]", num(&uv[0]), num(&uv[1])),
+        ])
+        .json();
+        let q = &at[0][0][0];
+        let gap =
+            ((num(&q[0]) - x).powi(2) + (num(&q[1]) - y).powi(2) + (num(&q[2]) - z).powi(2)).sqrt();
+        assert!(gap < 2e-5, "{gap}");
+    }
     spline(&["intersect", &s, &plane, "--tolerance", "-1"]).assert_clean_error();
     spline(&["intersect", &l, &l]).assert_clean_error();
     let flat = temp_file(

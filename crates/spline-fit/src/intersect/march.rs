@@ -26,9 +26,9 @@ pub struct IntersectionCurve<T> {
 }
 
 /// Values and first partials of both surfaces at `x = (u_a, v_a, u_b, v_b)`.
-struct Pair<T> {
-    a: [Vector3<T>; 3],
-    b: [Vector3<T>; 3],
+pub(super) struct Pair<T> {
+    pub(super) a: [Vector3<T>; 3],
+    pub(super) b: [Vector3<T>; 3],
 }
 
 fn partials<T: Scalar, S: ParamSurface<T, Point = Vector3<T>>>(
@@ -41,23 +41,39 @@ fn partials<T: Scalar, S: ParamSurface<T, Point = Vector3<T>>>(
     Ok([d[0], d[2], d[1]])
 }
 
-struct Tracer<'s, T: Scalar, A, B> {
-    a: &'s A,
-    b: &'s B,
-    lower: Vector4<T>,
-    upper: Vector4<T>,
+pub(super) struct Tracer<'s, T: Scalar, A, B> {
+    pub(super) a: &'s A,
+    pub(super) b: &'s B,
+    pub(super) lower: Vector4<T>,
+    pub(super) upper: Vector4<T>,
     distance: T,
     trace: T,
     angle: T,
     max_step: T,
 }
 
-impl<T: Scalar, A, B> Tracer<'_, T, A, B>
+impl<'s, T: Scalar, A, B> Tracer<'s, T, A, B>
 where
     A: ParamSurface<T, Point = Vector3<T>>,
     B: ParamSurface<T, Point = Vector3<T>>,
 {
-    fn eval(&self, x: &Vector4<T>) -> Result<Pair<T>> {
+    /// The tracer of `a` and `b` with the tolerances for objects of size `scale`.
+    pub(super) fn new(a: &'s A, b: &'s B, tolerances: &Tolerances<T>, scale: T) -> Self {
+        let ((ua0, ua1), (va0, va1)) = a.domain();
+        let ((ub0, ub1), (vb0, vb1)) = b.domain();
+        Self {
+            a,
+            b,
+            lower: Vector4::new(ua0, va0, ub0, vb0),
+            upper: Vector4::new(ua1, va1, ub1, vb1),
+            distance: tolerances.distance_for(scale),
+            trace: tolerances.trace_for(scale),
+            angle: tolerances.angle,
+            max_step: scale * cast::<T>(0.02),
+        }
+    }
+
+    pub(super) fn eval(&self, x: &Vector4<T>) -> Result<Pair<T>> {
         Ok(Pair {
             a: partials(self.a, x[0], x[1])?,
             b: partials(self.b, x[2], x[3])?,
@@ -78,7 +94,7 @@ where
     }
 
     /// A point on both surfaces and on the plane through `origin` normal to `normal`.
-    fn on_plane(
+    pub(super) fn on_plane(
         &self,
         x: Vector4<T>,
         origin: Vector3<T>,
@@ -98,7 +114,12 @@ where
     }
 
     /// A point on both surfaces with parameter `index` at `value` (a domain boundary).
-    fn on_bound(&self, x: Vector4<T>, index: usize, value: T) -> Result<(Vector4<T>, T)> {
+    pub(super) fn on_bound(
+        &self,
+        x: Vector4<T>,
+        index: usize,
+        value: T,
+    ) -> Result<(Vector4<T>, T)> {
         self.constrained(x, |_, x: &Vector4<T>| {
             let mut row = Vector4::zeros();
             row[index] = T::one();
@@ -323,18 +344,7 @@ where
     let tb = BoxTree::new(b)?;
     let root_b = &tb.nodes[tb.root];
     let scale = scale_of_boxes(&ta, std::iter::once((root_b.lo, root_b.hi)));
-    let ((ua0, ua1), (va0, va1)) = a.domain();
-    let ((ub0, ub1), (vb0, vb1)) = b.domain();
-    let tracer = Tracer {
-        a,
-        b,
-        lower: Vector4::new(ua0, va0, ub0, vb0),
-        upper: Vector4::new(ua1, va1, ub1, vb1),
-        distance: tolerances.distance_for(scale),
-        trace: tolerances.trace_for(scale),
-        angle: tolerances.angle,
-        max_step: scale * cast::<T>(0.02),
-    };
+    let tracer = Tracer::new(a, b, tolerances, scale);
     let half: T = cast(0.5);
     let mut curves: Vec<IntersectionCurve<T>> = Vec::new();
     let mut budget = MAX_TRACE_POINTS;

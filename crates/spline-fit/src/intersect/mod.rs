@@ -4,12 +4,16 @@
 mod curve_surface;
 mod curve_surface_overlap;
 mod march;
+mod splines;
 
 pub use curve_surface::{CurveSurfaceHit, intersect_curve_surface};
 pub use curve_surface_overlap::{
     CurveSurfaceIntersections, CurveSurfaceOverlap, intersect_curve_surface_with_overlaps,
 };
 pub use march::{IntersectionCurve, MAX_TRACE_POINTS, intersect_surfaces};
+pub use splines::{
+    IntersectionSpline, SurfaceIntersection, intersect_surfaces_as_splines, intersection_splines,
+};
 
 use crate::surface_project::BoxTree;
 use nalgebra::{SMatrix, SVector, Vector3};
@@ -123,6 +127,11 @@ fn lm_solve<T: Scalar, const M: usize, const N: usize>(
                 continue;
             };
             let step = chol.solve(&(-g));
+            if mu < cast::<T>(1e-3) && step.norm() <= eps * (T::one() + x.norm()) {
+                // A Gauss–Newton step below the rounding of x: converged (damping that
+                // grows on rejections would only shorten it further).
+                break;
+            }
             let candidate = clamp(x + step);
             let (fc, jc) = residual(&candidate)?;
             let nc = fc.norm();

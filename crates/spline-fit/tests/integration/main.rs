@@ -20,4 +20,5 @@ mod splrep_periodic;
 mod surface_closest;
 mod surface_construct;
 mod surface_intersect;
+mod surface_intersect_splines;
 mod surface_scattered;
