@@ -6,8 +6,10 @@
 mod bounds;
 mod common;
 mod curves;
+mod curves_features;
 mod features;
 mod intersections;
+mod intersections_examples;
 mod maps;
 mod offset_cusps;
 mod overlaps;
