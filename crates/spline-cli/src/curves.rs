@@ -316,6 +316,7 @@ fn offset_of_surface(
         ExactOffset::Approximate => "approximate",
         ExactOffset::Plane => "plane",
         ExactOffset::Sphere => "sphere",
+        ExactOffset::Revolution => "revolution",
     };
     print_json(&json!({
         "surface": record,

@@ -8,6 +8,7 @@
 //! spline-fit does not depend on spline-algebra (nor the other way round).
 
 mod curve;
+mod revolution;
 mod surface;
 
 use curve::{

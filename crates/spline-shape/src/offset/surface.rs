@@ -3,6 +3,7 @@
 //! (`spline_fit::AdaptiveSurfaceApproximation`), refused where the offset folds.
 
 use super::OffsetOptions;
+use super::revolution::Revolution;
 use nalgebra::Vector3;
 use spline_core::{Error, ErrorKind, Result, Scalar, cast, from_count, to_f64};
 use spline_fit::AdaptiveSurfaceApproximation;
@@ -17,7 +18,9 @@ const SHAPE_CHECK: f64 = 1e-12;
 pub enum SurfaceOffsetShape<T: Scalar> {
     /// A B-spline surface (within the tolerance, or exact for a polynomial plane or sphere).
     Polynomial(Surface<T, Vector3<T>>),
-    /// A NURBS surface (exact: the offset of a rational plane or sphere).
+    /// A NURBS surface: the offset of a rational plane or sphere (exact), or of a surface of
+    /// revolution (its meridian's offset revolved: exact for a line or a circular arc,
+    /// otherwise within the tolerance).
     Rational(NurbsSurface<T, 3>),
 }
 
@@ -30,6 +33,9 @@ pub enum ExactOffset {
     Plane,
     /// A piece of a sphere, scaled about its centre to radius $r + d$ (outward normal).
     Sphere,
+    /// A surface of revolution whose meridian is a line or a circular arc (a cylinder, a
+    /// cone, a torus): the revolution of the meridian's offset in its plane.
+    Revolution,
 }
 
 /// The offset of a surface and how close it is.
@@ -57,6 +63,9 @@ pub trait SurfaceOffsetSource<T: Scalar>: ParamSurface<T, Point = Vector3<T>> {
 
     /// The surface under an affine map of space (exact for both kinds).
     fn affine_image(&self, map: impl Fn(&Vector3<T>) -> Vector3<T>) -> SurfaceOffsetShape<T>;
+
+    /// The surface as a NURBS surface, if it is one (surfaces of revolution are).
+    fn as_nurbs(&self) -> Option<&NurbsSurface<T, 3>>;
 }
 
 impl<T: Scalar> SurfaceOffsetSource<T> for Surface<T, Vector3<T>> {
@@ -77,6 +86,10 @@ impl<T: Scalar> SurfaceOffsetSource<T> for Surface<T, Vector3<T>> {
 
     fn affine_image(&self, map: impl Fn(&Vector3<T>) -> Vector3<T>) -> SurfaceOffsetShape<T> {
         SurfaceOffsetShape::Polynomial(self.map_control_points(map))
+    }
+
+    fn as_nurbs(&self) -> Option<&NurbsSurface<T, 3>> {
+        None
     }
 }
 
@@ -103,6 +116,10 @@ impl<T: Scalar> SurfaceOffsetSource<T> for NurbsSurface<T, 3> {
     fn affine_image(&self, map: impl Fn(&Vector3<T>) -> Vector3<T>) -> SurfaceOffsetShape<T> {
         SurfaceOffsetShape::Rational(self.map_control_points(map))
     }
+
+    fn as_nurbs(&self) -> Option<&NurbsSurface<T, 3>> {
+        Some(self)
+    }
 }
 
 /// The offset $O(u, v) = S(u, v) + d\,n(u, v)$ of a surface in space at signed distance
@@ -113,6 +130,12 @@ impl<T: Scalar> SurfaceOffsetSource<T> for NurbsSurface<T, 3> {
 /// - A piece of a sphere (every sample umbilic with the same centre $S + n / H$ and radius
 ///   $1 / |H|$ to $10^{-12}$ of the radius, on `4 (p + 1) × 4 (q + 1)` samples per patch) is
 ///   scaled about its centre by $1 - d H$ (radius $r + d$ for the outward normal): exact.
+/// - A NURBS surface of revolution (degree 2 around the axis, its control net a meridian
+///   revolved, like the output of `NurbsSurface::revolution` or `NurbsSurface::torus`) has as
+///   offset the revolution of its meridian's planar offset, on the same parameters: exact
+///   for a straight meridian (cylinders, cones: its control points moved along its normal)
+///   and for a circular one (tori: [`crate::offset_planar_curve`]'s concentric arc),
+///   otherwise the meridian's offset within the tolerance, revolved exactly.
 /// - Otherwise the offset folds where $1 - d\,\kappa_i \le 0$ for a principal curvature
 ///   $\kappa_i$ (a principal radius of curvature on the normal's side shorter than $|d|$):
 ///   refused, with the place; else it is approximated within `options.tolerance` by a
@@ -146,6 +169,14 @@ pub fn offset_surface<T: Scalar, S: SurfaceOffsetSource<T>>(
 ) -> Result<SurfaceOffset<T>> {
     if !distance.is_finite() {
         return Err(Error::non_finite("the offset distance"));
+    }
+    // Checked whether the offset turns out exact or not: a bad setting is an error either way.
+    if !(options.tolerance > T::zero() && options.tolerance.is_finite()) {
+        return Err(Error::invalid_tolerance(
+            "offset tolerance",
+            "positive and finite",
+            to_f64(options.tolerance),
+        ));
     }
     let exact = |shape, kind| SurfaceOffset {
         surface: shape,
@@ -182,6 +213,22 @@ pub fn offset_surface<T: Scalar, S: SurfaceOffsetSource<T>>(
         ));
     }
     samples.check_no_fold(distance)?;
+    if let Some(nurbs) = surface.as_nurbs() {
+        if let Some(revolution) = Revolution::of(nurbs) {
+            if let Some(found) = revolution.offset(nurbs, distance, options)? {
+                let kind = if found.max_error == T::zero() {
+                    ExactOffset::Revolution
+                } else {
+                    ExactOffset::Approximate
+                };
+                return Ok(SurfaceOffset {
+                    surface: SurfaceOffsetShape::Rational(found.surface),
+                    exact: kind,
+                    max_error: found.max_error,
+                });
+            }
+        }
+    }
     let (p, q) = surface.offset_degrees();
     let degree = options.degree.max(1);
     let (knots_u, knots_v) = surface.offset_knots();
