@@ -18,14 +18,8 @@ True
 """
 
 from ._core import SplineError
-from ._bspline import (
-    BSpline,
-    Features,
-    make_interp_spline,
-    make_lsq_spline,
-    make_smoothing_spline,
-    product,
-)
+from ._bspline import BSpline, Features, product
+from ._make import make_interp_spline, make_lsq_spline, make_smoothing_spline
 from ._exchange import read_json
 from ._nd import NdBSpline, make_ndbspl
 from ._splrep import generate_knots, make_splprep, make_splrep

@@ -11,7 +11,8 @@ import warnings
 import numpy as np
 
 from . import _core
-from ._bspline import BSpline, make_interp_spline
+from ._bspline import BSpline
+from ._make import make_interp_spline
 
 
 def _validate_bc_type(bc_type):
