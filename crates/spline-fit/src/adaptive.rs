@@ -40,6 +40,10 @@ impl<T: Scalar> FirstScale<T> {
     }
 }
 
+/// A tolerance below this many units in the last place of the values (their power-of-four
+/// scale) is refused by [`AdaptiveApproximation`] when the first fit does not meet it.
+const ROUNDING_FLOOR: f64 = 4.0;
+
 /// The most pieces [`AdaptiveApproximation`] allows by default.
 pub const MAX_ADAPTIVE_PIECES: usize = 100_000;
 
@@ -119,7 +123,9 @@ impl<T: Scalar> AdaptiveApproximation<T> {
     /// Fits `f` on `[a, b]`.
     ///
     /// # Errors
-    /// [`ErrorKind::InvalidTolerance`] unless the tolerance is positive and finite;
+    /// [`ErrorKind::InvalidTolerance`] unless the tolerance is positive and finite, or when
+    /// it is below the rounding of the values (4 units in their last place) and the first
+    /// fit does not meet it;
     /// [`ErrorKind::DegreeTooHigh`]; [`ErrorKind::EmptyDomain`] unless `a < b` (finite);
     /// [`ErrorKind::OutOfDomain`] for breaks or corners outside `(a, b)`;
     /// [`ErrorKind::ToleranceExceeded`] when more than the allowed pieces would be needed
@@ -184,6 +190,20 @@ impl<T: Scalar> AdaptiveApproximation<T> {
             let target = self.tolerance * cast(0.5) / s;
             let worst = errors.iter().fold(T::zero(), |m, &e| m.max(e)) * s;
             let bad: Vec<usize> = (0..errors.len()).filter(|&k| errors[k] > target).collect();
+            // A tolerance below the rounding of the values can never be met: refining would
+            // only run to the limit of pieces (tens of seconds).
+            let floor = cast::<T>(ROUNDING_FLOOR * f64::EPSILON) * s;
+            if !bad.is_empty() && self.tolerance < floor {
+                return Err(Error::invalid_tolerance(
+                    "approximation tolerance",
+                    &format!(
+                        "at least {:.1e} ({ROUNDING_FLOOR} units in the last place of the values, of size about {:.1e})",
+                        to_f64(floor),
+                        to_f64(s)
+                    ),
+                    to_f64(self.tolerance),
+                ));
+            }
             if bad.is_empty() {
                 for q in curve.control_points_mut() {
                     *q = *q * s;

@@ -133,6 +133,41 @@ fn bad_input_is_an_error() {
     assert_eq!(e.kind(), ErrorKind::NonFinite);
 }
 
+/// A tolerance below the rounding of the values is refused after the first fit instead of
+/// refining to the limit of pieces (the fuzzing campaign's `arclength --reparametrize
+/// --tolerance 1e-19` ran over 20 s), at every scale; one just above it is still met.
+#[test]
+fn tolerances_below_the_rounding_are_refused_at_once() {
+    for scale in [1e-300, 1.0, 1e6, 1e300] {
+        let f = |t: f64| Ok(scale * t.sin());
+        for tolerance in [1e-19 * scale, 5e-324] {
+            let e = AdaptiveApproximation::new(3, tolerance)
+                .fit((0.0, 3.0), f)
+                .unwrap_err();
+            assert_eq!(e.kind(), ErrorKind::InvalidTolerance, "{scale:e}: {e}");
+            assert!(e.message().contains("units in the last place"), "{e}");
+        }
+        let fit = AdaptiveApproximation::new(3, 1e-10 * scale)
+            .fit((0.0, 3.0), f)
+            .unwrap();
+        assert!(fit.max_error <= 1e-10 * scale);
+    }
+    // A curve of size 4 reparametrised by arc length within 1e-19 (absolute).
+    let curve = spline_geom::BSpline::from_knots(
+        3,
+        vec![0.0, 0.0, 0.0, 0.0, 1.0, 1.0, 1.0, 1.0],
+        vec![
+            nalgebra::Vector2::new(0.0, 0.0),
+            nalgebra::Vector2::new(1.0, 2.0),
+            nalgebra::Vector2::new(3.0, 2.0),
+            nalgebra::Vector2::new(4.0, 0.0),
+        ],
+    )
+    .unwrap();
+    let e = spline_fit::reparametrize_by_arc_length(&curve, 3, 1e-19).unwrap_err();
+    assert_eq!(e.kind(), ErrorKind::InvalidTolerance, "{e}");
+}
+
 #[test]
 fn the_circle_by_arc_length() {
     let circle = NurbsCurve::from_knots(
