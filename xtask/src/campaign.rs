@@ -1,5 +1,6 @@
 //! `cargo xtask campaign [--cases N] [--seed S] [--jobs J] [--timeout SECONDS] [--memory-mb M]`:
-//! a mutation campaign of the release `spline` binary over every subcommand.
+//! a mutation campaign of the release `spline` binary over every subcommand (240 cases each by
+//! default; the first ones in `templates.rs`, those added since in `newer.rs`).
 //!
 //! Valid command lines on small curves and surfaces made with the tool itself are mutated
 //! (extreme counts and numbers, mutated JSON arguments, mutated and rescaled input files,
@@ -10,6 +11,7 @@
 //! subcommand; failing command lines are written to `target/campaign/failures.txt`.
 
 use crate::mutate::{Rng, mutate_arg, mutate_text, mutate_value};
+use newer::{NEWER_SUBCOMMANDS, make_newer_seed_files, newer_templates};
 use serde_json::Value;
 use std::collections::BTreeMap;
 use std::fmt::Write as _;
@@ -20,7 +22,23 @@ use std::sync::{Arc, Mutex};
 use std::time::{Duration, Instant};
 use templates::{SUBCOMMANDS, make_seed_files, templates};
 
+mod newer;
 mod templates;
+
+/// Every subcommand of the campaign, first and newer, in the order of the cases.
+fn subcommands() -> impl Iterator<Item = &'static str> {
+    SUBCOMMANDS.iter().chain(NEWER_SUBCOMMANDS).copied()
+}
+
+/// The valid command lines of subcommand `sub`.
+fn command_lines(sub: &str) -> Vec<Vec<&'static str>> {
+    let first = templates(sub);
+    if first.is_empty() {
+        newer_templates(sub)
+    } else {
+        first
+    }
+}
 
 /// The options of a campaign.
 struct Options {
@@ -33,7 +51,7 @@ struct Options {
 
 fn parse_options(args: &[String]) -> Result<Options, String> {
     let mut o = Options {
-        cases: 5250,
+        cases: 8640,
         seed: 2026,
         jobs: 2,
         timeout: Duration::from_secs(20),
@@ -81,11 +99,13 @@ struct Case {
     output: Option<String>,
 }
 
-/// Builds case `k`: a template of subcommand `k mod 22` (the number of subcommands), mutated one to three times.
+/// Builds case `k`: a template of subcommand `k mod count` (the number of subcommands),
+/// mutated one to three times.
 fn build_case(k: usize, seed: u64, dir: &Path) -> Result<Case, String> {
-    let sub = SUBCOMMANDS[k % SUBCOMMANDS.len()];
+    let count = SUBCOMMANDS.len() + NEWER_SUBCOMMANDS.len();
+    let sub = subcommands().nth(k % count).expect("a subcommand");
     let mut rng = Rng::new(seed.wrapping_mul(1_000_003).wrapping_add(k as u64));
-    let templates = templates(sub);
+    let templates = command_lines(sub);
     let template = rng.pick(&templates).clone();
     let mut args: Vec<String> = template.iter().map(|s| (*s).to_string()).collect();
     let mut output = None;
@@ -96,7 +116,7 @@ fn build_case(k: usize, seed: u64, dir: &Path) -> Result<Case, String> {
         }
     }
     // The first case of each template runs unmutated (the tool must succeed on it).
-    let mutations = if k < SUBCOMMANDS.len() * 2 {
+    let mutations = if k < count * 2 {
         0
     } else {
         *rng.pick(&[1, 1, 1, 1, 1, 1, 2, 2, 2, 3])
@@ -302,6 +322,7 @@ pub(crate) fn run(root: &Path, args: &[String]) -> Result<(), String> {
     let _ = std::fs::remove_dir_all(&dir);
     std::fs::create_dir_all(&dir).map_err(|e| e.to_string())?;
     make_seed_files(&binary, &dir, root)?;
+    make_newer_seed_files(&binary, &dir)?;
     let cases: Vec<Case> = (0..o.cases)
         .map(|k| build_case(k, o.seed, &dir))
         .collect::<Result<_, _>>()?;
@@ -405,7 +426,7 @@ fn report(
     );
     let _ = writeln!(text, "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|");
     let mut total = [0usize; 9];
-    for sub in SUBCOMMANDS {
+    for sub in subcommands() {
         let row = table.get(sub).copied().unwrap_or_default();
         for (t, r) in total.iter_mut().zip(row) {
             *t += r;
