@@ -6,7 +6,7 @@ use super::curve_surface::overlapping;
 use super::{Tolerances, check_tolerance, lm_solve, scale_of_boxes};
 use crate::surface_project::BoxTree;
 use nalgebra::{Matrix2, SMatrix, Vector2, Vector3, Vector4};
-use spline_core::{Error, ErrorKind, Result, Scalar, cast};
+use spline_core::{ControlPoint, Error, ErrorKind, Result, Scalar, cast};
 use spline_geom::ParamSurface;
 
 /// The most points of all traced curves together.
@@ -154,8 +154,20 @@ where
     /// The unit tangent of the intersection at `x`, or `None` where the surfaces are
     /// tangent to each other.
     fn tangent(&self, p: &Pair<T>) -> Option<Vector3<T>> {
-        let na = p.a[1].cross(&p.a[2]);
-        let nb = p.b[1].cross(&p.b[2]);
+        // Partials divided by their lengths first: their cross products would overflow (or
+        // underflow) for surfaces of size 1e±150 and beyond.
+        let unit = |d: &Vector3<T>| {
+            let length = ControlPoint::length(d);
+            (length > T::zero()).then(|| d / length)
+        };
+        let (a1, a2, b1, b2) = (
+            unit(&p.a[1])?,
+            unit(&p.a[2])?,
+            unit(&p.b[1])?,
+            unit(&p.b[2])?,
+        );
+        let na = a1.cross(&a2);
+        let nb = b1.cross(&b2);
         let t = na.cross(&nb);
         let scale = na.norm() * nb.norm();
         (t.norm() > self.angle * scale && scale > T::zero()).then(|| t / t.norm())

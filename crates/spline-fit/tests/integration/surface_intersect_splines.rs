@@ -146,3 +146,30 @@ fn a_wavy_bicubic_against_a_tilted_plane_agrees_with_both_surfaces() {
         }
     }
 }
+
+/// The same circle at other scales: the traced curve and its B-splines scale with the
+/// surfaces (from 1e-150 up to 1e3; the marching is not yet right at 1e150 and at 1e±300).
+#[test]
+fn the_circle_at_other_scales() {
+    for scale in [1e-150, 1e-3, 1e3] {
+        let sphere = NurbsSurface::sphere(V3::zeros(), 2.0 * scale).unwrap();
+        let cut = plane([
+            [-3.0 * scale, -3.0 * scale, scale],
+            [-3.0 * scale, 3.0 * scale, scale],
+            [3.0 * scale, -3.0 * scale, scale],
+            [3.0 * scale, 3.0 * scale, scale],
+        ]);
+        let traced = intersect_surfaces(&sphere, &cut, &Tolerances::default()).unwrap();
+        assert_eq!(traced.len(), 1, "{scale:e}");
+        assert!(traced[0].closed, "{scale:e}");
+        let tolerance = 1e-6 * scale;
+        let pieces = intersection_splines(&sphere, &cut, &traced[0], tolerance).unwrap();
+        assert_eq!(pieces.len(), 1, "{scale:e}");
+        assert!(pieces[0].max_error <= tolerance, "{scale:e}");
+        for k in 0..=100 {
+            let p = pieces[0].curve.eval(f64::from(k) / 100.0).unwrap() / scale;
+            let off = (p.xy().norm() - 3f64.sqrt()).abs().max((p.z - 1.0).abs());
+            assert!(off <= 1e-6, "{scale:e}: {off:e}");
+        }
+    }
+}
