@@ -6,7 +6,9 @@ use super::curve_surface::overlapping;
 use super::{Tolerances, check_tolerance, lm_solve, scale_of_boxes};
 use crate::surface_project::BoxTree;
 use nalgebra::{Matrix2, SMatrix, Vector2, Vector3, Vector4};
-use spline_core::{ControlPoint, Error, ErrorKind, Result, Scalar, cast};
+use spline_core::{
+    ControlPoint, Error, ErrorKind, Result, Scalar, cast, power_of_two_scale, to_f64,
+};
 use spline_geom::ParamSurface;
 
 /// The most points of all traced curves together.
@@ -50,6 +52,9 @@ pub(super) struct Tracer<'s, T: Scalar, A, B> {
     trace: T,
     angle: T,
     max_step: T,
+    /// The power of four near the size of the surfaces: every point and partial is divided
+    /// by it (exactly), so that marching sees objects of size about one at any scale.
+    unit: T,
 }
 
 impl<'s, T: Scalar, A, B> Tracer<'s, T, A, B>
@@ -57,26 +62,38 @@ where
     A: ParamSurface<T, Point = Vector3<T>>,
     B: ParamSurface<T, Point = Vector3<T>>,
 {
-    /// The tracer of `a` and `b` with the tolerances for objects of size `scale`.
+    /// The tracer of `a` and `b` with the tolerances for objects of size `scale`; its
+    /// points, partials and lengths are in units of [`Tracer::unit`] (a power of four near
+    /// `scale`).
     pub(super) fn new(a: &'s A, b: &'s B, tolerances: &Tolerances<T>, scale: T) -> Self {
         let ((ua0, ua1), (va0, va1)) = a.domain();
         let ((ub0, ub1), (vb0, vb1)) = b.domain();
+        let unit: T = cast(power_of_two_scale(to_f64(scale)));
         Self {
             a,
             b,
             lower: Vector4::new(ua0, va0, ub0, vb0),
             upper: Vector4::new(ua1, va1, ub1, vb1),
-            distance: tolerances.distance_for(scale),
-            trace: tolerances.trace_for(scale),
+            distance: tolerances.distance_for(scale) / unit,
+            trace: tolerances.trace_for(scale) / unit,
             angle: tolerances.angle,
-            max_step: scale * cast::<T>(0.02),
+            max_step: scale * cast::<T>(0.02) / unit,
+            unit,
         }
     }
 
+    /// The unit of the tracer's points and lengths.
+    pub(super) fn unit(&self) -> T {
+        self.unit
+    }
+
+    /// The points and first partials of both surfaces at `x`, in units of [`Tracer::unit`].
     pub(super) fn eval(&self, x: &Vector4<T>) -> Result<Pair<T>> {
+        let inverse = T::one() / self.unit;
+        let scaled = |d: [Vector3<T>; 3]| d.map(|v| v * inverse);
         Ok(Pair {
-            a: partials(self.a, x[0], x[1])?,
-            b: partials(self.b, x[2], x[3])?,
+            a: scaled(partials(self.a, x[0], x[1])?),
+            b: scaled(partials(self.b, x[2], x[3])?),
         })
     }
 
@@ -318,7 +335,9 @@ where
 /// is halved until the chord's midpoint lies within [`Tolerances::trace`] of the curve
 /// (measured on the plane normal to the chord), and grows again when it is far below. A
 /// curve ends where it meets the boundary of a domain (the end point is on it) or where the
-/// surfaces become tangent; it is closed when it comes back to its seed.
+/// surfaces become tangent; it is closed when it comes back to its seed. Points and partials
+/// are divided by a power of four near the size of the surfaces while marching (exactly), so
+/// the curves of surfaces scaled by any factor from 1e-300 to 1e300 are the scaled curves.
 ///
 /// ```
 /// use nalgebra::Vector3;
@@ -367,7 +386,13 @@ where
     for &la in &leaves_a {
         let na = &ta.nodes[la];
         found.clear();
-        overlapping(&tb, &na.lo, &na.hi, tracer.distance, &mut found);
+        overlapping(
+            &tb,
+            &na.lo,
+            &na.hi,
+            tracer.distance * tracer.unit,
+            &mut found,
+        );
         for &lb in &found {
             let nb = &tb.nodes[lb];
             let start = Vector4::new(
@@ -413,7 +438,13 @@ where
             curves.push(curve);
         }
     }
-    Ok(join_pieces(curves, tracer.distance * cast::<T>(100.0)))
+    let mut joined = join_pieces(curves, tracer.distance * cast::<T>(100.0));
+    for curve in &mut joined {
+        for p in &mut curve.points {
+            *p *= tracer.unit;
+        }
+    }
+    Ok(joined)
 }
 
 /// Joins curves whose ends meet in space (a curve crossing the seam of a closed surface is

@@ -96,11 +96,31 @@ where
         trace: Some(tolerance),
         ..Tolerances::default()
     };
-    let tracer = Tracer::new(a, b, &tolerances, T::one());
+    // The work is done in the tracer's unit (a power of four near the size of the curve):
+    // no squares overflow or underflow at sizes from 1e-300 to 1e300.
+    let size = curve
+        .points
+        .iter()
+        .fold(T::zero(), |m, p| m.max(p.amax()))
+        .max(tolerance);
+    let tracer = Tracer::new(a, b, &tolerances, size);
+    let unit = tracer.unit();
+    let normalised = IntersectionCurve {
+        points: curve.points.iter().map(|p| p / unit).collect(),
+        uv_a: curve.uv_a.clone(),
+        uv_b: curve.uv_b.clone(),
+        closed: curve.closed,
+    };
+    let tolerance = tolerance / unit;
     let mut pieces = Vec::new();
-    for piece in smooth_pieces(&tracer, curve, tolerance)? {
+    for piece in smooth_pieces(&tracer, &normalised, tolerance)? {
         if piece.len() >= 2 {
-            pieces.push(fit_piece(&tracer, &piece, tolerance)?);
+            let mut spline = fit_piece(&tracer, &piece, tolerance)?;
+            for q in spline.curve.control_points_mut() {
+                *q *= unit;
+            }
+            spline.max_error *= unit;
+            pieces.push(spline);
         }
     }
     Ok(pieces)
@@ -386,8 +406,8 @@ where
             let c = curve.eval(t)?;
             let (ua, va) = inside(pcurve_a.eval(t)?, (ua0, ua1), (va0, va1));
             let (ub, vb) = inside(pcurve_b.eval(t)?, (ub0, ub1), (vb0, vb1));
-            let on_a = tracer.a.eval(ua, va)?;
-            let on_b = tracer.b.eval(ub, vb)?;
+            let on_a = tracer.a.eval(ua, va)? / tracer.unit();
+            let on_b = tracer.b.eval(ub, vb)? / tracer.unit();
             max_error = max_error
                 .max((c - x).norm())
                 .max((on_a - x).norm())
