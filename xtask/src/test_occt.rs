@@ -1,10 +1,7 @@
 //! The Open CASCADE suite of `cargo xtask test` (`cargo xtask test occt` alone):
 //! `tests/occt/check.py` writes random B-spline and NURBS curves and surfaces to STEP and IGES
 //! with the tool and reads them with Open CASCADE 8, and the other way round, then whole
-//! B-rep solids and malformed files; then `tests/occt/geometry.py` checks the tool's geometry
-//! (evaluation, knot insertion, elevation and removal, closest points, intersections, offsets,
-//! arc length, constructions) against Open CASCADE's on random cases (see
-//! `tests/occt/README.md`).
+//! B-rep solids and malformed files (see `tests/occt/README.md`).
 //!
 //! Open CASCADE comes from the Python package index (`cadquery-ocp-novtk`, OCCT 8 with
 //! Python bindings), installed into the test virtual environment `target/python-venv` on
@@ -14,7 +11,7 @@ use crate::bench::{ensure_venv_with, target_dir};
 use std::path::Path;
 use std::process::Command;
 
-/// Builds the tool, then runs both checks; fails with their tables on any disagreement.
+/// Builds the tool, then runs the check; fails with its table on any disagreement.
 pub(crate) fn run_suite(root: &Path) -> Result<(), String> {
     let cargo = std::env::var("CARGO").unwrap_or_else(|_| "cargo".into());
     let status = Command::new(cargo)
@@ -36,26 +33,18 @@ pub(crate) fn run_suite(root: &Path) -> Result<(), String> {
         &["numpy", "cadquery-ocp-novtk"],
     )?;
     let binary = target.join("debug").join("spline");
-    // Both run even when the first fails, so that one run shows both tables.
-    let mut failed = Vec::new();
-    for (script, work) in [("check.py", "occt"), ("geometry.py", "occt-geometry")] {
-        let status = Command::new(&python)
-            .arg(root.join("tests/occt").join(script))
-            .arg(&binary)
-            .arg(target.join(work))
-            .env("PYTHONDONTWRITEBYTECODE", "1")
-            .status()
-            .map_err(|e| format!("occt: cannot run {}: {e}", python.display()))?;
-        if !status.success() {
-            failed.push(format!("tests/occt/{script} ({status})"));
-        }
-    }
-    if failed.is_empty() {
+    let status = Command::new(&python)
+        .arg(root.join("tests/occt/check.py"))
+        .arg(&binary)
+        .arg(target.join("occt"))
+        .env("PYTHONDONTWRITEBYTECODE", "1")
+        .status()
+        .map_err(|e| format!("occt: cannot run {}: {e}", python.display()))?;
+    if status.success() {
         Ok(())
     } else {
         Err(format!(
-            "the Open CASCADE check failed: {}",
-            failed.join(", ")
+            "the Open CASCADE check (tests/occt/check.py) failed ({status})"
         ))
     }
 }
