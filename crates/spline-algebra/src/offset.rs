@@ -137,7 +137,14 @@ pub fn offset_cusps<T: Scalar>(
     windows.extend(breaks.windows(2).map(|w| (w[0], w[1], GRID)));
     for (lo, hi, cells) in windows {
         let grid: Vec<T> = (0..=cells)
-            .map(|k| lo + (hi - lo) * from_count::<T>(k) / from_count::<T>(cells))
+            // The last point is `hi` itself: `lo + (hi − lo)` can round one step past it.
+            .map(|k| {
+                if k == cells {
+                    hi
+                } else {
+                    lo + (hi - lo) * from_count::<T>(k) / from_count::<T>(cells)
+                }
+            })
             .collect();
         let values = grid
             .iter()

@@ -541,3 +541,18 @@ fn smoothing_agrees_with_scipy() {
     spline(&["smoothing", "--x", x, "--y", y, "--gcv", "--lambda", "1"]).assert_clean_error();
     spline(&["smoothing", "--x", "[0, 1]", "--y", "[0, 1, 2]", "--gcv"]).assert_clean_error();
 }
+
+/// Found by the Open CASCADE geometry suite: the cusp search's last grid point,
+/// `lo + (hi − lo)`, rounded one step past the end knot 0.1533580674213022 and the offset
+/// failed with "parameter … is outside the domain".
+#[test]
+fn offset_on_a_domain_whose_end_rounds() {
+    let curve = temp_file(
+        "od4.json",
+        r#"{"degree":3,"knots":[-0.7457635633497997,-0.7457635633497997,-0.7457635633497997,-0.7457635633497997,-0.4089356716219618,0.1533580674213022,0.1533580674213022,0.1533580674213022,0.1533580674213022],"control_points":[[0,0],[2,1],[4,1],[5,0],[5,0.5]]}"#,
+    );
+    let run = spline(&["offset", &curve, "--distance", "0.1"]);
+    assert_eq!(run.status, 0, "{}", run.stderr);
+    let out = run.json();
+    assert!(out["max_error"].as_f64().unwrap() <= 1e-6);
+}

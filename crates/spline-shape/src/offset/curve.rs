@@ -164,7 +164,12 @@ pub(super) fn sampled_cusps<T: Scalar, C: PlanarCurve<T>>(
         let (lo, hi) = (w[0], w[1]);
         let mut previous = (lo, g(lo)?);
         for k in 1..=GRID {
-            let u = lo + (hi - lo) * from_count::<T>(k) / from_count::<T>(GRID);
+            // The last point is `hi` itself: `lo + (hi − lo)` can round one step past it.
+            let u = if k == GRID {
+                hi
+            } else {
+                lo + (hi - lo) * from_count::<T>(k) / from_count::<T>(GRID)
+            };
             let value = g(u)?;
             if previous.1 * value < T::zero() {
                 let (mut left, mut right, at_left) = (previous.0, u, previous.1);
@@ -200,7 +205,11 @@ pub(super) fn check_not_parallel<T: Scalar, C: ParamCurve<T, Point = Vector3<T>>
     let mut d = [Vector3::zeros(); 2];
     for w in curve.breaks().windows(2) {
         for k in 0..=GRID {
-            let u = w[0] + (w[1] - w[0]) * from_count::<T>(k) / from_count::<T>(GRID);
+            let u = if k == GRID {
+                w[1]
+            } else {
+                w[0] + (w[1] - w[0]) * from_count::<T>(k) / from_count::<T>(GRID)
+            };
             curve.derivatives_into(u, &mut d)?;
             let largest = d[1].amax();
             let across = if largest > T::zero() {
