@@ -7,19 +7,6 @@ use crate::nurbs::{NurbsCurve, NurbsSurface};
 use crate::surface::Surface;
 use spline_core::{ControlPoint, Error, ErrorKind, KnotVector, Result, Scalar, cast, to_f64};
 
-/// The largest coordinate magnitude of the control points (the scale of corner checks).
-fn magnitude<T: Scalar, P: ControlPoint<T>>(curves: &[&BSpline<T, P>]) -> T {
-    let mut m = T::zero();
-    for c in curves {
-        for p in c.control_points() {
-            for k in 0..P::DIM {
-                m = m.max(p.coord(k).abs());
-            }
-        }
-    }
-    m
-}
-
 /// The curve on `[0, 1]` (the end knots exactly 0 and 1).
 fn on_unit<T: Scalar, P: ControlPoint<T>>(c: &BSpline<T, P>) -> Result<BSpline<T, P>> {
     c.clamped().reparametrized(T::zero(), T::one())
@@ -65,30 +52,12 @@ impl<T: Scalar, P: ControlPoint<T>> Surface<T, P> {
     ) -> Result<Self> {
         let [c0, c1, d0, d1] = [bottom, top, left, right].map(on_unit);
         let (c0, c1, d0, d1) = (c0?, c1?, d0?, d1?);
+        check_corners([&c0, &c1, &d0, &d1].map(BSpline::control_points))?;
         let ends = |c: &BSpline<T, P>| {
             let cp = c.control_points();
             (cp[0], cp[cp.len() - 1])
         };
-        let ((b0, b1), (t0, t1), (l0, l1), (r0, r1)) = (ends(&c0), ends(&c1), ends(&d0), ends(&d1));
-        let tolerance = cast::<T>(1e-9) * (T::one() + magnitude(&[&c0, &c1, &d0, &d1]));
-        for (name, a, b) in [
-            ("bottom and left", b0, l0),
-            ("bottom and right", b1, r0),
-            ("top and left", t0, l1),
-            ("top and right", t1, r1),
-        ] {
-            let gap = (a - b).length();
-            if !(gap <= tolerance) {
-                return Err(Error::new(
-                    ErrorKind::DegenerateGeometry,
-                    format!(
-                        "the {name} curves do not meet at their common corner (gap {})",
-                        to_f64(gap)
-                    ),
-                )
-                .with_value(to_f64(gap)));
-            }
-        }
+        let ((b0, b1), (t0, t1)) = (ends(&c0), ends(&c1));
         let linear =
             || KnotVector::new_unchecked(1, vec![T::zero(), T::zero(), T::one(), T::one()]);
         let ruled = |a: &BSpline<T, P>, b: &BSpline<T, P>| -> Result<Self> {
@@ -172,7 +141,7 @@ impl<T: Scalar, const D: usize> NurbsSurface<T, D> {
     ) -> Result<Self> {
         let unit = |c: &NurbsCurve<T, D>| c.clamped().reparametrized(T::zero(), T::one());
         let (c0, c1, d0, d1) = (unit(bottom)?, unit(top)?, unit(left)?, unit(right)?);
-        check_corners(&c0, &c1, &d0, &d1)?;
+        check_corners([&c0, &c1, &d0, &d1].map(NurbsCurve::control_points))?;
         let end_weights = |c: &NurbsCurve<T, D>| (c.weights()[0], c.weights()[c.len() - 1]);
         let ((wb0, wb1), (wl0, wl1), (wr0, wr1)) =
             (end_weights(&c0), end_weights(&d0), end_weights(&d1));
@@ -224,21 +193,15 @@ impl<T: Scalar, const D: usize> NurbsSurface<T, D> {
     }
 }
 
-/// The four corners of the Coons patch of Cartesian curves on `[0, 1]` meet within `1e-9` of
-/// the largest coordinate.
-fn check_corners<T: Scalar, const D: usize>(
-    bottom: &NurbsCurve<T, D>,
-    top: &NurbsCurve<T, D>,
-    left: &NurbsCurve<T, D>,
-    right: &NurbsCurve<T, D>,
-) -> Result<()> {
-    let ends = |c: &NurbsCurve<T, D>| (c.control_points()[0], c.control_points()[c.len() - 1]);
-    let ((b0, b1), (t0, t1), (l0, l1), (r0, r1)) =
-        (ends(bottom), ends(top), ends(left), ends(right));
+/// The four corners of the Coons patch of curves on `[0, 1]` meet: the end control points of
+/// `[bottom, top, left, right]` agree within `1e-9` of the largest coordinate magnitude.
+fn check_corners<T: Scalar, P: ControlPoint<T>>(nets: [&[P]; 4]) -> Result<()> {
+    let ends = |net: &[P]| (net[0], net[net.len() - 1]);
+    let [(b0, b1), (t0, t1), (l0, l1), (r0, r1)] = nets.map(ends);
     let mut largest = T::zero();
-    for c in [bottom, top, left, right] {
-        for p in c.control_points() {
-            largest = largest.max(p.amax());
+    for p in nets.iter().flat_map(|net| net.iter()) {
+        for k in 0..P::DIM {
+            largest = largest.max(p.coord(k).abs());
         }
     }
     let tolerance = cast::<T>(1e-9) * (T::one() + largest);
@@ -248,7 +211,7 @@ fn check_corners<T: Scalar, const D: usize>(
         ("top and left", t0, l1),
         ("top and right", t1, r1),
     ] {
-        let gap = (a - b).norm();
+        let gap = (a - b).length();
         if !(gap <= tolerance) {
             return Err(Error::new(
                 ErrorKind::DegenerateGeometry,
