@@ -20,7 +20,7 @@ use std::path::{Path, PathBuf};
 use std::process::{Command, Stdio};
 use std::sync::{Arc, Mutex};
 use std::time::{Duration, Instant};
-use templates::{SUBCOMMANDS, make_seed_files, templates};
+use templates::{SUBCOMMANDS, SeedWriter, make_seed_files, templates};
 
 mod newer;
 mod templates;
@@ -321,8 +321,12 @@ pub(crate) fn run(root: &Path, args: &[String]) -> Result<(), String> {
     let dir = root.join("target/campaign");
     let _ = std::fs::remove_dir_all(&dir);
     std::fs::create_dir_all(&dir).map_err(|e| e.to_string())?;
-    make_seed_files(&binary, &dir, root)?;
-    make_newer_seed_files(&binary, &dir)?;
+    let seeds = SeedWriter {
+        binary: &binary,
+        dir: &dir,
+    };
+    make_seed_files(&seeds, root)?;
+    make_newer_seed_files(&seeds)?;
     let cases: Vec<Case> = (0..o.cases)
         .map(|k| build_case(k, o.seed, &dir))
         .collect::<Result<_, _>>()?;

@@ -3,8 +3,7 @@
 //! splines, offsets, arc length, degree reduction, smoothing splines, surface features,
 //! shape optimisation, CAD files, and the surface constructions with reports.
 
-use std::path::Path;
-use std::process::Command;
+use super::templates::SeedWriter;
 
 /// The newer subcommands, after [`super::templates::SUBCOMMANDS`] in the order of the cases.
 pub(super) const NEWER_SUBCOMMANDS: &[&str] = &[
@@ -25,9 +24,8 @@ pub(super) const NEWER_SUBCOMMANDS: &[&str] = &[
 ];
 
 /// The seed files the newer templates read, made with the tool (after the first seeds).
-pub(super) fn make_newer_seed_files(binary: &Path, dir: &Path) -> Result<(), String> {
-    let write =
-        |name: &str, text: &str| std::fs::write(dir.join(name), text).map_err(|e| e.to_string());
+pub(super) fn make_newer_seed_files(seeds: &SeedWriter<'_>) -> Result<(), String> {
+    let write = |name: &str, text: &str| seeds.write(name, text);
     write(
         "space.json",
         r#"{"degree":3,"knots":[0,0,0,0,0.5,1,1,1,1],"control_points":[[0,0,0],[1,1,0.5],[2,0,1],[3,1,0.5],[4,0,0]]}"#,
@@ -51,21 +49,7 @@ pub(super) fn make_newer_seed_files(binary: &Path, dir: &Path) -> Result<(), Str
         "rational_bottom.json",
         r#"{"degree":2,"knots":[0,0,0,1,1,1],"control_points":[[0,0,0],[1,-0.5,0.3],[2,0,0]],"weights":[1,0.4,1]}"#,
     )?;
-    let run = |args: &[&str]| -> Result<(), String> {
-        let out = Command::new(binary)
-            .args(args)
-            .current_dir(dir)
-            .output()
-            .map_err(|e| format!("cannot run {}: {e}", binary.display()))?;
-        if out.status.success() {
-            Ok(())
-        } else {
-            Err(format!(
-                "seed {args:?}: {}",
-                String::from_utf8_lossy(&out.stderr)
-            ))
-        }
-    };
+    let run = |args: &[&str]| seeds.run(args, None);
     run(&[
         "export",
         "seed.step",
@@ -74,21 +58,16 @@ pub(super) fn make_newer_seed_files(binary: &Path, dir: &Path) -> Result<(), Str
         "space.json",
     ])?;
     run(&["export", "seed.igs", "circle.json", "torus.json"])?;
-    let nd = Command::new(binary)
-        .args([
+    seeds.run(
+        &[
             "nd-interpolate",
             "--grid",
             "[[0,1,2,3],[0,1,2,3,4]]",
             "--values",
             "[[0,1,0,1,0],[1,2,1,2,1],[0,1,3,1,0],[2,1,0,1,2]]",
-        ])
-        .current_dir(dir)
-        .output()
-        .map_err(|e| e.to_string())?;
-    if !nd.status.success() {
-        return Err(format!("seed nd: {}", String::from_utf8_lossy(&nd.stderr)));
-    }
-    std::fs::write(dir.join("nd.json"), &nd.stdout).map_err(|e| e.to_string())
+        ],
+        Some("nd.json"),
+    )
 }
 
 /// Valid command lines of the newer subcommands.

@@ -30,24 +30,46 @@ pub(super) const SUBCOMMANDS: &[&str] = &[
     "approximate-surface",
 ];
 
-/// The seed files of the campaign, made with the tool itself.
-pub(super) fn make_seed_files(binary: &Path, dir: &Path, root: &Path) -> Result<(), String> {
-    let run = |args: &[&str], name: &str| -> Result<(), String> {
-        let out = Command::new(binary)
+/// Writes the campaign's seed files into its directory, by hand or with the tool.
+pub(super) struct SeedWriter<'a> {
+    /// The tool.
+    pub(super) binary: &'a Path,
+    /// The campaign's directory (the tool runs there).
+    pub(super) dir: &'a Path,
+}
+
+impl SeedWriter<'_> {
+    /// Writes `text` to the file `name`.
+    pub(super) fn write(&self, name: &str, text: &str) -> Result<(), String> {
+        std::fs::write(self.dir.join(name), text).map_err(|e| format!("seed {name}: {e}"))
+    }
+
+    /// Runs the tool with `args` in the directory; its standard output goes to the file
+    /// `stdout_to` when given (the files it writes itself stay where it puts them).
+    pub(super) fn run(&self, args: &[&str], stdout_to: Option<&str>) -> Result<(), String> {
+        let out = Command::new(self.binary)
             .args(args)
-            .current_dir(dir)
+            .current_dir(self.dir)
             .output()
-            .map_err(|e| format!("cannot run {}: {e}", binary.display()))?;
+            .map_err(|e| format!("cannot run {}: {e}", self.binary.display()))?;
         if !out.status.success() {
             return Err(format!(
-                "seed {name}: {}",
+                "seed {args:?}: {}",
                 String::from_utf8_lossy(&out.stderr)
             ));
         }
-        std::fs::write(dir.join(name), &out.stdout).map_err(|e| e.to_string())
-    };
-    let write =
-        |name: &str, text: &str| std::fs::write(dir.join(name), text).map_err(|e| e.to_string());
+        match stdout_to {
+            Some(name) => std::fs::write(self.dir.join(name), &out.stdout)
+                .map_err(|e| format!("seed {name}: {e}")),
+            None => Ok(()),
+        }
+    }
+}
+
+/// The seed files of the campaign, made with the tool itself.
+pub(super) fn make_seed_files(seeds: &SeedWriter<'_>, root: &Path) -> Result<(), String> {
+    let write = |name: &str, text: &str| seeds.write(name, text);
+    let run = |args: &[&str], name: &str| seeds.run(args, Some(name));
     write(
         "line.json",
         r#"{"degree":1,"knots":[0.0,0.0,1.0,1.0],"control_points":[[0.0,0.0],[1.0,1.0]]}"#,
