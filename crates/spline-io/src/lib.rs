@@ -60,6 +60,25 @@ pub enum Geometry {
     NurbsSurface(NurbsSurface3<f64>),
 }
 
+impl Geometry {
+    /// Every coordinate of the Cartesian control points, point after point.
+    pub(crate) fn coordinates(&self) -> Box<dyn Iterator<Item = f64> + '_> {
+        fn flat<const D: usize>(
+            points: &[nalgebra::SVector<f64, D>],
+        ) -> Box<dyn Iterator<Item = f64> + '_> {
+            Box::new(points.iter().flat_map(|p| p.iter().copied()))
+        }
+        match self {
+            Geometry::Curve2(c) => flat(c.control_points()),
+            Geometry::Curve3(c) => flat(c.control_points()),
+            Geometry::NurbsCurve2(c) => flat(c.control_points()),
+            Geometry::NurbsCurve3(c) => flat(c.control_points()),
+            Geometry::Surface(s) => flat(s.control_points()),
+            Geometry::NurbsSurface(s) => flat(s.control_points()),
+        }
+    }
+}
+
 /// One entity of a CAD file: its geometry, with the name and identifier the file gives it.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Item {

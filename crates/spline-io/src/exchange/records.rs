@@ -2,6 +2,7 @@
 //! validation, and their conversions to and from the containers.
 
 use nalgebra::SVector;
+use serde::de::DeserializeOwned;
 use serde::{Deserialize, Serialize};
 use spline_core::{ControlPoint, Error, ErrorKind, KnotVector, Result, Scalar, cast, to_f64};
 use spline_geom::{BSpline, Bezier, Homogeneous, NurbsCurve, NurbsSurface, Surface};
@@ -63,12 +64,8 @@ impl CurveRecord {
     pub fn from_bspline<T: Scalar, P: ControlPoint<T>>(curve: &BSpline<T, P>) -> Self {
         Self {
             degree: curve.degree(),
-            knots: curve.knots().knots().iter().map(|&k| to_f64(k)).collect(),
-            control_points: curve
-                .control_points()
-                .iter()
-                .map(|p| (0..P::DIM).map(|i| to_f64(p.coord(i))).collect())
-                .collect(),
+            knots: knots_of(curve.knots()),
+            control_points: curve.control_points().iter().map(row_of::<T, P>).collect(),
             weights: None,
         }
     }
@@ -80,12 +77,7 @@ impl CurveRecord {
     /// [`ErrorKind::DimensionMismatch`] if a point does not have `P::DIM` coordinates; the
     /// errors of [`BSpline::from_knots`].
     pub fn to_bspline<T: Scalar, P: ControlPoint<T>>(&self) -> Result<BSpline<T, P>> {
-        if self.weights.is_some() {
-            return Err(Error::new(
-                ErrorKind::InvalidArgument,
-                "the curve has weights: read it as a NURBS curve",
-            ));
-        }
+        refuse_weights(self.weights.as_ref(), "curve")?;
         let points = points_from_rows::<T, P>(&self.control_points)?;
         BSpline::from_knots(
             self.degree,
@@ -150,15 +142,13 @@ impl CurveRecord {
     /// [`ErrorKind::Parse`] with serde_json's message (missing or unknown fields, wrong types,
     /// syntax), which the caller completes with what was read.
     pub fn from_json(text: &str) -> Result<Self> {
-        serde_json::from_str(text)
-            .map_err(|e| Error::new(ErrorKind::Parse, e.to_string()).with_line(e.line()))
+        from_json(text)
     }
 
     /// The record as compact JSON text.
     #[must_use]
     pub fn to_json(&self) -> String {
-        // A record holds numbers, vectors and options only: serialising cannot fail.
-        serde_json::to_string(self).unwrap_or_default()
+        to_json(self)
     }
 }
 
@@ -189,6 +179,35 @@ pub fn points_from_rows<T: Scalar, P: ControlPoint<T>>(rows: &[Vec<f64>]) -> Res
 // ---------------------------------------------------------------------------------------
 // NURBS curves and tensor-product surfaces.
 
+/// A record read from JSON text ([`ErrorKind::Parse`] with serde_json's message and line).
+fn from_json<R: DeserializeOwned>(text: &str) -> Result<R> {
+    serde_json::from_str(text)
+        .map_err(|e| Error::new(ErrorKind::Parse, e.to_string()).with_line(e.line()))
+}
+
+/// A record as compact JSON text.
+fn to_json<R: Serialize>(record: &R) -> String {
+    // A record holds numbers, vectors and options only: serialising cannot fail.
+    serde_json::to_string(record).unwrap_or_default()
+}
+
+/// [`ErrorKind::InvalidArgument`] if a record of a `what` (curve, surface) read as
+/// non-rational has weights.
+fn refuse_weights<W>(weights: Option<&W>, what: &str) -> Result<()> {
+    match weights {
+        Some(_) => Err(Error::new(
+            ErrorKind::InvalidArgument,
+            format!("the {what} has weights: read it as a NURBS {what}"),
+        )),
+        None => Ok(()),
+    }
+}
+
+/// The knots as `f64`.
+fn knots_of<T: Scalar>(knots: &KnotVector<T>) -> Vec<f64> {
+    knots.knots().iter().map(|&k| to_f64(k)).collect()
+}
+
 fn row_of<T: Scalar, P: ControlPoint<T>>(p: &P) -> Vec<f64> {
     (0..P::DIM).map(|i| to_f64(p.coord(i))).collect()
 }
@@ -202,7 +221,7 @@ impl CurveRecord {
     pub fn from_nurbs<T: Scalar, const D: usize>(curve: &NurbsCurve<T, D>) -> Self {
         Self {
             degree: curve.degree(),
-            knots: curve.knots().knots().iter().map(|&k| to_f64(k)).collect(),
+            knots: knots_of(curve.knots()),
             control_points: curve.control_points().iter().map(row_of::<T, _>).collect(),
             weights: Some(curve.weights().iter().map(|&w| to_f64(w)).collect()),
         }
@@ -320,20 +339,7 @@ impl SurfaceRecord {
     pub fn from_surface<T: Scalar, P: ControlPoint<T>>(surface: &Surface<T, P>) -> Self {
         Self {
             degree: [surface.degrees().0, surface.degrees().1],
-            knots: [
-                surface
-                    .knots_u()
-                    .knots()
-                    .iter()
-                    .map(|&k| to_f64(k))
-                    .collect(),
-                surface
-                    .knots_v()
-                    .knots()
-                    .iter()
-                    .map(|&k| to_f64(k))
-                    .collect(),
-            ],
+            knots: [knots_of(surface.knots_u()), knots_of(surface.knots_v())],
             control_points: surface
                 .control_net()
                 .iter()
@@ -350,12 +356,7 @@ impl SurfaceRecord {
     /// [`ErrorKind::DimensionMismatch`]; [`ErrorKind::InvalidLength`] if the net does not
     /// match the knot vectors; the errors of [`KnotVector::new`].
     pub fn to_surface<T: Scalar, P: ControlPoint<T>>(&self) -> Result<Surface<T, P>> {
-        if self.weights.is_some() {
-            return Err(Error::new(
-                ErrorKind::InvalidArgument,
-                "the surface has weights: read it as a NURBS surface",
-            ));
-        }
+        refuse_weights(self.weights.as_ref(), "surface")?;
         let (ku, kv, net) = self.net::<T, P>()?;
         Surface::from_net(ku, kv, net)
     }
@@ -402,14 +403,12 @@ impl SurfaceRecord {
     /// [`ErrorKind::Parse`] with serde_json's message, which the caller completes with what
     /// was read.
     pub fn from_json(text: &str) -> Result<Self> {
-        serde_json::from_str(text)
-            .map_err(|e| Error::new(ErrorKind::Parse, e.to_string()).with_line(e.line()))
+        from_json(text)
     }
 
     /// The record as compact JSON text.
     #[must_use]
     pub fn to_json(&self) -> String {
-        // A record holds numbers, vectors and options only: serialising cannot fail.
-        serde_json::to_string(self).unwrap_or_default()
+        to_json(self)
     }
 }

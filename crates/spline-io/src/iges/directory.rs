@@ -2,7 +2,7 @@
 //! matrices (124) with their chains, name properties (406 form 15).
 
 use super::affine::Affine;
-use super::tokens::{Token, parse_int, parse_real, tokenize};
+use super::tokens::{Token, integer_text, parse_int, parse_real, tokenize};
 use super::{PARAM_WIDTH, Section, parse_error};
 use nalgebra::{Matrix3, Vector3};
 use spline_core::Result;
@@ -27,22 +27,16 @@ pub(super) fn parse_entries(records: &[&str]) -> Result<Vec<Entry>> {
         let seq = 2 * k + 1;
         let field = |line: usize, index: usize, what: &str| -> Result<i64> {
             let text = pair[line][8 * index..8 * index + 8].trim();
-            if text.is_empty() {
-                return Ok(0);
-            }
-            text.strip_prefix('+')
-                .unwrap_or(text)
-                .parse::<i64>()
-                .map_err(|_| {
-                    parse_error(
-                        Section::Directory,
-                        seq + line,
-                        format!(
-                            "field {} ({what}) '{text}' is not an integer",
-                            10 * line + index + 1
-                        ),
-                    )
-                })
+            integer_text(text).ok_or_else(|| {
+                parse_error(
+                    Section::Directory,
+                    seq + line,
+                    format!(
+                        "field {} ({what}) '{text}' is not an integer",
+                        10 * line + index + 1
+                    ),
+                )
+            })
         };
         let kind = field(0, 0, "entity type")?;
         let kind2 = field(1, 0, "entity type")?;

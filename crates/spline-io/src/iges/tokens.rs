@@ -160,19 +160,22 @@ pub(super) fn parse_int(token: &Token, section: Section, what: &str) -> Result<i
         ));
     }
     let text = token.text.as_str();
+    integer_text(text).ok_or_else(|| {
+        parse_error(
+            section,
+            token.line,
+            format!("{what}: '{text}' is not an integer"),
+        )
+    })
+}
+
+/// The integer an IGES field's text holds (a leading `+` allowed; empty is the default 0),
+/// `None` if it is not one.
+pub(super) fn integer_text(text: &str) -> Option<i64> {
     if text.is_empty() {
-        return Ok(0);
+        return Some(0);
     }
-    text.strip_prefix('+')
-        .unwrap_or(text)
-        .parse::<i64>()
-        .map_err(|_| {
-            parse_error(
-                section,
-                token.line,
-                format!("{what}: '{text}' is not an integer"),
-            )
-        })
+    text.strip_prefix('+').unwrap_or(text).parse::<i64>().ok()
 }
 
 /// The Global section: its delimiters (the rest is checked for syntax only).

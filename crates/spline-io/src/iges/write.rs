@@ -131,21 +131,7 @@ pub(super) fn lift(p: &Vector2<f64>) -> Vector3<f64> {
 
 /// The largest coordinate magnitude of an item's control points.
 pub(super) fn max_coordinate(geometry: &Geometry) -> f64 {
-    let max = |it: &mut dyn Iterator<Item = f64>| it.fold(0.0f64, |m, x| m.max(x.abs()));
-    match geometry {
-        Geometry::Curve2(c) => max(&mut c.control_points().iter().flat_map(|p| p.iter().copied())),
-        Geometry::NurbsCurve2(c) => {
-            max(&mut c.control_points().iter().flat_map(|p| p.iter().copied()))
-        }
-        Geometry::Curve3(c) => max(&mut c.control_points().iter().flat_map(|p| p.iter().copied())),
-        Geometry::NurbsCurve3(c) => {
-            max(&mut c.control_points().iter().flat_map(|p| p.iter().copied()))
-        }
-        Geometry::Surface(s) => max(&mut s.control_points().iter().flat_map(|p| p.iter().copied())),
-        Geometry::NurbsSurface(s) => {
-            max(&mut s.control_points().iter().flat_map(|p| p.iter().copied()))
-        }
-    }
+    geometry.coordinates().fold(0.0f64, |m, x| m.max(x.abs()))
 }
 
 /// The entity parameters of an item (the containers hold finite numbers only). Unclamped

@@ -127,6 +127,20 @@ impl Reader<'_> {
         })
     }
 
+    /// `VECTOR(name, orientation, magnitude)`: the unit direction and the magnitude (1 when
+    /// it is not a number).
+    fn vector(&self, id: u64, line: usize) -> Result<(Vector3<f64>, f64)> {
+        let v = self.get(id, line)?;
+        let Some(p) = v.record("VECTOR") else {
+            return Err(error_at(v.line, format!("#{id} is not a VECTOR")));
+        };
+        let direction = self.direction(
+            reference(p.get(1)).ok_or_else(|| error_at(v.line, "VECTOR needs a DIRECTION"))?,
+            v.line,
+        )?;
+        Ok((direction, p.get(2).and_then(number).unwrap_or(1.0)))
+    }
+
     fn vertex(&self, id: Option<u64>, line: usize) -> Result<Option<Vector3<f64>>> {
         let Some(id) = id else { return Ok(None) };
         let v = self.get(id, line)?;
@@ -161,15 +175,7 @@ fn curve(
     if let Some(p) = instance.record("LINE") {
         let origin = reader.point3(p.get(1), line)?;
         let vector = reference(p.get(2)).ok_or_else(|| error_at(line, "LINE needs a VECTOR"))?;
-        let v = reader.get(vector, line)?;
-        let Some(vp) = v.record("VECTOR") else {
-            return Err(error_at(v.line, format!("#{vector} is not a VECTOR")));
-        };
-        let direction = reader.direction(
-            reference(vp.get(1)).ok_or_else(|| error_at(v.line, "VECTOR needs a DIRECTION"))?,
-            v.line,
-        )?;
-        let magnitude = vp.get(2).and_then(number).unwrap_or(1.0);
+        let (direction, magnitude) = reader.vector(vector, line)?;
         let (t0, t1) = match ends {
             Some((a, b)) => {
                 let (s, t) = ((a - origin).dot(&direction), (b - origin).dot(&direction));
@@ -183,11 +189,8 @@ fn curve(
                 format!("#{id}: the edge on this LINE has no length"),
             ));
         }
-        let segment = BSpline::new(
-            KnotVector::new(1, vec![t0, t0, t1, t1])?,
-            vec![origin + direction * t0, origin + direction * t1],
-        )?;
-        return Ok(Some((NurbsCurve::from_bspline(&segment), "LINE")));
+        let segment = segment((t0, t1), |t| origin + direction * t)?;
+        return Ok(Some((segment, "LINE")));
     }
     let (place, a, b, entity) = if let Some(p) = instance.record("CIRCLE") {
         let place = reader.placement(
@@ -288,10 +291,15 @@ fn profile(
     slope: f64,
     (h0, h1): (f64, f64),
 ) -> Result<NurbsCurve<f64, 3>> {
-    let at = |h: f64| place.global(radius + h * slope, 0.0, h);
+    segment((h0, h1), |h| place.global(radius + h * slope, 0.0, h))
+}
+
+/// The straight segment from `at(t0)` to `at(t1)`, of degree 1 on the parameters
+/// `[t0, t1]`.
+fn segment((t0, t1): (f64, f64), at: impl Fn(f64) -> Vector3<f64>) -> Result<NurbsCurve<f64, 3>> {
     let line = BSpline::new(
-        KnotVector::new(1, vec![h0, h0, h1, h1])?,
-        vec![at(h0), at(h1)],
+        KnotVector::new(1, vec![t0, t0, t1, t1])?,
+        vec![at(t0), at(t1)],
     )?;
     Ok(NurbsCurve::from_bspline(&line))
 }
@@ -451,15 +459,7 @@ fn surface(
         let profile = swept(p)?;
         let vector =
             reference(p.get(2)).ok_or_else(|| error_at(line, format!("#{id} needs a VECTOR")))?;
-        let v = reader.get(vector, line)?;
-        let Some(vp) = v.record("VECTOR") else {
-            return Err(error_at(v.line, format!("#{vector} is not a VECTOR")));
-        };
-        let direction = reader.direction(
-            reference(vp.get(1)).ok_or_else(|| error_at(v.line, "VECTOR needs a DIRECTION"))?,
-            v.line,
-        )?;
-        let magnitude = vp.get(2).and_then(number).unwrap_or(1.0);
+        let (direction, magnitude) = reader.vector(vector, line)?;
         // Over the face: the range of the edges' offsets from the profile's start along the
         // direction; else the vector itself.
         let base = profile.eval(profile.domain().0)?;

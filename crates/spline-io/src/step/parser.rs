@@ -64,6 +64,24 @@ impl<'a> Parser<'a> {
         }
     }
 
+    /// `NAME(param, …)` of instance `#id`, the name already read as `token`.
+    fn record(&mut self, id: u64, token: Option<(Token, usize)>) -> Result<(String, Vec<Param>)> {
+        match token {
+            Some((Token::Keyword(name), _)) => {
+                self.expect(&Token::Open, &format!("( after {name}"))?;
+                Ok((name, self.params(1)?))
+            }
+            Some((t, l)) => Err(error_at(
+                l,
+                format!("#{id}: expected an entity name, found {t:?}"),
+            )),
+            None => Err(error_at(
+                self.lexer.line,
+                format!("the file ends inside #{id}"),
+            )),
+        }
+    }
+
     fn param(&mut self, depth: usize) -> Result<Param> {
         let Some((token, line)) = self.next()? else {
             return Err(error_at(self.lexer.line, "the file ends inside a list"));
@@ -138,43 +156,14 @@ pub(super) fn parse(bytes: &[u8]) -> Result<HashMap<u64, Instance>> {
                 parser.expect(&Token::Equals, &format!("= after #{id}"))?;
                 let mut records = Vec::new();
                 match parser.next()? {
-                    Some((Token::Keyword(name), _)) => {
-                        parser.expect(&Token::Open, &format!("( after {name}"))?;
-                        records.push((name, parser.params(1)?));
-                    }
+                    // A complex instance: `(NAME(…) NAME(…) …)`.
                     Some((Token::Open, _)) => loop {
                         match parser.next()? {
                             Some((Token::Close, _)) => break,
-                            Some((Token::Keyword(name), _)) => {
-                                parser.expect(&Token::Open, &format!("( after {name}"))?;
-                                records.push((name, parser.params(1)?));
-                            }
-                            Some((t, l)) => {
-                                return Err(error_at(
-                                    l,
-                                    format!("#{id}: expected an entity name, found {t:?}"),
-                                ));
-                            }
-                            None => {
-                                return Err(error_at(
-                                    parser.lexer.line,
-                                    format!("the file ends inside #{id}"),
-                                ));
-                            }
+                            token => records.push(parser.record(id, token)?),
                         }
                     },
-                    Some((t, l)) => {
-                        return Err(error_at(
-                            l,
-                            format!("#{id}: expected an entity name, found {t:?}"),
-                        ));
-                    }
-                    None => {
-                        return Err(error_at(
-                            parser.lexer.line,
-                            format!("the file ends inside #{id}"),
-                        ));
-                    }
+                    token => records.push(parser.record(id, token)?),
                 }
                 parser.expect(&Token::Semicolon, &format!("; after #{id}"))?;
                 if instances.insert(id, Instance { line, records }).is_some() {

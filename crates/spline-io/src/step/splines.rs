@@ -3,7 +3,7 @@
 
 use super::{Instance, Param, Reader, error_at, integer, list, number, text};
 use crate::Geometry;
-use nalgebra::{Vector2, Vector3};
+use nalgebra::{SVector, Vector3};
 use spline_core::{Error, KnotVector, Result};
 use spline_geom::{BSpline, NurbsCurve, NurbsSurface, Surface};
 
@@ -87,6 +87,31 @@ enum KnotForm<'a> {
     Bezier,
 }
 
+/// The curve entities whose knots their form implies, with the form.
+const CURVE_FORMS: [(&str, KnotForm<'static>); 3] = [
+    ("BEZIER_CURVE", KnotForm::Bezier),
+    ("UNIFORM_CURVE", KnotForm::Uniform),
+    ("QUASI_UNIFORM_CURVE", KnotForm::QuasiUniform),
+];
+
+/// The surface entities whose knots their form implies, with the form.
+const SURFACE_FORMS: [(&str, KnotForm<'static>); 3] = [
+    ("BEZIER_SURFACE", KnotForm::Bezier),
+    ("UNIFORM_SURFACE", KnotForm::Uniform),
+    ("QUASI_UNIFORM_SURFACE", KnotForm::QuasiUniform),
+];
+
+/// The first of `forms` whose record the complex instance has: its form and entity.
+fn implied_form(
+    instance: &Instance,
+    forms: &[(&'static str, KnotForm<'static>)],
+) -> Option<(KnotForm<'static>, &'static str)> {
+    forms
+        .iter()
+        .find(|(entity, _)| instance.record(entity).is_some())
+        .map(|&(entity, form)| (form, entity))
+}
+
 fn degree_of(p: &Param, line: usize) -> Result<usize> {
     integer(p)
         .and_then(|d| usize::try_from(d).ok())
@@ -97,6 +122,30 @@ fn degree_of(p: &Param, line: usize) -> Result<usize> {
                 format!("a degree must be 1 to {}", spline_core::MAX_DEGREE),
             )
         })
+}
+
+/// The error of a record `what` whose parameters are not those of its entity.
+fn wrong_parameters(line: usize, what: &str) -> Error {
+    error_at(line, format!("{what} has the wrong parameters"))
+}
+
+/// The weights of the `RATIONAL_B_SPLINE_CURVE` or `_SURFACE` record (`entity`) of a complex
+/// instance, `None` without one.
+fn rational_weights<'a>(instance: &'a Instance, entity: &str) -> Result<Option<&'a [Param]>> {
+    match instance.record(entity) {
+        Some([Param::List(w)] | [_, Param::List(w)]) => Ok(Some(w.as_slice())),
+        Some(_) => Err(wrong_parameters(instance.line, entity)),
+        None => Ok(None),
+    }
+}
+
+/// The name of a complex instance: its `REPRESENTATION_ITEM` record's (empty without one).
+fn item_name(instance: &Instance) -> String {
+    instance
+        .record("REPRESENTATION_ITEM")
+        .and_then(|p| p.first())
+        .map(text)
+        .unwrap_or_default()
 }
 
 /// What a B-spline instance holds before it becomes a container.
@@ -111,13 +160,8 @@ pub(super) struct CurveParts<'a> {
 
 pub(super) fn curve_parts(instance: &Instance) -> Result<Option<CurveParts<'_>>> {
     let line = instance.line;
-    let bad = |what: &str| error_at(line, format!("{what} has the wrong parameters"));
-    let weights = match instance.record("RATIONAL_B_SPLINE_CURVE") {
-        Some([Param::List(w)]) => Some(w.as_slice()),
-        Some([_, Param::List(w)]) => Some(w.as_slice()),
-        Some(_) => return Err(bad("RATIONAL_B_SPLINE_CURVE")),
-        None => None,
-    };
+    let bad = |what: &str| wrong_parameters(line, what);
+    let weights = rational_weights(instance, "RATIONAL_B_SPLINE_CURVE")?;
     // The simple instance: every attribute in one record.
     if let Some(p) = instance
         .record("B_SPLINE_CURVE_WITH_KNOTS")
@@ -135,11 +179,7 @@ pub(super) fn curve_parts(instance: &Instance) -> Result<Option<CurveParts<'_>>>
             entity: "B_SPLINE_CURVE_WITH_KNOTS",
         }));
     }
-    for (simple, form) in [
-        ("BEZIER_CURVE", KnotForm::Bezier),
-        ("UNIFORM_CURVE", KnotForm::Uniform),
-        ("QUASI_UNIFORM_CURVE", KnotForm::QuasiUniform),
-    ] {
+    for (simple, form) in CURVE_FORMS {
         if let Some(p) = instance.record(simple).filter(|p| p.len() == 6) {
             let Some(points) = list(&p[2]) else {
                 return Err(bad(simple));
@@ -170,23 +210,15 @@ pub(super) fn curve_parts(instance: &Instance) -> Result<Option<CurveParts<'_>>>
             }
             _ => return Err(bad("B_SPLINE_CURVE_WITH_KNOTS")),
         }
-    } else if instance.record("BEZIER_CURVE").is_some() {
-        (KnotForm::Bezier, "BEZIER_CURVE")
-    } else if instance.record("UNIFORM_CURVE").is_some() {
-        (KnotForm::Uniform, "UNIFORM_CURVE")
-    } else if instance.record("QUASI_UNIFORM_CURVE").is_some() {
-        (KnotForm::QuasiUniform, "QUASI_UNIFORM_CURVE")
+    } else if let Some(implied) = implied_form(instance, &CURVE_FORMS) {
+        implied
     } else {
         return Err(error_at(
             line,
             "a B_SPLINE_CURVE without knots (no _WITH_KNOTS, UNIFORM_, QUASI_UNIFORM_ or BEZIER_ form)",
         ));
     };
-    let name = instance
-        .record("REPRESENTATION_ITEM")
-        .and_then(|p| p.first())
-        .map(text)
-        .unwrap_or_default();
+    let name = item_name(instance);
     Ok(Some(CurveParts {
         name,
         degree: degree_of(degree, line)?,
@@ -225,44 +257,42 @@ pub(super) fn read_curve(
                 .collect::<Result<Vec<f64>>>()
         })
         .transpose()?;
-    let context = |e: Error| error_at(line, e);
-    Ok(match (dim, weights) {
-        (2, None) => Geometry::Curve2(
-            BSpline::new(
-                knots,
-                points.iter().map(|p| Vector2::new(p[0], p[1])).collect(),
-            )
-            .map_err(context)?,
-        ),
-        (2, Some(w)) => Geometry::NurbsCurve2(
-            NurbsCurve::new(
-                knots,
-                points.iter().map(|p| Vector2::new(p[0], p[1])).collect(),
-                w,
-            )
-            .map_err(context)?,
-        ),
-        (_, None) => Geometry::Curve3(
-            BSpline::new(
-                knots,
-                points
-                    .iter()
-                    .map(|p| Vector3::new(p[0], p[1], p[2]))
-                    .collect(),
-            )
-            .map_err(context)?,
-        ),
-        (_, Some(w)) => Geometry::NurbsCurve3(
-            NurbsCurve::new(
-                knots,
-                points
-                    .iter()
-                    .map(|p| Vector3::new(p[0], p[1], p[2]))
-                    .collect(),
-                w,
-            )
-            .map_err(context)?,
-        ),
+    let geometry = if dim == 2 {
+        curve(
+            knots,
+            &points,
+            weights,
+            Geometry::Curve2,
+            Geometry::NurbsCurve2,
+        )
+    } else {
+        curve(
+            knots,
+            &points,
+            weights,
+            Geometry::Curve3,
+            Geometry::NurbsCurve3,
+        )
+    };
+    geometry.map_err(|e| error_at(line, e))
+}
+
+/// The curve on `knots` through the first `D` coordinates of every point, as
+/// `polynomial` or, with weights, `rational`.
+fn curve<const D: usize>(
+    knots: KnotVector<f64>,
+    points: &[Vec<f64>],
+    weights: Option<Vec<f64>>,
+    polynomial: fn(BSpline<f64, SVector<f64, D>>) -> Geometry,
+    rational: fn(NurbsCurve<f64, D>) -> Geometry,
+) -> Result<Geometry> {
+    let points = points
+        .iter()
+        .map(|p| SVector::from_column_slice(&p[..D]))
+        .collect();
+    Ok(match weights {
+        None => polynomial(BSpline::new(knots, points)?),
+        Some(w) => rational(NurbsCurve::new(knots, points, w)?),
     })
 }
 
@@ -271,13 +301,8 @@ pub(super) fn read_surface(
     instance: &Instance,
 ) -> Result<Option<(Geometry, String, &'static str)>> {
     let line = instance.line;
-    let bad = |what: &str| error_at(line, format!("{what} has the wrong parameters"));
-    let weights = match instance.record("RATIONAL_B_SPLINE_SURFACE") {
-        Some([Param::List(w)]) => Some(w.as_slice()),
-        Some([_, Param::List(w)]) => Some(w.as_slice()),
-        Some(_) => return Err(bad("RATIONAL_B_SPLINE_SURFACE")),
-        None => None,
-    };
+    let bad = |what: &str| wrong_parameters(line, what);
+    let weights = rational_weights(instance, "RATIONAL_B_SPLINE_SURFACE")?;
     type Knots<'b> = (KnotForm<'b>, KnotForm<'b>);
     let (name, du, dv, net, knots, entity): (
         String,
@@ -307,13 +332,7 @@ pub(super) fn read_surface(
             (KnotForm::Explicit(mu, ku), KnotForm::Explicit(mv, kv)),
             "B_SPLINE_SURFACE_WITH_KNOTS",
         )
-    } else if let Some((simple, p, form)) = [
-        ("BEZIER_SURFACE", KnotForm::Bezier),
-        ("UNIFORM_SURFACE", KnotForm::Uniform),
-        ("QUASI_UNIFORM_SURFACE", KnotForm::QuasiUniform),
-    ]
-    .into_iter()
-    .find_map(|(n, f)| {
+    } else if let Some((simple, p, form)) = SURFACE_FORMS.into_iter().find_map(|(n, f)| {
         instance
             .record(n)
             .filter(|p| p.len() == 8)
@@ -343,23 +362,12 @@ pub(super) fn read_surface(
                 ),
                 _ => return Err(bad("B_SPLINE_SURFACE_WITH_KNOTS")),
             }
-        } else if instance.record("BEZIER_SURFACE").is_some() {
-            ((KnotForm::Bezier, KnotForm::Bezier), "BEZIER_SURFACE")
-        } else if instance.record("UNIFORM_SURFACE").is_some() {
-            ((KnotForm::Uniform, KnotForm::Uniform), "UNIFORM_SURFACE")
-        } else if instance.record("QUASI_UNIFORM_SURFACE").is_some() {
-            (
-                (KnotForm::QuasiUniform, KnotForm::QuasiUniform),
-                "QUASI_UNIFORM_SURFACE",
-            )
+        } else if let Some((form, implied)) = implied_form(instance, &SURFACE_FORMS) {
+            ((form, form), implied)
         } else {
             return Err(error_at(line, "a B_SPLINE_SURFACE without knots"));
         };
-        let name = instance
-            .record("REPRESENTATION_ITEM")
-            .and_then(|p| p.first())
-            .map(text)
-            .unwrap_or_default();
+        let name = item_name(instance);
         (name, du, dv, net, knots, entity)
     } else {
         return Ok(None);

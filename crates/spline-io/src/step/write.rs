@@ -192,54 +192,35 @@ pub fn write_step(items: &[Item]) -> Result<String> {
         let v2 = |p: &Vector2<f64>| vec![p.x, p.y, 0.0];
         let v3 = |p: &Vector3<f64>| vec![p.x, p.y, p.z];
         check_finite(&item.geometry)?;
-        match &item.geometry {
-            Geometry::Curve2(c) => {
-                let points: Vec<_> = c.control_points().iter().map(v2).collect();
-                curves.push(write_curve(&mut w, name, c.knots(), &points, None));
-            }
-            Geometry::Curve3(c) => {
-                let points: Vec<_> = c.control_points().iter().map(v3).collect();
-                curves.push(write_curve(&mut w, name, c.knots(), &points, None));
-            }
+        let (knots, points, weights): (_, Vec<_>, _) = match &item.geometry {
+            Geometry::Curve2(c) => (c.knots(), c.control_points().iter().map(v2).collect(), None),
+            Geometry::Curve3(c) => (c.knots(), c.control_points().iter().map(v3).collect(), None),
             Geometry::NurbsCurve2(c) => {
-                let points: Vec<_> = c.control_points().iter().map(v2).collect();
-                curves.push(write_curve(
-                    &mut w,
-                    name,
-                    c.knots(),
-                    &points,
-                    Some(c.weights()),
-                ));
+                let points = c.control_points().iter().map(v2).collect();
+                (c.knots(), points, Some(c.weights()))
             }
             Geometry::NurbsCurve3(c) => {
-                let points: Vec<_> = c.control_points().iter().map(v3).collect();
-                curves.push(write_curve(
-                    &mut w,
-                    name,
-                    c.knots(),
-                    &points,
-                    Some(c.weights()),
-                ));
+                let points = c.control_points().iter().map(v3).collect();
+                (c.knots(), points, Some(c.weights()))
             }
             Geometry::Surface(s) => {
-                surfaces.push(write_surface(
-                    &mut w,
-                    name,
-                    (s.knots_u(), s.knots_v()),
-                    s.control_points(),
-                    None,
-                ));
+                let knots = (s.knots_u(), s.knots_v());
+                surfaces.push(write_surface(&mut w, name, knots, s.control_points(), None));
+                continue;
             }
             Geometry::NurbsSurface(s) => {
+                let (knots, weights) = ((s.knots_u(), s.knots_v()), Some(s.weights()));
                 surfaces.push(write_surface(
                     &mut w,
                     name,
-                    (s.knots_u(), s.knots_v()),
+                    knots,
                     s.control_points(),
-                    Some(s.weights()),
+                    weights,
                 ));
+                continue;
             }
-        }
+        };
+        curves.push(write_curve(&mut w, name, knots, &points, weights));
     }
     let mut representations = Vec::new();
     if !curves.is_empty() {
@@ -264,33 +245,7 @@ pub fn write_step(items: &[Item]) -> Result<String> {
 }
 
 fn check_finite(geometry: &Geometry) -> Result<()> {
-    let finite = |xs: &mut dyn Iterator<Item = f64>| {
-        let mut all = true;
-        for x in xs {
-            all &= x.is_finite();
-        }
-        all
-    };
-    let ok = match geometry {
-        Geometry::Curve2(c) => {
-            finite(&mut c.control_points().iter().flat_map(|p| p.iter().copied()))
-        }
-        Geometry::Curve3(c) => {
-            finite(&mut c.control_points().iter().flat_map(|p| p.iter().copied()))
-        }
-        Geometry::NurbsCurve2(c) => {
-            finite(&mut c.control_points().iter().flat_map(|p| p.iter().copied()))
-        }
-        Geometry::NurbsCurve3(c) => {
-            finite(&mut c.control_points().iter().flat_map(|p| p.iter().copied()))
-        }
-        Geometry::Surface(s) => {
-            finite(&mut s.control_points().iter().flat_map(|p| p.iter().copied()))
-        }
-        Geometry::NurbsSurface(s) => {
-            finite(&mut s.control_points().iter().flat_map(|p| p.iter().copied()))
-        }
-    };
+    let ok = geometry.coordinates().all(f64::is_finite);
     if ok {
         Ok(())
     } else {
