@@ -1,7 +1,7 @@
 //! `spline._core.Curve`: a B-spline with scalar or vector coefficients of dimension 1 to 4,
 //! the library's `BSpline<f64, P>` behind one Python class.
 
-use crate::{Csr, Features, IntoPy, array, bad_input, csr, slice};
+use crate::{Csr, Features, IntoPy, array, bad_input, csr, flatten, knot_vector, points, slice};
 use numpy::{PyArray1, PyReadonlyArray1};
 use pyo3::prelude::*;
 use spline::algebra::{SplineMap, planar_features, product_with_jacobians};
@@ -34,6 +34,34 @@ pub(crate) enum Dyn {
     V4(B<SVector<f64, 4>>),
 }
 
+/// `Dyn::from`: a B-spline in its variant.
+macro_rules! variants {
+    ($($P:ty => $V:ident),+) => {
+        $(impl From<B<$P>> for Dyn {
+            fn from(curve: B<$P>) -> Self {
+                Dyn::$V(curve)
+            }
+        })+
+    };
+}
+
+variants!(
+    f64 => S,
+    SVector<f64, 1> => V1,
+    SVector<f64, 2> => V2,
+    SVector<f64, 3> => V3,
+    SVector<f64, 4> => V4
+);
+
+/// Runs `$e` with `$P` the coefficient type of dimension `$dim` (`0`: scalar) and wraps the
+/// resulting B-spline in the matching [`Dyn`] variant; another dimension `$d` gives `$other`.
+macro_rules! dyn_by_dim {
+    ($dim:expr, $P:ident => $e:expr, $d:pat => $other:expr) => {
+        by_dim!($dim, $P => $e.map(Dyn::from), [1, 2, 3, 4], $d => $other)
+    };
+}
+pub(crate) use dyn_by_dim;
+
 /// Runs `$e` on the curve inside whichever variant.
 macro_rules! with {
     ($d:expr, $c:ident => $e:expr) => {
@@ -60,22 +88,6 @@ macro_rules! map {
     };
 }
 
-/// Points of type `P` from a flat row-major array of `P::DIM` columns.
-fn points<P: ControlPoint<f64>>(flat: &[f64]) -> Vec<P> {
-    flat.chunks_exact(P::DIM)
-        .map(|row| P::from_coords(|i| row[i]))
-        .collect()
-}
-
-/// The coordinates of points, row after row.
-pub(crate) fn flatten<P: ControlPoint<f64>>(points: &[P]) -> Vec<f64> {
-    let mut out = Vec::with_capacity(points.len() * P::DIM);
-    for p in points {
-        out.extend((0..P::DIM).map(|i| p.coord(i)));
-    }
-    out
-}
-
 /// Batch evaluation (the library's `eval_many_into`) into a flat vector, chunk by chunk.
 fn eval_flat<P: ControlPoint<f64>>(curve: &B<P>, x: &[f64]) -> spline::Result<Vec<f64>> {
     let mut out = Vec::with_capacity(x.len() * P::DIM);
@@ -99,19 +111,10 @@ impl Dyn {
                 format!("{} coefficients do not make rows of {dim}", flat.len()),
             ));
         }
-        Ok(match dim {
-            0 => Dyn::S(B::new(knots, flat.to_vec())?),
-            1 => Dyn::V1(B::new(knots, points(flat))?),
-            2 => Dyn::V2(B::new(knots, points(flat))?),
-            3 => Dyn::V3(B::new(knots, points(flat))?),
-            4 => Dyn::V4(B::new(knots, points(flat))?),
-            _ => {
-                return Err(spline::Error::new(
-                    spline::ErrorKind::DimensionMismatch,
-                    format!("coefficients of dimension {dim}: 1 to {MAX_DIM} are supported"),
-                ));
-            }
-        })
+        dyn_by_dim!(dim, P => B::<P>::new(knots, points(flat)), _ => Err(spline::Error::new(
+            spline::ErrorKind::DimensionMismatch,
+            format!("coefficients of dimension {dim}: 1 to {MAX_DIM} are supported"),
+        )))
     }
 
     /// `0` for scalar coefficients, otherwise the dimension of the points.
@@ -146,6 +149,12 @@ impl Dyn {
     }
 }
 
+/// A curve record from exchange-format JSON text (a bad-input error naming what it is not).
+pub(crate) fn curve_record(text: &str) -> PyResult<CurveRecord> {
+    CurveRecord::from_json(text)
+        .map_err(|e| bad_input(format!("not an exchange-format curve: {e}")))
+}
+
 /// A B-spline curve or function (`spline.BSpline` wraps it; see there).
 #[pyclass(frozen, module = "spline._core")]
 pub(crate) struct Curve(pub(crate) Dyn);
@@ -161,7 +170,7 @@ impl Curve {
         coefficients: PyReadonlyArray1<'_, f64>,
         dim: usize,
     ) -> PyResult<Self> {
-        let knots = KnotVector::new(degree, slice(&knots, "t")?.to_vec()).py()?;
+        let knots = knot_vector(degree, &knots, "t")?;
         Dyn::new(knots, slice(&coefficients, "c")?, dim)
             .py()
             .map(Self)
@@ -267,8 +276,7 @@ impl Curve {
     /// A curve from exchange-format JSON text (`weights` are refused: use `NurbsCurve`).
     #[staticmethod]
     fn from_json(text: &str) -> PyResult<Self> {
-        let record = CurveRecord::from_json(text)
-            .map_err(|e| bad_input(format!("not an exchange-format curve: {e}")))?;
+        let record = curve_record(text)?;
         if record.weights.is_some() {
             return Err(bad_input(
                 "the curve has weights: read it with NurbsCurve.from_json",
@@ -294,11 +302,7 @@ impl Curve {
             ));
         };
         let f = py.detach(|| planar_features(c, accuracy)).py()?;
-        Ok((
-            array(py, f.inflections),
-            array(py, f.curvature_extrema),
-            f.constant_curvature,
-        ))
+        Ok(crate::features(py, f))
     }
 
     /// The signed curvature of a planar curve at every parameter of `x`.

@@ -1,8 +1,8 @@
 //! Interpolation, least squares, parameter correction, the eraser (`smooth`) and the airfoil
 //! reader, as the library (and the CLI's `interpolate`, `approximate`, `smooth`) call them.
 
-use crate::curve::{Curve, Dyn, flatten};
-use crate::{IntoPy, array, bad_input, slice};
+use crate::curve::{Curve, Dyn, dyn_by_dim};
+use crate::{IntoPy, array, bad_input, flatten, knot_vector, optional_slice, points, slice};
 use numpy::{PyArray1, PyReadonlyArray1};
 use pyo3::prelude::*;
 use spline::KnotVector;
@@ -11,42 +11,20 @@ use spline::fit::{
     fit_least_squares, interpolate_with_knots,
 };
 use spline::io::airfoil::parse_airfoil;
-use spline::nalgebra::{SVector, Vector2};
+use spline::nalgebra::Vector2;
 use spline::shape::{Extremum, Objective, SmoothingOptions, smooth as erase, smooth_to_tolerance};
 
 /// Runs `$e` with `$P` the point type of dimension `$dim` (`0`: scalar) and wraps the
 /// resulting B-spline in the matching [`Dyn`] variant.
-macro_rules! by_dim {
+macro_rules! by_curve_dim {
     ($dim:expr, $P:ident => $e:expr) => {
-        match $dim {
-            0 => {
-                type $P = f64;
-                $e.map(Dyn::S)
-            }
-            1 => {
-                type $P = SVector<f64, 1>;
-                $e.map(Dyn::V1)
-            }
-            2 => {
-                type $P = SVector<f64, 2>;
-                $e.map(Dyn::V2)
-            }
-            3 => {
-                type $P = SVector<f64, 3>;
-                $e.map(Dyn::V3)
-            }
-            4 => {
-                type $P = SVector<f64, 4>;
-                $e.map(Dyn::V4)
-            }
-            d => Err(spline::Error::new(
-                spline::ErrorKind::DimensionMismatch,
-                format!(
-                    "values of dimension {d}: 1 to {} are supported",
-                    crate::curve::MAX_DIM
-                ),
-            )),
-        }
+        dyn_by_dim!($dim, $P => $e, d => Err(spline::Error::new(
+            spline::ErrorKind::DimensionMismatch,
+            format!(
+                "values of dimension {d}: 1 to {} are supported",
+                crate::curve::MAX_DIM
+            ),
+        )))
     };
 }
 
@@ -58,10 +36,7 @@ fn rows<P: spline::ControlPoint<f64>>(flat: &[f64]) -> spline::Result<Vec<P>> {
             format!("{} values do not make rows of {}", flat.len(), P::DIM),
         ));
     }
-    Ok(flat
-        .chunks_exact(P::DIM)
-        .map(|r| P::from_coords(|i| r[i]))
-        .collect())
+    Ok(points(flat))
 }
 
 /// Interpolation at abscissae `x` (`make_interp_spline`): on `t`, or on the not-a-knot
@@ -79,12 +54,11 @@ fn interpolate<'py>(
     let x = slice(&x, "x")?;
     let y = slice(&y, "y")?;
     let knots = match &t {
-        Some(t) => KnotVector::new(k, slice(t, "t")?.to_vec()),
-        None => KnotVector::not_a_knot(k, x),
-    }
-    .py()?;
+        Some(t) => knot_vector(k, t, "t")?,
+        None => KnotVector::not_a_knot(k, x).py()?,
+    };
     py.detach(
-        || by_dim!(dim, P => rows::<P>(y).and_then(|q| interpolate_with_knots(&knots, x, &q))),
+        || by_curve_dim!(dim, P => rows::<P>(y).and_then(|q| interpolate_with_knots(&knots, x, &q))),
     )
     .py()
     .map(Curve)
@@ -105,10 +79,10 @@ fn least_squares<'py>(
 ) -> PyResult<Curve> {
     let x = slice(&x, "x")?;
     let y = slice(&y, "y")?;
-    let w = w.as_ref().map(|w| slice(w, "w")).transpose()?;
-    let knots = KnotVector::new(k, slice(&t, "t")?.to_vec()).py()?;
+    let w = optional_slice(&w, "w")?;
+    let knots = knot_vector(k, &t, "t")?;
     py.detach(|| {
-        by_dim!(dim, P => rows::<P>(y).and_then(|q| {
+        by_curve_dim!(dim, P => rows::<P>(y).and_then(|q| {
             let mut problem = LeastSquares::new(&q, x, knots.clone());
             if let Some(w) = w {
                 problem = problem.weights(w);
@@ -159,7 +133,7 @@ fn fit<'py>(
     };
     let curve = py
         .detach(|| {
-            by_dim!(dim, P => rows::<P>(flat).and_then(|q| {
+            by_curve_dim!(dim, P => rows::<P>(flat).and_then(|q| {
                 let answer = fit_least_squares(&q, &request)?;
                 let fit = answer.fit;
                 let (sweeps, converged) = answer

@@ -11,6 +11,24 @@
 // reference does not apply to `#[pyfunction]`s and `#[pymethods]`.
 #![allow(clippy::needless_pass_by_value)]
 
+/// Runs `$e` with `$P` the point type of `$dim` coordinates: `f64` for `0` (scalar values),
+/// `SVector<f64, n>` for each `n` listed; another dimension `$d` gives `$other`.
+macro_rules! by_dim {
+    ($dim:expr, $P:ident => $e:expr, [$($n:literal),+], $d:pat => $other:expr) => {
+        match $dim {
+            0 => {
+                type $P = f64;
+                $e
+            }
+            $($n => {
+                type $P = spline::nalgebra::SVector<f64, $n>;
+                $e
+            })+
+            $d => $other,
+        }
+    };
+}
+
 mod cad;
 mod columns;
 mod curve;
@@ -24,7 +42,8 @@ use numpy::{PyArray1, PyReadonlyArray1};
 use pyo3::create_exception;
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
-use spline::algebra::CsrMatrix;
+use spline::algebra::{CsrMatrix, PlanarFeatures};
+use spline::{ControlPoint, KnotVector};
 
 create_exception!(
     _core,
@@ -72,6 +91,40 @@ pub(crate) fn slice<'a>(array: &'a PyReadonlyArray1<'_, f64>, what: &str) -> PyR
         .map_err(|_| bad_input(format!("{what}: expected a contiguous float64 array")))
 }
 
+/// The contents of an optional contiguous 1-D array.
+pub(crate) fn optional_slice<'a>(
+    array: &'a Option<PyReadonlyArray1<'_, f64>>,
+    what: &str,
+) -> PyResult<Option<&'a [f64]>> {
+    array.as_ref().map(|a| slice(a, what)).transpose()
+}
+
+/// The knot vector of degree `degree` on the knots of a 1-D array (`what` names it).
+pub(crate) fn knot_vector(
+    degree: usize,
+    knots: &PyReadonlyArray1<'_, f64>,
+    what: &str,
+) -> PyResult<KnotVector<f64>> {
+    KnotVector::new(degree, slice(knots, what)?.to_vec()).py()
+}
+
+/// Points of type `P` from a flat row-major array of `P::DIM` columns (an incomplete last
+/// row is left out: callers check the length where it matters).
+pub(crate) fn points<P: ControlPoint<f64>>(flat: &[f64]) -> Vec<P> {
+    flat.chunks_exact(P::DIM)
+        .map(|row| P::from_coords(|i| row[i]))
+        .collect()
+}
+
+/// The coordinates of points, row after row.
+pub(crate) fn flatten<P: ControlPoint<f64>>(points: &[P]) -> Vec<f64> {
+    let mut out = Vec::with_capacity(points.len() * P::DIM);
+    for p in points {
+        out.extend((0..P::DIM).map(|i| p.coord(i)));
+    }
+    out
+}
+
 /// A flat vector as a 1-D numpy array (no copy).
 pub(crate) fn array(py: Python<'_>, values: Vec<f64>) -> Bound<'_, PyArray1<f64>> {
     PyArray1::from_vec(py, values)
@@ -91,6 +144,15 @@ pub(crate) type Features<'py> = (
     Bound<'py, PyArray1<f64>>,
     Option<f64>,
 );
+
+/// A planar curve's features as `(inflections, curvature_extrema, constant_curvature)`.
+pub(crate) fn features(py: Python<'_>, f: PlanarFeatures<f64>) -> Features<'_> {
+    (
+        array(py, f.inflections),
+        array(py, f.curvature_extrema),
+        f.constant_curvature,
+    )
+}
 
 /// A library CSR matrix as the parts of a `scipy.sparse.csr_array`.
 pub(crate) fn csr<'py>(py: Python<'py>, m: &CsrMatrix<f64>) -> Csr<'py> {

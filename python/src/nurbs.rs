@@ -1,15 +1,15 @@
 //! `spline._core.NurbsCurve` (planar or spatial) and `spline._core.NurbsSurface` (spatial),
 //! with the constructions: circles and arcs, spheres and tori.
 
-use crate::curve::flatten;
-use crate::{Features, IntoPy, array, bad_input, slice};
+use crate::curve::curve_record;
+use crate::{Features, IntoPy, array, bad_input, flatten, knot_vector, slice};
 use numpy::{PyArray1, PyReadonlyArray1};
 use pyo3::prelude::*;
 use spline::algebra::planar_features;
 use spline::geom::{CircleConstruction, Frame};
 use spline::io::exchange::{CurveRecord, SurfaceRecord};
 use spline::nalgebra::{SVector, Vector2, Vector3};
-use spline::{KnotVector, NurbsCurve, NurbsSurface};
+use spline::{NurbsCurve, NurbsSurface};
 
 /// A NURBS curve of dimension 2 or 3.
 #[derive(Clone, Debug)]
@@ -38,10 +38,7 @@ fn points<const D: usize>(flat: &[f64]) -> PyResult<Vec<SVector<f64, D>>> {
             flat.len()
         )));
     }
-    Ok(flat
-        .chunks_exact(D)
-        .map(SVector::<f64, D>::from_column_slice)
-        .collect())
+    Ok(crate::points(flat))
 }
 
 /// A NURBS curve (`spline.NurbsCurve` wraps it).
@@ -60,7 +57,7 @@ impl NurbsCurveCore {
         weights: PyReadonlyArray1<'_, f64>,
         dim: usize,
     ) -> PyResult<Self> {
-        let knots = KnotVector::new(degree, slice(&knots, "t")?.to_vec()).py()?;
+        let knots = knot_vector(degree, &knots, "t")?;
         let flat = slice(&points, "c")?;
         let weights = slice(&weights, "w")?.to_vec();
         Ok(Self(match dim {
@@ -193,11 +190,7 @@ impl NurbsCurveCore {
             return Err(bad_input("features need a planar curve"));
         };
         let f = py.detach(|| planar_features(c, accuracy)).py()?;
-        Ok((
-            array(py, f.inflections),
-            array(py, f.curvature_extrema),
-            f.constant_curvature,
-        ))
+        Ok(crate::features(py, f))
     }
 
     /// The curve in the exchange format (JSON text).
@@ -209,8 +202,7 @@ impl NurbsCurveCore {
     /// A NURBS curve from exchange-format JSON (unit weights when it has none).
     #[staticmethod]
     fn from_json(text: &str) -> PyResult<Self> {
-        let record = CurveRecord::from_json(text)
-            .map_err(|e| bad_input(format!("not an exchange-format curve: {e}")))?;
+        let record = curve_record(text)?;
         Ok(Self(match record.dimension().py()? {
             2 => Rational::N2(record.to_nurbs().py()?),
             3 => Rational::N3(record.to_nurbs().py()?),
@@ -270,8 +262,8 @@ impl NurbsSurfaceCore {
         points: PyReadonlyArray1<'_, f64>,
         weights: PyReadonlyArray1<'_, f64>,
     ) -> PyResult<Self> {
-        let ku = KnotVector::new(degrees.0, slice(&knots_u, "tu")?.to_vec()).py()?;
-        let kv = KnotVector::new(degrees.1, slice(&knots_v, "tv")?.to_vec()).py()?;
+        let ku = knot_vector(degrees.0, &knots_u, "tu")?;
+        let kv = knot_vector(degrees.1, &knots_v, "tv")?;
         let p = self::points::<3>(slice(&points, "points")?)?;
         let w = slice(&weights, "weights")?.to_vec();
         NurbsSurface::new(ku, kv, p, w).py().map(Self)

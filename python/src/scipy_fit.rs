@@ -5,7 +5,7 @@
 //! words and moves the axes.
 
 use crate::columns::Columns;
-use crate::{IntoPy, array, bad_input, slice};
+use crate::{IntoPy, array, bad_input, optional_slice, slice};
 use numpy::{PyArray1, PyReadonlyArray1};
 use pyo3::prelude::*;
 use spline::KnotVector;
@@ -56,7 +56,7 @@ fn smoothing_columns<'py>(
 ) -> PyResult<KnotsAndCoefficients<'py>> {
     let (x, y) = (slice(&x, "x")?, slice(&y, "y")?);
     check_rows(x, y, m)?;
-    let w = w.as_ref().map(|w| slice(w, "w")).transpose()?;
+    let w = optional_slice(&w, "w")?;
     let parameter = lam.map_or(SmoothingParameter::Gcv, SmoothingParameter::Lambda);
     let fits = py
         .detach(|| {
@@ -103,7 +103,7 @@ fn interp_spline(
     right: Vec<(usize, Vec<f64>)>,
 ) -> PyResult<Columns> {
     let (x, y) = (slice(&x, "x")?, slice(&y, "y")?);
-    let t = t.as_ref().map(|t| slice(t, "t")).transpose()?;
+    let t = optional_slice(&t, "t")?;
     let bc = match bc {
         "not-a-knot" => InterpBc::NotAKnot,
         "periodic" => InterpBc::Periodic,
@@ -131,7 +131,7 @@ fn lsq_spline(
     method: &str,
 ) -> PyResult<Columns> {
     let (x, y, t) = (slice(&x, "x")?, slice(&y, "y")?, slice(&t, "t")?);
-    let w = w.as_ref().map(|w| slice(w, "w")).transpose()?;
+    let w = optional_slice(&w, "w")?;
     let method = lsq_method(method)?;
     py.detach(|| make_lsq_spline(x, y, m, t, k, w, method))
         .py()

@@ -3,12 +3,10 @@
 //! `bc_type="periodic"`). `spline._splrep` validates the arguments with scipy's words and
 //! builds the `BSpline`.
 
-use crate::{IntoPy, array, bad_input, slice};
+use crate::{IntoPy, array, bad_input, flatten, optional_slice, points, slice};
 use numpy::{PyArray1, PyReadonlyArray1};
 use pyo3::prelude::*;
-use spline::ControlPoint;
 use spline::fit::{SplrepOptions, chord_length_parameters, generate_knots, make_splrep};
-use spline::nalgebra::SVector;
 
 /// The largest number of coordinates of `make_splprep`'s points.
 const MAX_SPLPREP_DIM: usize = 6;
@@ -16,49 +14,13 @@ const MAX_SPLPREP_DIM: usize = 6;
 /// Knots, row-major coefficients and whether the residual target was met.
 type SplrepFit<'py> = (Bound<'py, PyArray1<f64>>, Bound<'py, PyArray1<f64>>, bool);
 
-/// Points of type `P` from a flat row-major array.
-fn points<P: ControlPoint<f64>>(flat: &[f64]) -> Vec<P> {
-    flat.chunks_exact(P::DIM)
-        .map(|row| P::from_coords(|i| row[i]))
-        .collect()
-}
-
-/// Runs `$e` with `$P` the point type of `$dim` coordinates (`0`: scalar).
-macro_rules! by_dim {
+/// Runs `$e` with `$P` the point type of `$dim` coordinates (`0`: scalar), up to
+/// [`MAX_SPLPREP_DIM`].
+macro_rules! splprep_dim {
     ($dim:expr, $P:ident => $e:expr) => {
-        match $dim {
-            0 => {
-                type $P = f64;
-                $e
-            }
-            1 => {
-                type $P = SVector<f64, 1>;
-                $e
-            }
-            2 => {
-                type $P = SVector<f64, 2>;
-                $e
-            }
-            3 => {
-                type $P = SVector<f64, 3>;
-                $e
-            }
-            4 => {
-                type $P = SVector<f64, 4>;
-                $e
-            }
-            5 => {
-                type $P = SVector<f64, 5>;
-                $e
-            }
-            6 => {
-                type $P = SVector<f64, 6>;
-                $e
-            }
-            d => Err(bad_input(format!(
-                "values of {d} coordinates: 1 to {MAX_SPLPREP_DIM} are supported"
-            ))),
-        }
+        by_dim!($dim, $P => $e, [1, 2, 3, 4, 5, 6], d => Err(bad_input(format!(
+            "values of {d} coordinates: 1 to {MAX_SPLPREP_DIM} are supported"
+        ))))
     };
 }
 
@@ -83,8 +45,7 @@ fn splrep_fit<'py>(
     periodic: bool,
 ) -> PyResult<SplrepFit<'py>> {
     let (x, y) = (slice(&x, "x")?, slice(&y, "y")?);
-    let w = w.as_ref().map(|w| slice(w, "w")).transpose()?;
-    let t = t.as_ref().map(|t| slice(t, "t")).transpose()?;
+    let (w, t) = (optional_slice(&w, "w")?, optional_slice(&t, "t")?);
     let options = SplrepOptions {
         weights: w,
         xb,
@@ -95,15 +56,10 @@ fn splrep_fit<'py>(
         nest,
         periodic,
     };
-    let (knots, coefficients, converged) = by_dim!(dim, P => {
+    let (knots, coefficients, converged) = splprep_dim!(dim, P => {
         let values: Vec<P> = points(y);
         py.detach(|| make_splrep(x, &values, &options)).py().map(|fit| {
-            let flat: Vec<f64> = fit
-                .spline
-                .control_points()
-                .iter()
-                .flat_map(|p| (0..P::DIM).map(move |i| p.coord(i)))
-                .collect();
+            let flat = flatten(fit.spline.control_points());
             (fit.spline.knots().knots().to_vec(), flat, fit.converged)
         })
     })?;
@@ -129,7 +85,7 @@ fn splrep_knots(
     periodic: bool,
 ) -> PyResult<Vec<Vec<f64>>> {
     let (x, y) = (slice(&x, "x")?, slice(&y, "y")?);
-    let w = w.as_ref().map(|w| slice(w, "w")).transpose()?;
+    let w = optional_slice(&w, "w")?;
     let options = SplrepOptions {
         weights: w,
         xb,
@@ -140,7 +96,7 @@ fn splrep_knots(
         nest,
         periodic,
     };
-    by_dim!(dim, P => {
+    splprep_dim!(dim, P => {
         let values: Vec<P> = points(y);
         py.detach(|| generate_knots(x, &values, &options)).py()
     })
@@ -155,8 +111,8 @@ fn chord_lengths<'py>(
     dim: usize,
 ) -> PyResult<Bound<'py, PyArray1<f64>>> {
     let flat = slice(&points, "x")?;
-    let u = by_dim!(dim, P => {
-        let values: Vec<P> = self::points(flat);
+    let u = splprep_dim!(dim, P => {
+        let values: Vec<P> = crate::points(flat);
         chord_length_parameters(&values).py()
     })?;
     Ok(array(py, u))
