@@ -85,6 +85,7 @@ mod roots;
 mod segment_curvature;
 mod space;
 mod sparse;
+mod surface_features;
 mod surface_numerators;
 mod tensor;
 mod umbilics;
@@ -123,9 +124,10 @@ pub use space::{
     torsion,
 };
 pub use sparse::kron;
+pub use surface_features::{SurfaceFeatureLines, surface_feature_lines};
 pub use surface_numerators::{
-    CurvatureNumerators, NumeratorJacobians, SurfaceFeatureLines, curvature_numerators,
-    curvature_numerators_with_jacobians, parabolic_lines, surface_feature_lines,
+    CurvatureNumerators, NumeratorJacobians, curvature_numerators,
+    curvature_numerators_with_jacobians, parabolic_lines,
 };
 pub use tensor::{
     Partial, QuadraticFunction, TensorMap, TensorProductMap, hessian_determinant, partial,
