@@ -11,6 +11,8 @@ use spline_core::{
 };
 use spline_geom::ParamSurface;
 
+mod seams;
+
 /// The most points of all traced curves together.
 pub const MAX_TRACE_POINTS: usize = 1_000_000;
 
@@ -23,7 +25,8 @@ pub struct IntersectionCurve<T> {
     pub uv_a: Vec<(T, T)>,
     /// Their parameters on the second surface.
     pub uv_b: Vec<(T, T)>,
-    /// Whether the curve is a closed loop (its last point repeats the first).
+    /// Whether the curve is a closed loop (its last point repeats the first in space; its
+    /// parameters may be those of the other side of a seam).
     pub closed: bool,
 }
 
@@ -190,8 +193,9 @@ where
         (t.norm() > self.angle * scale && scale > T::zero()).then(|| t / t.norm())
     }
 
-    /// Parameters that move the point of both surfaces by `step` (first order).
-    fn predict(&self, x: &Vector4<T>, p: &Pair<T>, step: Vector3<T>) -> Vector4<T> {
+    /// The change of the parameters of both surfaces that moves their point by `step`
+    /// (first order).
+    fn parameter_step(p: &Pair<T>, step: &Vector3<T>) -> Vector4<T> {
         let solve = |d: &[Vector3<T>; 3]| -> Vector2<T> {
             let m = Matrix2::new(
                 d[1].dot(&d[1]),
@@ -199,11 +203,16 @@ where
                 d[1].dot(&d[2]),
                 d[2].dot(&d[2]),
             );
-            let r = Vector2::new(d[1].dot(&step), d[2].dot(&step));
+            let r = Vector2::new(d[1].dot(step), d[2].dot(step));
             m.try_inverse().map_or_else(Vector2::zeros, |inv| inv * r)
         };
         let (da, db) = (solve(&p.a), solve(&p.b));
-        (x + Vector4::new(da[0], da[1], db[0], db[1]))
+        Vector4::new(da[0], da[1], db[0], db[1])
+    }
+
+    /// Parameters that move the point of both surfaces by `step` (first order).
+    fn predict(&self, x: &Vector4<T>, p: &Pair<T>, step: Vector3<T>) -> Vector4<T> {
+        (x + Self::parameter_step(p, &step))
             .sup(&self.lower)
             .inf(&self.upper)
     }
@@ -227,26 +236,40 @@ where
         })
     }
 
-    /// Which parameter of `x` sits on a domain boundary, if any.
-    fn on_boundary(&self, x: &Vector4<T>) -> Option<usize> {
-        (0..4).find(|&k| x[k] <= self.lower[k] || x[k] >= self.upper[k])
+    /// Which parameter of `y` sits on a boundary of its domain that `x`, the point before
+    /// it, is not on, if any: a step from `x` to `y` reaches that boundary. (A step along a
+    /// boundary that `x` is on, after crossing a seam, reaches no boundary; one from there
+    /// to another boundary does, at a corner of the domain.)
+    fn reaches_boundary(&self, x: &Vector4<T>, y: &Vector4<T>) -> Option<usize> {
+        (0..4).find(|&k| {
+            (y[k] <= self.lower[k] && x[k] > self.lower[k])
+                || (y[k] >= self.upper[k] && x[k] < self.upper[k])
+        })
     }
 
-    /// Traces from `start` along `direction` until a boundary, a closed loop or a
-    /// tangency; returns the points after the start and whether the loop closed.
+    /// Traces from `start` along `direction` until a boundary, a closed loop (back at
+    /// `home`, the seed of the curve, after `travelled` and the length of this trace) or a
+    /// tangency: the points after the start, whether the loop closed and the direction of
+    /// the last step.
     fn trace(
         &self,
         start: Vector4<T>,
         direction: Vector3<T>,
+        home: &Vector4<T>,
+        travelled: &mut T,
         budget: &mut usize,
-    ) -> Result<(Vec<Vector4<T>>, bool)> {
-        let origin = self.eval(&start)?.a[0];
+    ) -> Result<Segment<T>> {
+        let origin = self.eval(home)?.a[0];
         let mut out = Vec::new();
         let (mut x, mut dir) = (start, direction);
         let mut h = self.max_step;
         let min_step = self.max_step * cast::<T>(1e-9);
         let half: T = cast(0.5);
-        let mut travelled = T::zero();
+        let open = |points, direction| Segment {
+            points,
+            closed: false,
+            direction,
+        };
         loop {
             if *budget == 0 {
                 return Err(Error::new(
@@ -263,10 +286,7 @@ where
             let (next, residual) = self.on_plane(predicted, here + dir * h, dir)?;
             let advance = (self.eval(&next)?.a[0] - here).dot(&dir);
             if !(residual <= self.distance) || !(advance > T::zero()) {
-                if let Some(k) = self
-                    .on_boundary(&predicted)
-                    .filter(|_| self.on_boundary(&x).is_none())
-                {
+                if let Some(k) = self.reaches_boundary(&x, &predicted) {
                     let value = if predicted[k] <= self.lower[k] {
                         self.lower[k]
                     } else {
@@ -278,12 +298,12 @@ where
                         && self.chord_deviation(&x, &end)? <= self.trace
                     {
                         out.push(end);
-                        return Ok((out, false));
+                        return Ok(open(out, dir));
                     }
                 }
                 h *= half;
                 if h < min_step {
-                    return Ok((out, false));
+                    return Ok(open(out, dir));
                 }
                 continue;
             }
@@ -294,26 +314,30 @@ where
             if deviation > self.trace {
                 h *= half;
                 if h < min_step {
-                    return Ok((out, false));
+                    return Ok(open(out, dir));
                 }
                 continue;
             }
-            travelled += chord.norm();
+            *travelled += chord.norm();
             *budget -= 1;
-            // Back at the start: the loop is closed.
-            if travelled > self.max_step * cast::<T>(2.0)
+            // Back at the seed: the loop is closed.
+            if *travelled > self.max_step * cast::<T>(2.0)
                 && (origin - here).norm() <= chord.norm() * cast::<T>(1.01)
                 && (origin - here).dot(&dir) > T::zero()
             {
-                out.push(start);
-                return Ok((out, true));
+                out.push(*home);
+                return Ok(Segment {
+                    points: out,
+                    closed: true,
+                    direction: dir,
+                });
             }
             out.push(next);
-            if self.on_boundary(&next).is_some() && self.on_boundary(&x).is_none() {
-                return Ok((out, false));
+            if self.reaches_boundary(&x, &next).is_some() {
+                return Ok(open(out, dir));
             }
             let Some(t) = self.tangent(&self.eval(&next)?) else {
-                return Ok((out, false));
+                return Ok(open(out, dir));
             };
             dir = if t.dot(&dir) >= T::zero() { t } else { -t };
             x = next;
@@ -322,6 +346,16 @@ where
             }
         }
     }
+}
+
+/// The points of one run of [`Tracer::trace`].
+struct Segment<T> {
+    /// The points after the start.
+    points: Vec<Vector4<T>>,
+    /// Whether the curve came back to its seed.
+    closed: bool,
+    /// The direction of the last step.
+    direction: Vector3<T>,
 }
 
 /// The curves where two surfaces in space meet (any kinds), traced as polylines to a
@@ -334,8 +368,11 @@ where
 /// corrector puts the point on both surfaces and on the plane normal to the step; the step
 /// is halved until the chord's midpoint lies within [`Tolerances::trace`] of the curve
 /// (measured on the plane normal to the chord), and grows again when it is far below. A
-/// curve ends where it meets the boundary of a domain (the end point is on it) or where the
-/// surfaces become tangent; it is closed when it comes back to its seed. Points and partials
+/// curve that meets the seam of a closed surface (a boundary of its domain where the
+/// opposite side is the same points) goes on from the other side, its parameters jumping
+/// there (both seams at once at the corner where they meet); it ends where it meets any
+/// other boundary of a domain (the end point is on it) or where the surfaces become
+/// tangent; it is closed when it comes back to its seed. Points and partials
 /// are divided by a power of four near the size of the surfaces while marching (exactly), so
 /// the curves of surfaces scaled by any factor from 1e-300 to 1e300 are the scaled curves.
 ///
@@ -416,10 +453,11 @@ where
             let Some(t) = tracer.tangent(&p) else {
                 continue;
             };
-            let (forward, closed) = tracer.trace(seed, t, &mut budget)?;
+            let traced = |q: &Vector3<T>| curves.iter().any(|c| near_polyline(&c.points, q, near));
+            let (forward, closed) = tracer.trace_across_seams(seed, t, traced, &mut budget)?;
             let mut xs: Vec<Vector4<T>> = Vec::new();
             if !closed {
-                let (backward, _) = tracer.trace(seed, -t, &mut budget)?;
+                let (backward, _) = tracer.trace_across_seams(seed, -t, traced, &mut budget)?;
                 xs.extend(backward.into_iter().rev());
             }
             xs.push(seed);
