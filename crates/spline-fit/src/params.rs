@@ -298,6 +298,31 @@ pub fn parametrize_closed<T: Scalar, P: ControlPoint<T>>(
     }
 }
 
+/// Checks the weights of `m` data: one per datum, each positive and finite.
+pub(crate) fn check_weights<T: Scalar>(weights: &[T], m: usize) -> Result<()> {
+    if weights.len() != m {
+        return Err(Error::invalid_length(
+            "one weight per datum",
+            m,
+            weights.len(),
+        ));
+    }
+    if let Some(k) = weights
+        .iter()
+        .position(|&v| !(v > T::zero() && v.is_finite()))
+    {
+        return Err(Error::new(
+            ErrorKind::InvalidWeight,
+            format!(
+                "weight {k} is {}: weights must be positive and finite",
+                to_f64(weights[k])
+            ),
+        )
+        .with_index(k));
+    }
+    Ok(())
+}
+
 /// Checks given parameters: the right number, finite, non-decreasing.
 pub(crate) fn check_given<T: Scalar>(params: &[T], expected: usize) -> Result<()> {
     if params.len() != expected {

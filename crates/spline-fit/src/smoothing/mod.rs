@@ -21,7 +21,7 @@ pub use splrep::{
 use crate::banded::BandCholesky;
 use crate::lsq::{LeastSquares, penalty_rows};
 use crate::natural::natural_cubic;
-use crate::params::{Parametrization, check_points, parametrize};
+use crate::params::{Parametrization, check_points, check_weights, parametrize};
 use band_inverse::inverse_band;
 use spline_core::{ControlPoint, Error, ErrorKind, KnotVector, Result, Scalar, from_count, to_f64};
 use spline_geom::BSpline;
@@ -203,19 +203,7 @@ impl<'a, T: Scalar, P: ControlPoint<T>> Penalised<'a, T, P> {
         let sqrt_weights: Option<Vec<T>> = match weights {
             None => None,
             Some(w) => {
-                if w.len() != m {
-                    return Err(Error::invalid_length("one weight per datum", m, w.len()));
-                }
-                if let Some(k) = w.iter().position(|&v| !(v > T::zero() && v.is_finite())) {
-                    return Err(Error::new(
-                        ErrorKind::InvalidWeight,
-                        format!(
-                            "weight {k} is {}: weights must be positive and finite",
-                            to_f64(w[k])
-                        ),
-                    )
-                    .with_index(k));
-                }
+                check_weights(w, m)?;
                 Some(w.iter().map(|v| v.sqrt()).collect())
             }
         };

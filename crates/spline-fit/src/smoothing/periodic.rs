@@ -19,9 +19,9 @@
 
 use super::profile::ProfileCholesky;
 use super::residual::{
-    ResidualFit, TOL, add_knot, check_data, check_degree, jump_rows, knots_to_add, root_rati,
+    Data, Placement, ResidualFit, TOL, check_degree, check_lengths, jump_rows, smoothed,
 };
-use super::splrep_options::{SplrepOptions, knots_around_data};
+use super::splrep_options::knots_around_data;
 use crate::interpolate::interpolate_with_knots;
 use crate::lsq::LeastSquares;
 use crate::periodic::interpolate_periodic;
@@ -44,18 +44,9 @@ struct Lsq<T, P> {
     diagonal: T,
 }
 
-/// The validated data of a periodic fit.
-pub(super) struct PeriodicData<'a, T, P> {
-    x: &'a [T],
-    y: &'a [P],
-    weights: Option<&'a [T]>,
-    degree: usize,
-    s: T,
-}
-
 /// scipy's test that data are periodic: every coordinate of the first and the last value
 /// agree as `numpy.allclose(y[0], y[-1], atol=1e-15)` has it (relative `1e-5` of the last).
-fn check_periodic_ends<T: Scalar, P: ControlPoint<T>>(y: &[P]) -> Result<()> {
+pub(super) fn check_periodic_ends<T: Scalar, P: ControlPoint<T>>(y: &[P]) -> Result<()> {
     let (first, last) = (y[0], y[y.len() - 1]);
     let close = (0..P::DIM).all(|c| {
         let (a, b) = (first.coord(c), last.coord(c));
@@ -133,19 +124,13 @@ pub(super) fn periodic_interpolation_knots<T: Scalar>(x: &[T], k: usize) -> Resu
 /// (knots `x[0], x…, x[-1]`), otherwise [`interpolate_periodic`] as a spline on
 /// [`periodic_interpolation_knots`]. The last value is taken equal to the first (they were
 /// checked to agree).
-fn interpolation<T: Scalar, P: ControlPoint<T>>(
+pub(super) fn interpolation<T: Scalar, P: ControlPoint<T>>(
     x: &[T],
     y: &[P],
     k: usize,
 ) -> Result<ResidualFit<T, P>> {
     check_degree(k, MAX_DEGREE)?;
-    if y.len() != x.len() {
-        return Err(Error::invalid_length(
-            "one value per abscissa",
-            x.len(),
-            y.len(),
-        ));
-    }
+    check_lengths(x.len(), y.len())?;
     if y.is_empty() {
         return Err(Error::new(ErrorKind::TooFewPoints, "no data").with_counts(2, 0));
     }
@@ -162,18 +147,13 @@ fn interpolation<T: Scalar, P: ControlPoint<T>>(
         let control = periodic.wrapped().control_points().to_vec();
         BSpline::new(periodic_interpolation_knots(x, k)?, control)?
     };
-    Ok(ResidualFit {
-        spline,
-        residual: T::zero(),
-        smoothing: None,
-        converged: true,
-    })
+    Ok(ResidualFit::unsmoothed(spline, T::zero()))
 }
 
 /// FITPACK's `fpchep` for given knots of a periodic spline: `k + 1 ≤ n − k − 1 ≤ m + k − 1`,
 /// the knots of one period strictly increasing, the data inside it, and the
 /// Schoenberg–Whitney conditions for some cyclic shift of the data but the last.
-fn check_given_knots<T: Scalar>(x: &[T], t: &[T], k: usize) -> Result<KnotVector<T>> {
+pub(super) fn check_given_knots<T: Scalar>(x: &[T], t: &[T], k: usize) -> Result<KnotVector<T>> {
     let m = x.len();
     let n = t.len();
     let nk1 = n.saturating_sub(k + 1);
@@ -241,26 +221,8 @@ fn schoenberg_whitney<T: Scalar>(x: &[T], t: &[T], k: usize) -> bool {
     })
 }
 
-impl<'a, T: Scalar, P: ControlPoint<T>> PeriodicData<'a, T, P> {
-    pub(super) fn new(
-        x: &'a [T],
-        y: &'a [P],
-        weights: Option<&'a [T]>,
-        degree: usize,
-        s: T,
-    ) -> Result<Self> {
-        check_degree(degree, MAX_DEGREE)?;
-        check_data(x, y, weights, s, (2, "periodic smoothing"))?;
-        check_periodic_ends(y)?;
-        Ok(Self {
-            x,
-            y,
-            weights,
-            degree,
-            s,
-        })
-    }
-
+/// The stages of a periodic fit (`Data` with `periodic`).
+impl<T: Scalar, P: ControlPoint<T>> Data<'_, T, P> {
     /// The number of data used: all but the last.
     fn used(&self) -> usize {
         self.x.len() - 1
@@ -319,7 +281,7 @@ impl<'a, T: Scalar, P: ControlPoint<T>> PeriodicData<'a, T, P> {
     }
 
     /// The periodic least-squares spline on `knots`.
-    fn least_squares(&self, knots: &KnotVector<T>) -> Result<Lsq<T, P>> {
+    fn periodic_least_squares(&self, knots: &KnotVector<T>) -> Result<Lsq<T, P>> {
         let (mut gram, mut c, n7) = self.folded(knots, self.degree)?;
         gram.factor(&|i| format!("periodic coefficient {i}"))?;
         gram.solve(&mut c);
@@ -349,7 +311,7 @@ impl<'a, T: Scalar, P: ControlPoint<T>> PeriodicData<'a, T, P> {
     /// FITPACK's first stage (`fpperi` part 1, scipy's `_generate_knots_impl` with
     /// `periodic=True`) on $[x_b, x_e]$ with the cap `nest` (default
     /// $\max(m + 2k, 2k + 3)$), passing every knot vector to `record`; returns the last.
-    pub(super) fn generate_knots_with(
+    pub(super) fn periodic_knots(
         &self,
         bounds: (T, T),
         nest: Option<usize>,
@@ -358,70 +320,64 @@ impl<'a, T: Scalar, P: ControlPoint<T>> PeriodicData<'a, T, P> {
         let k = self.degree;
         let m = self.x.len();
         let s = self.s;
-        let acc = s * cast::<T>(TOL);
         let nest = nest.unwrap_or((m + 2 * k).max(2 * k + 3));
-        let nmin = 2 * (k + 1);
         let nmax = m + 2 * k;
         let constant = self.constant_knots(bounds.1 - bounds.0)?;
-        let mut fp = self.least_squares(&constant)?.fp;
-        if fp - s < acc || nmax == nmin {
+        let fp = self.periodic_least_squares(&constant)?.fp;
+        if fp - s < s * cast::<T>(TOL) || nmax == 2 * (k + 1) {
             record(&constant);
             return Ok(constant);
         }
         // One interior knot at the middle datum; the others are set by `wrap`.
         let mut t = vec![T::zero(); 2 * k + 3];
         t[k + 1] = self.x[m.div_ceil(2) - 1];
-        let mut nplus = 1;
-        for _ in 0..m {
+        let wrapped = |mut t: Vec<T>| {
             wrap(&mut t, k, bounds);
-            let mut knots = KnotVector::new(k, t)?;
-            record(&knots);
-            let fpold = fp;
-            let lsq = self.least_squares(&knots)?;
-            fp = lsq.fp;
-            let mut residuals = lsq.residuals;
-            let fpms = fp - s;
-            if fpms.abs() < acc || fpms < T::zero() {
-                return Ok(knots);
-            }
-            nplus = if knots.len() == nmin {
-                1
-            } else {
-                knots_to_add(nplus, fpold - fp, fpms, acc)
-            };
-            for j in 0..nplus {
-                knots = add_knot(self.x, &knots, &residuals)?;
-                let n = knots.len();
-                if n >= nmax {
-                    let knots = periodic_interpolation_knots(self.x, k)?;
-                    record(&knots);
-                    return Ok(knots);
-                }
-                if n >= nest {
-                    record(&knots);
-                    return Ok(knots);
-                }
-                if j + 1 < nplus {
-                    // As scipy: the knots beyond the period are those of the last wrap.
-                    residuals = self.least_squares(&knots)?.residuals;
-                }
-            }
-            t = knots.into_knots();
+            KnotVector::new(k, t)
+        };
+        let start = wrapped(t)?;
+        Placement {
+            x: self.x,
+            s,
+            nmax,
+            nest,
+            least_squares: &|t| {
+                self.periodic_least_squares(t)
+                    .map(|lsq| (lsq.residuals, lsq.fp))
+            },
+            // While knots are added one by one (and refitted for their residuals), those
+            // beyond the period stay those of the last wrap, as scipy's.
+            rewrap: &|knots| wrapped(knots.into_knots()),
+            interpolation_knots: &|| periodic_interpolation_knots(self.x, k),
         }
-        wrap(&mut t, k, bounds);
-        KnotVector::new(k, t)
+        .run((start, fp), record)
+    }
+
+    /// The fit on `knots` (given or placed): their least-squares spline when it has no
+    /// interior knots, else FITPACK's second stage ([`Data::periodic_smooth`]) from it, with
+    /// the least-squares constant of period `per`.
+    pub(super) fn periodic_fit(&self, knots: &KnotVector<T>, per: T) -> Result<ResidualFit<T, P>> {
+        let lsq = self.periodic_least_squares(knots)?;
+        if knots.len() == 2 * (self.degree + 1) {
+            return Ok(ResidualFit::unsmoothed(lsq.spline, lsq.fp));
+        }
+        self.periodic_smooth(knots, &lsq, per)
     }
 
     /// FITPACK's second stage on `knots` (`fpperi` part 2, scipy's `Fperiodic` and
     /// `root_rati`), starting from their least-squares spline `lsq`; `per` is the period of
     /// the least-squares constant (`p = 0`).
-    fn smooth(&self, knots: &KnotVector<T>, lsq: &Lsq<T, P>, per: T) -> Result<ResidualFit<T, P>> {
+    fn periodic_smooth(
+        &self,
+        knots: &KnotVector<T>,
+        lsq: &Lsq<T, P>,
+        per: T,
+    ) -> Result<ResidualFit<T, P>> {
         let k = self.degree;
         let s = self.s;
-        let acc = s * cast::<T>(TOL);
         let (gram, rhs, n7) = self.folded(knots, k + 1)?;
         let p0 = from_count::<T>(n7) / lsq.diagonal;
-        let fp0 = self.least_squares(&self.constant_knots(per)?)?.fp - s;
+        let fp0 = self.periodic_least_squares(&self.constant_knots(per)?)?.fp - s;
         // The jump rows on the free coefficients (entries wrapping onto each other summed).
         let jumps: Vec<Vec<(usize, T)>> = jump_rows(knots.knots(), k)
             .into_iter()
@@ -453,69 +409,20 @@ impl<'a, T: Scalar, P: ControlPoint<T>> PeriodicData<'a, T, P> {
             let (spline, _, fp) = self.spline(knots, &c)?;
             Ok((spline, fp - s))
         };
-        let (spline, f, p, converged) = root_rati(p0, (fp0, lsq.fp - s), acc, solve)?;
-        Ok(ResidualFit {
-            spline,
-            residual: f + s,
-            smoothing: Some(p),
-            converged,
-        })
+        smoothed(s, p0, (fp0, lsq.fp - s), solve)
     }
 }
 
-/// [`super::make_splrep`] with `options.periodic`.
-pub(super) fn make_splrep<T: Scalar, P: ControlPoint<T>>(
-    x: &[T],
-    y: &[P],
-    options: &SplrepOptions<'_, T>,
-) -> Result<ResidualFit<T, P>> {
-    let k = options.k;
-    if options.s == T::zero() {
-        options.check_interpolation()?;
-        return interpolation(x, y, k);
+/// The knots of scipy's periodic interpolation as `generate_knots` gives them (`s = 0`):
+/// [`periodic_interpolation_knots`], the not-a-knot ones for `k = 1`.
+///
+/// # Errors
+/// As [`check_degree`] and those knots.
+pub(super) fn interpolation_knots<T: Scalar>(x: &[T], k: usize) -> Result<KnotVector<T>> {
+    check_degree(k, MAX_DEGREE)?;
+    if k == 1 {
+        KnotVector::not_a_knot(1, x)
+    } else {
+        periodic_interpolation_knots(x, k)
     }
-    let data = PeriodicData::new(x, y, options.weights, k, options.s)?;
-    options.check_nest()?;
-    let bounds = options.bounds(x)?;
-    let knots = match options.t {
-        Some(t) => check_given_knots(x, t, k)?,
-        None => data.generate_knots_with(bounds, options.nest, &mut |_| {})?,
-    };
-    let lsq = data.least_squares(&knots)?;
-    if knots.len() == 2 * (k + 1) {
-        return Ok(ResidualFit {
-            spline: lsq.spline,
-            residual: lsq.fp,
-            smoothing: None,
-            converged: true,
-        });
-    }
-    data.smooth(&knots, &lsq, bounds.1 - bounds.0)
-}
-
-/// [`super::generate_knots`] with `options.periodic` (`options.t` already refused).
-pub(super) fn generate_knots<T: Scalar, P: ControlPoint<T>>(
-    x: &[T],
-    y: &[P],
-    options: &SplrepOptions<'_, T>,
-) -> Result<Vec<Vec<T>>> {
-    let k = options.k;
-    if options.s == T::zero() {
-        options.check_interpolation()?;
-        check_degree(k, MAX_DEGREE)?;
-        let knots = if k == 1 {
-            KnotVector::not_a_knot(1, x)?
-        } else {
-            periodic_interpolation_knots(x, k)?
-        };
-        return Ok(vec![knots.into_knots()]);
-    }
-    let data = PeriodicData::new(x, y, options.weights, k, options.s)?;
-    options.check_nest()?;
-    let bounds = options.bounds(x)?;
-    let mut sequence = Vec::new();
-    data.generate_knots_with(bounds, options.nest, &mut |t| {
-        sequence.push(t.knots().to_vec());
-    })?;
-    Ok(sequence)
 }

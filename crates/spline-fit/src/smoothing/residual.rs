@@ -12,10 +12,11 @@
 //!    least-squares problem with the jump rows weighted by `1/p`, `p` found by FITPACK's
 //!    rational interpolation (`fprati`) to a relative accuracy of `0.001`.
 
+use super::periodic::check_periodic_ends;
 use crate::banded::BandCholesky;
 use crate::interpolate::interpolate_with_knots;
 use crate::lsq::{LeastSquares, LsqMethod};
-use crate::params::{Parametrization, check_points, parametrize};
+use crate::params::{Parametrization, check_points, check_weights, parametrize};
 use spline_core::{
     ControlPoint, Error, ErrorKind, KnotVector, MAX_DEGREE, Result, Scalar, cast, check_params,
     from_count, to_f64,
@@ -42,6 +43,19 @@ pub struct ResidualFit<T, P> {
     /// target). When `false` the spline is the last iterate, as FITPACK returns it with a
     /// warning (`ier` = 2 or 3).
     pub converged: bool,
+}
+
+impl<T: Scalar, P: ControlPoint<T>> ResidualFit<T, P> {
+    /// The least-squares spline (or the interpolating one, `residual` zero) as the fit: no
+    /// smoothing factor, converged.
+    pub(super) fn unsmoothed(spline: BSpline<T, P>, residual: T) -> Self {
+        Self {
+            spline,
+            residual,
+            smoothing: None,
+            converged: true,
+        }
+    }
 }
 
 /// The spline of degree `k` through or near $(x_i, y_i)$ whose weighted residual
@@ -78,28 +92,14 @@ pub fn smoothing_to_residual<T: Scalar, P: ControlPoint<T>>(
     s: T,
 ) -> Result<ResidualFit<T, P>> {
     check_degree(degree, 5)?;
-    let data = Data::new(x, y, weights, degree, s)?;
+    let data = Data::new(x, y, weights, (degree, s), false)?;
     if s == T::zero() {
         let knots = KnotVector::not_a_knot(degree, x)?;
         let spline = interpolate_with_knots(&knots, x, y)?;
-        return Ok(ResidualFit {
-            spline,
-            residual: T::zero(),
-            smoothing: None,
-            converged: true,
-        });
+        return Ok(ResidualFit::unsmoothed(spline, T::zero()));
     }
     let knots = data.generate_knots()?;
-    let (lsq, _, fp) = data.least_squares_qr(&knots)?;
-    if knots.len() == 2 * (degree + 1) {
-        return Ok(ResidualFit {
-            spline: lsq,
-            residual: fp,
-            smoothing: None,
-            converged: true,
-        });
-    }
-    data.smooth(&knots, fp, knots.domain())
+    data.fit(&knots, knots.domain())
 }
 
 /// [`smoothing_to_residual`] of a parametric curve through `points`, as scipy's
@@ -132,6 +132,15 @@ pub(super) fn check_degree(degree: usize, max: usize) -> Result<()> {
     }
 }
 
+/// One value per abscissa: `values` of them for `m` abscissae.
+pub(super) fn check_lengths(m: usize, values: usize) -> Result<()> {
+    if values == m {
+        Ok(())
+    } else {
+        Err(Error::invalid_length("one value per abscissa", m, values))
+    }
+}
+
 /// The checks of the data shared by the fits to a residual target: `s` finite and
 /// non-negative, one value per abscissa, at least `min_points` finite values (`who` names
 /// what needs them), sorted finite abscissae not all equal, positive finite weights (one per
@@ -153,9 +162,7 @@ pub(super) fn check_data<T: Scalar, P: ControlPoint<T>>(
         ));
     }
     let m = x.len();
-    if y.len() != m {
-        return Err(Error::invalid_length("one value per abscissa", m, y.len()));
-    }
+    check_lengths(m, y.len())?;
     if m < min_points {
         return Err(Error::new(
             ErrorKind::TooFewPoints,
@@ -172,48 +179,47 @@ pub(super) fn check_data<T: Scalar, P: ControlPoint<T>>(
         ));
     }
     if let Some(w) = weights {
-        if w.len() != m {
-            return Err(Error::invalid_length("one weight per datum", m, w.len()));
-        }
-        if let Some(k) = w.iter().position(|&v| !(v > T::zero() && v.is_finite())) {
-            return Err(Error::new(
-                ErrorKind::InvalidWeight,
-                format!(
-                    "weight {k} is {}: weights must be positive and finite",
-                    to_f64(w[k])
-                ),
-            )
-            .with_index(k));
-        }
+        check_weights(w, m)?;
     }
     Ok(())
 }
 
-/// The validated data of a residual-target fit.
+/// The validated data of a residual-target fit: plain (FITPACK's `curfit`) or periodic
+/// (`percur`, whose stages are [`super::periodic`]'s).
 pub(super) struct Data<'a, T, P> {
-    x: &'a [T],
-    y: &'a [P],
-    weights: Option<&'a [T]>,
-    degree: usize,
-    s: T,
+    pub(super) x: &'a [T],
+    pub(super) y: &'a [P],
+    pub(super) weights: Option<&'a [T]>,
+    pub(super) degree: usize,
+    pub(super) s: T,
+    /// Whether the fit is periodic.
+    pub(super) periodic: bool,
 }
 
 impl<'a, T: Scalar, P: ControlPoint<T>> Data<'a, T, P> {
+    /// The data after [`check_degree`] and [`check_data`]: more data than `degree + 1`, or
+    /// when `periodic` at least 2 whose first and last values agree.
     pub(super) fn new(
         x: &'a [T],
         y: &'a [P],
         weights: Option<&'a [T]>,
-        degree: usize,
-        s: T,
+        (degree, s): (usize, T),
+        periodic: bool,
     ) -> Result<Self> {
         check_degree(degree, MAX_DEGREE)?;
-        check_data(x, y, weights, s, (degree + 1, &format!("degree {degree}")))?;
+        if periodic {
+            check_data(x, y, weights, s, (2, "periodic smoothing"))?;
+            check_periodic_ends(y)?;
+        } else {
+            check_data(x, y, weights, s, (degree + 1, &format!("degree {degree}")))?;
+        }
         Ok(Self {
             x,
             y,
             weights,
             degree,
             s,
+            periodic,
         })
     }
 
@@ -287,47 +293,40 @@ impl<'a, T: Scalar, P: ControlPoint<T>> Data<'a, T, P> {
         nest: Option<usize>,
         record: &mut dyn FnMut(&KnotVector<T>),
     ) -> Result<KnotVector<T>> {
+        if self.periodic {
+            return self.periodic_knots((xb, xe), nest, record);
+        }
         let k = self.degree;
         let m = self.x.len();
-        let acc = self.s * cast::<T>(TOL);
         let nest = nest.unwrap_or((m + k + 1).max(2 * k + 3));
-        let nmin = 2 * (k + 1);
-        let nmax = m + k + 1;
-        let mut t = KnotVector::clamped(k, xb, xe, &[])?;
-        let mut fp = T::zero();
-        let mut nplus = 1usize;
-        for _ in 0..m {
-            record(&t);
-            let fpold = fp;
-            let (_, mut residuals, new_fp) = self.least_squares(&t)?;
-            fp = new_fp;
-            let fpms = fp - self.s;
-            if fpms.abs() < acc || fpms < T::zero() {
-                return Ok(t);
-            }
-            nplus = if t.len() == nmin {
-                1
-            } else {
-                knots_to_add(nplus, fpold - fp, fpms, acc)
-            };
-            for j in 0..nplus {
-                t = add_knot(self.x, &t, &residuals)?;
-                let n = t.len();
-                if n >= nmax {
-                    let t = KnotVector::not_a_knot(k, self.x)?;
-                    record(&t);
-                    return Ok(t);
-                }
-                if n >= nest {
-                    record(&t);
-                    return Ok(t);
-                }
-                if j + 1 < nplus {
-                    residuals = self.least_squares(&t)?.1;
-                }
-            }
+        let polynomial = KnotVector::clamped(k, xb, xe, &[])?;
+        Placement {
+            x: self.x,
+            s: self.s,
+            nmax: m + k + 1,
+            nest,
+            least_squares: &|t| {
+                self.least_squares(t)
+                    .map(|(_, residuals, fp)| (residuals, fp))
+            },
+            rewrap: &Ok,
+            interpolation_knots: &|| KnotVector::not_a_knot(k, self.x),
         }
-        Ok(t)
+        .run((polynomial, T::zero()), record)
+    }
+
+    /// The fit on `knots` (given or placed) in $[x_b, x_e]$ = `bounds`: their least-squares
+    /// spline when it has no interior knots, else FITPACK's second stage ([`Data::smooth`])
+    /// from it.
+    pub(super) fn fit(&self, knots: &KnotVector<T>, bounds: (T, T)) -> Result<ResidualFit<T, P>> {
+        if self.periodic {
+            return self.periodic_fit(knots, bounds.1 - bounds.0);
+        }
+        let (lsq, _, fp) = self.least_squares_qr(knots)?;
+        if knots.len() == 2 * (self.degree + 1) {
+            return Ok(ResidualFit::unsmoothed(lsq, fp));
+        }
+        self.smooth(knots, fp, bounds)
     }
 
     /// FITPACK's second stage on `knots` (scipy's `F` and `root_rati`); `fp_lsq` is the
@@ -341,7 +340,6 @@ impl<'a, T: Scalar, P: ControlPoint<T>> Data<'a, T, P> {
     ) -> Result<ResidualFit<T, P>> {
         let k = self.degree;
         let s = self.s;
-        let acc = s * cast::<T>(TOL);
         let mut lsq = LeastSquares::new(self.y, self.x, knots.clone());
         if let Some(w) = self.weights {
             lsq = lsq.weights(w);
@@ -380,14 +378,105 @@ impl<'a, T: Scalar, P: ControlPoint<T>> Data<'a, T, P> {
         };
         let polynomial = KnotVector::clamped(k, bounds.0, bounds.1, &[])?;
         let fp0 = self.least_squares(&polynomial)?.2 - s;
-        let (spline, f, p, converged) = root_rati(p0, (fp0, fp_lsq - s), acc, solve)?;
-        Ok(ResidualFit {
-            spline,
-            residual: f + s,
-            smoothing: Some(p),
-            converged,
-        })
+        smoothed(s, p0, (fp0, fp_lsq - s), solve)
     }
+}
+
+/// The residuals of a spline at every datum and the residual.
+type Residuals<T> = (Vec<T>, T);
+
+/// FITPACK's first stage, plain (`fpcurf`, [`Data`]) or periodic (`fpperi`): the data and
+/// the limits, and what differs between the two ([`Placement::run`]).
+pub(super) struct Placement<'f, T> {
+    /// The abscissae.
+    pub(super) x: &'f [T],
+    /// The residual target `s`.
+    pub(super) s: T,
+    /// The number of knots of interpolation.
+    pub(super) nmax: usize,
+    /// The cap on the number of knots placed.
+    pub(super) nest: usize,
+    /// The residuals $(w_i \lVert y_i - g(x_i) \rVert)^2$ of the least-squares spline `g`
+    /// on a knot vector at every datum, and the residual (their sum over the data that
+    /// count).
+    pub(super) least_squares: &'f dyn Fn(&KnotVector<T>) -> Result<Residuals<T>>,
+    /// The knot vector after knots were added: as it is, or wrapped again round the period.
+    pub(super) rewrap: &'f dyn Fn(KnotVector<T>) -> Result<KnotVector<T>>,
+    /// The knots of interpolation: the last vector when `nmax` knots would be reached.
+    pub(super) interpolation_knots: &'f dyn Fn() -> Result<KnotVector<T>>,
+}
+
+impl<T: Scalar> Placement<'_, T> {
+    /// The stage from the knot vector `start`, whose predecessor left the residual `fp`
+    /// (zero when there is none): while the least-squares residual exceeds the target,
+    /// knots are added [`knots_to_add`] at a time by [`add_knot`], until the residual meets
+    /// the target, `nest` knots are reached (that vector is the last) or `nmax` would be
+    /// (then the knots of interpolation). Every knot vector fitted is passed to `record`, in
+    /// order; returns the last.
+    pub(super) fn run(
+        &self,
+        (start, mut fp): (KnotVector<T>, T),
+        record: &mut dyn FnMut(&KnotVector<T>),
+    ) -> Result<KnotVector<T>> {
+        let s = self.s;
+        let acc = s * cast::<T>(TOL);
+        let nmin = 2 * (start.degree() + 1);
+        let mut knots = start;
+        let mut nplus = 1usize;
+        for _ in 0..self.x.len() {
+            record(&knots);
+            let fpold = fp;
+            let (mut residuals, new_fp) = (self.least_squares)(&knots)?;
+            fp = new_fp;
+            let fpms = fp - s;
+            if fpms.abs() < acc || fpms < T::zero() {
+                return Ok(knots);
+            }
+            nplus = if knots.len() == nmin {
+                1
+            } else {
+                knots_to_add(nplus, fpold - fp, fpms, acc)
+            };
+            for j in 0..nplus {
+                knots = add_knot(self.x, &knots, &residuals)?;
+                let n = knots.len();
+                if n >= self.nmax {
+                    let knots = (self.interpolation_knots)()?;
+                    record(&knots);
+                    return Ok(knots);
+                }
+                if n >= self.nest {
+                    record(&knots);
+                    return Ok(knots);
+                }
+                if j + 1 < nplus {
+                    residuals = (self.least_squares)(&knots)?.0;
+                }
+            }
+            knots = (self.rewrap)(knots)?;
+        }
+        Ok(knots)
+    }
+}
+
+/// FITPACK's second stage after its start ([`root_rati`] to the relative accuracy
+/// [`TOL`] of the target `s`), as the fit: `solve(p)` gives the spline for `p` and its
+/// residual minus `s`; `p0` starts the search, `(f0, finf)` are those residuals minus `s`
+/// at `p = 0` and `p = ∞`.
+pub(super) fn smoothed<T: Scalar, P: ControlPoint<T>>(
+    s: T,
+    p0: T,
+    (f0, finf): (T, T),
+    solve: impl FnMut(T) -> Result<(BSpline<T, P>, T)>,
+) -> Result<ResidualFit<T, P>> {
+    let acc = s * cast::<T>(TOL);
+    let (spline, f, p, converged) = root_rati(p0, (f0, finf), acc, solve)?;
+    Ok(ResidualFit {
+        spline,
+        residual: f + s,
+        smoothing: Some(p),
+        converged,
+    })
 }
 
 /// How many knots FITPACK adds next (`nplus`), after `nplus` were added last time and the

@@ -7,7 +7,7 @@
 //! vectors and scipy's parameters of curves.
 
 use super::periodic;
-use super::residual::{Data, ResidualFit};
+use super::residual::{Data, ResidualFit, check_lengths};
 pub use super::splrep_options::SplrepOptions;
 use super::splrep_options::{invalid, knots_around_data};
 use crate::interpolate::interpolate_with_knots;
@@ -20,22 +20,11 @@ fn interpolation<T: Scalar, P: ControlPoint<T>>(
     y: &[P],
     k: usize,
 ) -> Result<ResidualFit<T, P>> {
-    if y.len() != x.len() {
-        return Err(Error::invalid_length(
-            "one value per abscissa",
-            x.len(),
-            y.len(),
-        ));
-    }
+    check_lengths(x.len(), y.len())?;
     check_strict(x)?;
     let knots = KnotVector::not_a_knot(k, x)?;
     let spline = interpolate_with_knots(&knots, x, y)?;
-    Ok(ResidualFit {
-        spline,
-        residual: T::zero(),
-        smoothing: None,
-        converged: true,
-    })
+    Ok(ResidualFit::unsmoothed(spline, T::zero()))
 }
 
 /// scipy's `fpcheck` of given knots against the data (not periodic): `k + 1 ≤ n − k − 1 ≤ m`
@@ -100,31 +89,24 @@ pub fn make_splrep<T: Scalar, P: ControlPoint<T>>(
     y: &[P],
     options: &SplrepOptions<'_, T>,
 ) -> Result<ResidualFit<T, P>> {
-    if options.periodic {
-        return periodic::make_splrep(x, y, options);
-    }
     let k = options.k;
     if options.s == T::zero() {
         options.check_interpolation()?;
-        return interpolation(x, y, k);
+        return if options.periodic {
+            periodic::interpolation(x, y, k)
+        } else {
+            interpolation(x, y, k)
+        };
     }
-    let data = Data::new(x, y, options.weights, k, options.s)?;
+    let data = Data::new(x, y, options.weights, (k, options.s), options.periodic)?;
     options.check_nest()?;
     let bounds = options.bounds(x)?;
     let knots = match options.t {
+        Some(t) if options.periodic => periodic::check_given_knots(x, t, k)?,
         Some(t) => check_given_knots(x, t, k)?,
         None => data.generate_knots_with(bounds, options.nest, &mut |_| {})?,
     };
-    let (lsq, _, fp) = data.least_squares_qr(&knots)?;
-    if knots.len() == 2 * (k + 1) {
-        return Ok(ResidualFit {
-            spline: lsq,
-            residual: fp,
-            smoothing: None,
-            converged: true,
-        });
-    }
-    data.smooth(&knots, fp, bounds)
+    data.fit(&knots, bounds)
 }
 
 /// scipy's parameters of `make_splprep` when `u` is not given: cumulative chord lengths
@@ -227,14 +209,17 @@ pub fn generate_knots<T: Scalar, P: ControlPoint<T>>(
             "generate_knots places the knots: t must not be given",
         ));
     }
-    if options.periodic {
-        return periodic::generate_knots(x, y, options);
-    }
+    let k = options.k;
     if options.s == T::zero() {
         options.check_interpolation()?;
-        return Ok(vec![KnotVector::not_a_knot(options.k, x)?.into_knots()]);
+        let knots = if options.periodic {
+            periodic::interpolation_knots(x, k)?
+        } else {
+            KnotVector::not_a_knot(k, x)?
+        };
+        return Ok(vec![knots.into_knots()]);
     }
-    let data = Data::new(x, y, options.weights, options.k, options.s)?;
+    let data = Data::new(x, y, options.weights, (k, options.s), options.periodic)?;
     options.check_nest()?;
     let bounds = options.bounds(x)?;
     let mut sequence = Vec::new();
