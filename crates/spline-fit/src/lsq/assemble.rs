@@ -77,8 +77,13 @@ impl<T: Scalar, P: ControlPoint<T>> LeastSquares<'_, T, P> {
         let fast = match (&mut sink, all_free) {
             (Sink::Normal(matrix, rhs), true) => {
                 let data = matrix.data_mut();
-                let (params, points, weights) = (self.params, self.points, self.weights);
-                let run = assemble_normal(knots, params, points, weights, check, data, rhs);
+                let rows = Rows {
+                    knots,
+                    params: self.params,
+                    points: self.points,
+                    weights: self.weights,
+                };
+                let run = assemble_normal(rows, check, data, rhs);
                 match run {
                     Some(Err(i)) => return Err(self.sw_error(i)),
                     Some(Ok(())) => true,
@@ -215,31 +220,35 @@ pub(crate) fn penalty_rows<T: Scalar>(
 /// left without data). With the `parallel` feature and at least [`PARALLEL_MIN_POINTS`]
 /// points the data are split into chunks assembled on every core and summed.
 fn assemble_normal<T: Scalar, P: ControlPoint<T>>(
-    knots: &KnotVector<T>,
-    params: &[T],
-    points: &[P],
-    weights: Option<&[T]>,
+    rows: Rows<'_, T, P>,
     check: bool,
     band: &mut [T],
     rhs: &mut [P],
 ) -> Option<std::result::Result<(), usize>> {
     #[cfg(feature = "parallel")]
-    if params.len() >= PARALLEL_MIN_POINTS && knots.degree() <= 5 {
+    if rows.params.len() >= PARALLEL_MIN_POINTS && rows.knots.degree() <= 5 {
         return Some(super::parallel::assemble(
             (
                 normal_dispatch::<T, P, true>,
                 normal_dispatch::<T, P, false>,
             ),
-            knots,
-            params,
-            points,
-            weights,
+            rows,
             check,
             band,
             rhs,
         ));
     }
-    normal_dispatch::<T, P, true>(knots, params, points, weights, check, band, rhs)
+    normal_dispatch::<T, P, true>(rows, check, band, rhs)
+}
+
+/// The data rows of a curve fit as the assembly kernels take them: the knots, the data's
+/// parameters and points, and their weights (`None`: all ones).
+#[derive(Clone, Copy)]
+pub(super) struct Rows<'a, T, P> {
+    pub(super) knots: &'a KnotVector<T>,
+    pub(super) params: &'a [T],
+    pub(super) points: &'a [P],
+    pub(super) weights: Option<&'a [T]>,
 }
 
 /// Data sets at least this large are assembled in parallel (`parallel` feature): curve fits,
@@ -250,21 +259,18 @@ pub const PARALLEL_MIN_POINTS: usize = 1 << 14;
 /// [`normal_kernel`] for the degree of `knots` (`None` above degree 5); with `ACC = false`
 /// only the Schoenberg–Whitney check runs.
 fn normal_dispatch<T: Scalar, P: ControlPoint<T>, const ACC: bool>(
-    knots: &KnotVector<T>,
-    params: &[T],
-    points: &[P],
-    weights: Option<&[T]>,
+    rows: Rows<'_, T, P>,
     check: bool,
     band: &mut [T],
     rhs: &mut [P],
 ) -> Option<std::result::Result<(), usize>> {
-    match knots.degree() {
-        0 => normal_kernel::<T, P, 1, ACC>(knots, params, points, weights, check, band, rhs),
-        1 => normal_kernel::<T, P, 2, ACC>(knots, params, points, weights, check, band, rhs),
-        2 => normal_kernel::<T, P, 3, ACC>(knots, params, points, weights, check, band, rhs),
-        3 => normal_kernel::<T, P, 4, ACC>(knots, params, points, weights, check, band, rhs),
-        4 => normal_kernel::<T, P, 5, ACC>(knots, params, points, weights, check, band, rhs),
-        5 => normal_kernel::<T, P, 6, ACC>(knots, params, points, weights, check, band, rhs),
+    match rows.knots.degree() {
+        0 => normal_kernel::<T, P, 1, ACC>(rows, check, band, rhs),
+        1 => normal_kernel::<T, P, 2, ACC>(rows, check, band, rhs),
+        2 => normal_kernel::<T, P, 3, ACC>(rows, check, band, rhs),
+        3 => normal_kernel::<T, P, 4, ACC>(rows, check, band, rhs),
+        4 => normal_kernel::<T, P, 5, ACC>(rows, check, band, rhs),
+        5 => normal_kernel::<T, P, 6, ACC>(rows, check, band, rhs),
         _ => None,
     }
 }
@@ -275,14 +281,17 @@ fn normal_dispatch<T: Scalar, P: ControlPoint<T>, const ACC: bool>(
 /// `Option` lets the caller fall back for other degrees).
 #[allow(clippy::unnecessary_wraps)]
 fn normal_kernel<T: Scalar, P: ControlPoint<T>, const W: usize, const ACC: bool>(
-    knots: &KnotVector<T>,
-    params: &[T],
-    points: &[P],
-    weights: Option<&[T]>,
+    rows: Rows<'_, T, P>,
     check: bool,
     band: &mut [T],
     rhs: &mut [P],
 ) -> Option<std::result::Result<(), usize>> {
+    let Rows {
+        knots,
+        params,
+        points,
+        weights,
+    } = rows;
     let p = W - 1;
     let n = knots.num_basis();
     let k = knots.knots();
@@ -392,17 +401,14 @@ impl<T: Scalar, P: ControlPoint<T>> LeastSquares<'_, T, P> {
         };
         ws.band.clear();
         ws.rhs.iter_mut().for_each(|r| *r = P::origin());
-        let (knots, points, weights) = (&self.knots, self.points, self.weights);
-        let data = ws.band.data_mut();
-        let run = normal_dispatch::<T, P, true>(
-            knots,
+        let rows = Rows {
+            knots: &self.knots,
             params,
-            points,
-            weights,
-            self.check_sw,
-            data,
-            &mut ws.rhs,
-        );
+            points: self.points,
+            weights: self.weights,
+        };
+        let data = ws.band.data_mut();
+        let run = normal_dispatch::<T, P, true>(rows, self.check_sw, data, &mut ws.rhs);
         if let Some(Err(i)) = run {
             return Err(self.sw_error_with(params, i));
         }

@@ -6,6 +6,7 @@
 //! The kernels come from the caller (`assemble`'s per-degree dispatch, the one-pass square
 //! sum): this module knows how to split and sum, not what a chunk computes.
 
+use super::assemble::Rows;
 use rayon::prelude::*;
 use spline_core::{ControlPoint, KnotVector, Scalar};
 
@@ -61,40 +62,35 @@ pub(super) fn weighted_square_sum<T: Scalar, P: ControlPoint<T>>(
     parts.into_iter().fold(T::zero(), |s, part| s + part)
 }
 
-/// The sequential assembly kernel the chunks run: `(knots, params, points, weights, check,
-/// band, rhs)` as `assemble`'s per-degree dispatch takes them, `None` for an unsupported
-/// degree. `ACC = false` of the dispatch is the check alone.
-pub(super) type Kernel<T, P> = fn(
-    &KnotVector<T>,
-    &[T],
-    &[P],
-    Option<&[T]>,
-    bool,
-    &mut [T],
-    &mut [P],
-) -> Option<std::result::Result<(), usize>>;
+/// The sequential assembly kernel the chunks run: `(rows, check, band, rhs)` as
+/// `assemble`'s per-degree dispatch takes them, `None` for an unsupported degree. `ACC =
+/// false` of the dispatch is the check alone.
+pub(super) type Kernel<T, P> =
+    fn(Rows<'_, T, P>, bool, &mut [T], &mut [P]) -> Option<std::result::Result<(), usize>>;
 
 /// Adds the normal equations of the data to `band` and `rhs` (degree at most 5): as the
 /// sequential kernel `sums`, the sums in another order; `check_only` runs the
 /// Schoenberg–Whitney check beside them.
-#[allow(clippy::too_many_arguments)]
 pub(super) fn assemble<T: Scalar, P: ControlPoint<T>>(
     (sums, check_only): (Kernel<T, P>, Kernel<T, P>),
-    knots: &KnotVector<T>,
-    params: &[T],
-    points: &[P],
-    weights: Option<&[T]>,
+    rows: Rows<'_, T, P>,
     check: bool,
     band: &mut [T],
     rhs: &mut [P],
 ) -> std::result::Result<(), usize> {
+    let Rows {
+        params,
+        points,
+        weights,
+        ..
+    } = rows;
     let chunk = chunk_len(params.len());
     let (band_len, rhs_len) = (band.len(), rhs.len());
     let (checked, parts) = rayon::join(
         || {
             if check {
                 // The check alone: no sums, the buffers untouched.
-                check_only(knots, params, points, weights, true, &mut [], &mut [])
+                check_only(rows, true, &mut [], &mut [])
             } else {
                 Some(Ok(()))
             }
@@ -108,7 +104,13 @@ pub(super) fn assemble<T: Scalar, P: ControlPoint<T>>(
                     let ws = weights.map(|w| &w[c * chunk..c * chunk + ps.len()]);
                     let mut part_band = vec![T::zero(); band_len];
                     let mut part_rhs = vec![P::origin(); rhs_len];
-                    sums(knots, ps, qs, ws, false, &mut part_band, &mut part_rhs);
+                    let part = Rows {
+                        params: ps,
+                        points: qs,
+                        weights: ws,
+                        ..rows
+                    };
+                    sums(part, false, &mut part_band, &mut part_rhs);
                     (part_band, part_rhs)
                 })
                 .collect::<Vec<_>>()
