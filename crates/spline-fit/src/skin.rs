@@ -6,7 +6,7 @@ use crate::params::{Parametrization, check_degree};
 use crate::project::closest_point;
 use crate::surface::surface_grid_params;
 use spline_core::{ControlPoint, Error, ErrorKind, KnotVector, Result, Scalar, to_f64};
-use spline_geom::{BSpline, Surface, compatible_curves, compatible_surfaces};
+use spline_geom::{BSpline, Surface, boolean_sum, compatible_curves};
 
 /// A surface skinned through section curves, with the parameter of each section.
 #[derive(Clone, Debug, PartialEq)]
@@ -159,8 +159,9 @@ pub struct Gordon<T, P> {
 /// $$ S = L_u + L_v - T, $$
 ///
 /// the skin of the u-curves across `v` ([`skin`]), the skin of the v-curves across `u`,
-/// minus the surface interpolating the crossing points; all three on the same knots in each
-/// direction (made compatible), so `S` reproduces every curve of the network.
+/// minus the surface interpolating the crossing points ([`boolean_sum`]: all three on the
+/// same knots in each direction, made compatible), so `S` reproduces every curve of the
+/// network.
 ///
 /// The crossings are found from the first curves: $u_k$ is the parameter on `u_curves[0]`
 /// of its point closest to the start of `v_curves[k]`, and $v_l$ that on `v_curves[0]` of
@@ -262,17 +263,8 @@ pub fn gordon<T: Scalar, P: ControlPoint<T>>(
         .map(|k| interpolate_with_knots(&kv, &vl, &grid[k * n..(k + 1) * n]))
         .collect::<Result<_>>()?;
     let tensor = skin_on(&rows, &uk, &ku)?.transposed();
-    let parts = compatible_surfaces(&[lu, lv, tensor])?;
-    let points = parts[0]
-        .control_points()
-        .iter()
-        .zip(parts[1].control_points())
-        .zip(parts[2].control_points())
-        .map(|((a, b), c)| *a + *b - *c)
-        .collect();
-    let (ku, kv, _) = parts[0].clone().into_parts();
     Ok(Gordon {
-        surface: Surface::new_unchecked(ku, kv, points),
+        surface: boolean_sum(lu, lv, tensor)?,
         params_u: uk,
         params_v: vl,
         crossing_gap: gap,

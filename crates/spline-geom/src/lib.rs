@@ -62,8 +62,8 @@ pub use bezier::Bezier;
 pub use bspline::BSpline;
 pub use columns::{ColumnSpline, Extrapolate, PowerBasisKnots};
 pub use construct::{
-    Axis, CircleConstruction, ConicKind, Frame, MAX_ARC_PIECES, MovingFrame, compatible_curves,
-    compatible_surfaces, rotation_minimizing_frames,
+    Axis, CircleConstruction, ConicKind, Frame, MAX_ARC_PIECES, MovingFrame, boolean_sum,
+    compatible_curves, compatible_surfaces, rotation_minimizing_frames,
 };
 pub use curve_tools::{
     ArcLengthTable, BoundingBox, MAX_TESSELLATION_SEGMENTS, hull_box, param_at_length, pieces_box,

@@ -133,3 +133,51 @@ pub fn compatible_surfaces<T: Scalar, P: ControlPoint<T>>(
     }
     Ok(same)
 }
+
+/// The Boolean sum `a + b − c` of three surfaces (The NURBS Book §10.5: the Coons patch is
+/// the sum of two ruled surfaces less the bilinear patch of their corners, the Gordon
+/// surface that of two skins less the interpolant of their crossings): the three made
+/// compatible ([`compatible_surfaces`]), their control points combined. The sum reproduces
+/// a boundary or network curve wherever `c` equals one of `a` and `b` there.
+///
+/// ```
+/// use nalgebra::Vector3;
+/// use spline_core::KnotVector;
+/// use spline_geom::{Surface, boolean_sum};
+/// let bilinear = |z: [f64; 4]| {
+///     let k = KnotVector::clamped(1, 0.0, 1.0, &[])?;
+///     let points = [(0.0, 0.0), (0.0, 1.0), (1.0, 0.0), (1.0, 1.0)]
+///         .iter()
+///         .zip(z)
+///         .map(|(&(x, y), z)| Vector3::new(x, y, z))
+///         .collect();
+///     Surface::new(k.clone(), k, points)
+/// };
+/// let s = boolean_sum(
+///     bilinear([1.0, 1.0, 0.0, 0.0])?,
+///     bilinear([0.0, 2.0, 0.0, 2.0])?,
+///     bilinear([0.0, 1.0, 0.0, 0.0])?,
+/// )?;
+/// // x and y add up to themselves (1 + 1 − 1), the heights to 0 + 2 − 0.
+/// assert!((s.eval(1.0, 1.0)? - Vector3::new(1.0, 1.0, 2.0)).norm() < 1e-15);
+/// # Ok::<(), spline_core::Error>(())
+/// ```
+///
+/// # Errors
+/// As [`compatible_surfaces`].
+pub fn boolean_sum<T: Scalar, P: ControlPoint<T>>(
+    a: Surface<T, P>,
+    b: Surface<T, P>,
+    c: Surface<T, P>,
+) -> Result<Surface<T, P>> {
+    let parts = compatible_surfaces(&[a, b, c])?;
+    let points = parts[0]
+        .control_points()
+        .iter()
+        .zip(parts[1].control_points())
+        .zip(parts[2].control_points())
+        .map(|((a, b), c)| *a + *b - *c)
+        .collect();
+    let (ku, kv, _) = parts[0].clone().into_parts();
+    Ok(Surface::new_unchecked(ku, kv, points))
+}

@@ -1,6 +1,6 @@
 //! The bilinearly blended Coons patch (The NURBS Book §10.5) of four boundary curves.
 
-use super::compatible::{compatible_curves, compatible_surfaces};
+use super::compatible::{boolean_sum, compatible_curves};
 use crate::bspline::BSpline;
 use crate::homogeneous::Homogeneous;
 use crate::nurbs::{NurbsCurve, NurbsSurface};
@@ -20,9 +20,9 @@ impl<T: Scalar, P: ControlPoint<T>> Surface<T, P> {
     /// $$ S = R_c + R_d - T, $$
     ///
     /// the ruled surface between `bottom` and `top`, plus the ruled surface between `left`
-    /// and `right`, minus the bilinear patch of the four corners; the three are made
-    /// compatible ([`crate::compatible_surfaces`]) and their control points combined, so the
-    /// patch is a B-spline surface of degrees `(max(p_bottom, p_top, 1), max(p_left,
+    /// and `right`, minus the bilinear patch of the four corners (their
+    /// [`crate::boolean_sum`]: the three made compatible, their control points combined), so
+    /// the patch is a B-spline surface of degrees `(max(p_bottom, p_top, 1), max(p_left,
     /// p_right, 1))` that reproduces all four curves exactly (up to rounding).
     ///
     /// ```
@@ -77,16 +77,7 @@ impl<T: Scalar, P: ControlPoint<T>> Surface<T, P> {
         let rc = ruled(&c0, &c1)?;
         let rd = ruled(&d0, &d1)?.transposed();
         let corners = Self::new_unchecked(linear(), linear(), vec![b0, t0, b1, t1]);
-        let parts = compatible_surfaces(&[rc, rd, corners])?;
-        let points = parts[0]
-            .control_points()
-            .iter()
-            .zip(parts[1].control_points())
-            .zip(parts[2].control_points())
-            .map(|((a, b), c)| *a + *b - *c)
-            .collect();
-        let (ku, kv, _) = parts[0].clone().into_parts();
-        Ok(Self::new_unchecked(ku, kv, points))
+        boolean_sum(rc, rd, corners)
     }
 }
 

@@ -14,7 +14,7 @@ mod frames;
 mod surfaces;
 
 pub use arcs::{CircleConstruction, ConicKind, MAX_ARC_PIECES};
-pub use compatible::{compatible_curves, compatible_surfaces};
+pub use compatible::{boolean_sum, compatible_curves, compatible_surfaces};
 pub use frames::{MovingFrame, rotation_minimizing_frames};
 
 use nalgebra::{SVector, Vector3};
