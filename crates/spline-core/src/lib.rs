@@ -22,6 +22,7 @@
 mod basis;
 mod batch;
 mod error;
+mod golden;
 mod knots;
 mod point;
 mod quadrature;
@@ -32,6 +33,7 @@ pub mod strategies;
 pub use basis::{BasisValues, SpanBasis, bernstein, bernstein_all, binomial};
 pub use batch::{BatchBasis, SpanTable};
 pub use error::{Error, ErrorKind, Result, Short, overflow};
+pub use golden::golden_section_max;
 pub use knots::{
     KnotVector, MAX_DEGREE, MAX_DERIVATIVE_ORDER, MAX_ORDER, check_derivative_order,
     check_elevated_degree, check_params,

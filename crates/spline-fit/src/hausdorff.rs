@@ -4,7 +4,9 @@
 
 use crate::project::closest_point;
 use crate::report::Deviation;
-use spline_core::{ControlPoint, Error, ErrorKind, Result, Scalar, cast, from_count, to_f64};
+use spline_core::{
+    ControlPoint, Error, ErrorKind, Result, Scalar, cast, from_count, golden_section_max, to_f64,
+};
 use spline_geom::BSpline;
 
 /// Samples per non-empty knot span for the curve → data direction, before refining the
@@ -235,30 +237,8 @@ fn curve_to_polyline<T: Scalar, P: ControlPoint<T>>(
         }
     }
     // Golden-section search for the maximum inside the bracket of the best sample.
-    let (mut lo, mut hi) = best_bracket;
-    let ratio: T = cast(0.618_033_988_749_894_9);
-    let mut x1 = hi - (hi - lo) * ratio;
-    let mut x2 = lo + (hi - lo) * ratio;
-    let (mut f1, mut f2) = (distance_at(x1)?, distance_at(x2)?);
-    for _ in 0..60 {
-        if !(hi - lo > T::default_epsilon() * (T::one() + lo.abs())) {
-            break;
-        }
-        if f1 > f2 {
-            hi = x2;
-            x2 = x1;
-            f2 = f1;
-            x1 = hi - (hi - lo) * ratio;
-            f1 = distance_at(x1)?;
-        } else {
-            lo = x1;
-            x1 = x2;
-            f1 = f2;
-            x2 = lo + (hi - lo) * ratio;
-            f2 = distance_at(x2)?;
-        }
-    }
-    for (f, x) in [(f1, x1), (f2, x2)] {
+    let refined = golden_section_max(distance_at, best_bracket, T::default_epsilon())?;
+    for (f, x) in refined {
         if f > best {
             best = f;
             best_u = x;

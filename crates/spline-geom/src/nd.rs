@@ -23,7 +23,7 @@
 //! # Ok::<(), spline_core::Error>(())
 //! ```
 
-use crate::columns::{check_knots, check_scipy_knots, without_empty_basis};
+use crate::columns::{check_knots, check_rows, check_scipy_knots, without_empty_basis};
 use spline_core::{Error, ErrorKind, KnotVector, Result};
 use work::{Dims, Work};
 
@@ -220,6 +220,21 @@ impl NdSpline {
         self.extrapolate
     }
 
+    /// [`ErrorKind::InvalidLength`] unless `nu` holds one derivative order per dimension.
+    fn check_orders(&self, nu: &[usize]) -> Result<()> {
+        let d = self.ndim();
+        if nu.len() == d {
+            return Ok(());
+        }
+        Err(Error::new(
+            ErrorKind::InvalidLength,
+            format!(
+                "invalid number of derivative orders: {} for ndim = {d}",
+                nu.len()
+            ),
+        ))
+    }
+
     /// Consumes the spline, returning the knot vectors and the coefficients.
     #[must_use]
     pub fn into_parts(self) -> (Vec<KnotVector<f64>>, Vec<f64>) {
@@ -257,26 +272,9 @@ impl NdSpline {
         } else {
             nu
         };
-        if nu.len() != d {
-            return Err(Error::new(
-                ErrorKind::InvalidLength,
-                format!(
-                    "invalid number of derivative orders: {} for ndim = {d}",
-                    nu.len()
-                ),
-            ));
-        }
+        self.check_orders(nu)?;
         let m = self.columns;
-        if npts.checked_mul(m) != Some(out.len()) {
-            return Err(Error::new(
-                ErrorKind::InvalidLength,
-                format!(
-                    "the output holds {} values; {npts} points of {m} columns need {}",
-                    out.len(),
-                    npts.saturating_mul(m)
-                ),
-            ));
-        }
+        check_rows(npts, m, out.len())?;
         let vanishes = self
             .dims
             .knots

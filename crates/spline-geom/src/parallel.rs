@@ -6,7 +6,7 @@
 use crate::{BSpline, ColumnSpline, Extrapolate, NurbsCurve, Surface};
 use nalgebra::SVector;
 use rayon::prelude::*;
-use spline_core::{ControlPoint, Error, ErrorKind, Result, Scalar};
+use spline_core::{ControlPoint, Result, Scalar};
 
 /// Parameters per task: enough to hide rayon's overhead (a few microseconds per task).
 const MIN_CHUNK: usize = 4096;
@@ -112,17 +112,7 @@ impl ColumnSpline {
         out: &mut [f64],
     ) -> Result<usize> {
         let m = self.columns();
-        if x.len().checked_mul(m) != Some(out.len()) {
-            return Err(Error::new(
-                ErrorKind::InvalidLength,
-                format!(
-                    "the output holds {} values; {} points of {m} columns need {}",
-                    out.len(),
-                    x.len(),
-                    x.len().saturating_mul(m)
-                ),
-            ));
-        }
+        crate::columns::check_rows(x.len(), m, out.len())?;
         let chunk = chunk_len(x.len().saturating_mul(m)).div_ceil(m).max(1);
         x.par_chunks(chunk)
             .zip(out.par_chunks_mut(chunk * m))

@@ -44,6 +44,34 @@ fn has_form(p: usize) -> bool {
 /// degree 3 it always holds (the ratio is at most `3^p`).
 const CONDITION: usize = 32;
 
+/// Runs `$e` with the constant `$N` the order `p + 1` of a cached form (2 to 6).
+macro_rules! by_order {
+    ($order:expr, $N:ident => $e:expr) => {
+        match $order {
+            2 => {
+                const $N: usize = 2;
+                $e
+            }
+            3 => {
+                const $N: usize = 3;
+                $e
+            }
+            4 => {
+                const $N: usize = 4;
+                $e
+            }
+            5 => {
+                const $N: usize = 5;
+                $e
+            }
+            _ => {
+                const $N: usize = 6;
+                $e
+            }
+        }
+    };
+}
+
 /// The Taylor coefficients of every span and the table finding the span.
 pub(crate) struct Pieces<T, P> {
     table: SpanTable,
@@ -185,13 +213,7 @@ impl<T: Scalar, P: ControlPoint<T>> Pieces<T, P> {
             return None;
         }
         let span = self.table.span(knots, u);
-        Some(match self.order {
-            2 => self.horner_in::<2>(knots, span, u),
-            3 => self.horner_in::<3>(knots, span, u),
-            4 => self.horner_in::<4>(knots, span, u),
-            5 => self.horner_in::<5>(knots, span, u),
-            _ => self.horner_in::<6>(knots, span, u),
-        })
+        Some(by_order!(self.order, N => self.horner_in::<N>(knots, span, u)))
     }
 
     /// $C^{(j)}(u)$, `j = 0 … out.len() − 1`, from the cached form for `start ≤ u < end`
@@ -202,13 +224,7 @@ impl<T: Scalar, P: ControlPoint<T>> Pieces<T, P> {
             return false;
         }
         let span = self.table.span(knots, u);
-        match self.order {
-            2 => self.derivatives_in::<2>(knots, span, u, out),
-            3 => self.derivatives_in::<3>(knots, span, u, out),
-            4 => self.derivatives_in::<4>(knots, span, u, out),
-            5 => self.derivatives_in::<5>(knots, span, u, out),
-            _ => self.derivatives_in::<6>(knots, span, u, out),
-        }
+        by_order!(self.order, N => self.derivatives_in::<N>(knots, span, u, out));
         true
     }
 
@@ -275,13 +291,7 @@ impl<T: Scalar, P: ControlPoint<T>> Pieces<T, P> {
         map: impl Fn(P) -> Q,
         exact: impl Fn(T) -> P,
     ) {
-        match self.order {
-            2 => self.many::<2, Q>(knots, params, out, map, exact),
-            3 => self.many::<3, Q>(knots, params, out, map, exact),
-            4 => self.many::<4, Q>(knots, params, out, map, exact),
-            5 => self.many::<5, Q>(knots, params, out, map, exact),
-            _ => self.many::<6, Q>(knots, params, out, map, exact),
-        }
+        by_order!(self.order, N => self.many::<N, Q>(knots, params, out, map, exact));
     }
 
     /// The batch for `N = p + 1`: groups of four points, spans first, so that the four

@@ -26,6 +26,21 @@ use std::sync::OnceLock;
 
 use spline_core::{BatchBasis, Error, ErrorKind, KnotVector, MAX_DEGREE, Result};
 
+/// [`ErrorKind::InvalidLength`] unless an output of `out_len` values holds a row of `columns`
+/// values for each of `points` points.
+pub(crate) fn check_rows(points: usize, columns: usize, out_len: usize) -> Result<()> {
+    if points.checked_mul(columns) == Some(out_len) {
+        return Ok(());
+    }
+    Err(Error::new(
+        ErrorKind::InvalidLength,
+        format!(
+            "the output holds {out_len} values; {points} points of {columns} columns need {}",
+            points.saturating_mul(columns)
+        ),
+    ))
+}
+
 /// What happens at points outside the base interval $[t_k, t_n]$ (scipy's `extrapolate`).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum Extrapolate {
@@ -364,19 +379,7 @@ impl ColumnSpline {
         mode: Extrapolate,
         out: &mut [f64],
     ) -> Result<usize> {
-        let expected = x.len().checked_mul(self.columns);
-        if expected != Some(out.len()) {
-            return Err(Error::new(
-                ErrorKind::InvalidLength,
-                format!(
-                    "the output holds {} values; {} points of {} columns need {}",
-                    out.len(),
-                    x.len(),
-                    self.columns,
-                    x.len().saturating_mul(self.columns)
-                ),
-            ));
-        }
+        check_rows(x.len(), self.columns, out.len())?;
         let k = self.degree();
         if nu > k {
             let domain = self.domain();

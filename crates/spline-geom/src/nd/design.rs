@@ -23,16 +23,7 @@ impl NdSpline {
     /// distinct knots (the same function on the same base interval; the repeated knots of
     /// scipy's only add basis functions of empty support).
     pub fn derivative(&self, nu: &[usize]) -> Result<Self> {
-        let d = self.ndim();
-        if nu.len() != d {
-            return Err(Error::new(
-                ErrorKind::InvalidLength,
-                format!(
-                    "invalid number of derivative orders: {} for ndim = {d}",
-                    nu.len()
-                ),
-            ));
-        }
+        self.check_orders(nu)?;
         let m = self.columns;
         let mut knots = self.dims.knots.clone();
         let mut shape = self.dims.shape.clone();

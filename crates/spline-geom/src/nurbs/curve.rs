@@ -367,25 +367,7 @@ impl<T: Scalar, const D: usize> NurbsCurve<T, D> {
                 b = (best.1 + step).min(pair[1]);
             }
         }
-        let ratio: T = spline_core::cast(0.618_033_988_749_894_9);
-        let mut c = b - (b - a) * ratio;
-        let mut d = a + (b - a) * ratio;
-        let (mut fc, mut fd) = (distance(c)?, distance(d)?);
-        for _ in 0..60 {
-            if fc > fd {
-                b = d;
-                d = c;
-                fd = fc;
-                c = b - (b - a) * ratio;
-                fc = distance(c)?;
-            } else {
-                a = c;
-                c = d;
-                fc = fd;
-                d = a + (b - a) * ratio;
-                fd = distance(d)?;
-            }
-        }
+        let [(fc, _), (fd, _)] = spline_core::golden_section_max(distance, (a, b), T::zero())?;
         Ok(best.0.max(fc).max(fd))
     }
 

@@ -265,6 +265,24 @@ pub(super) fn derivative_overflow(order: usize) -> Error {
     )
 }
 
+/// The homogeneous partial derivatives that the rational ones of a surface of degrees
+/// `(p, q)` on the square `0 ≤ k, l ≤ order` need, once `out_len` is checked to be
+/// `(order + 1)²`: the orders up to `top = min(order, max(p, q))` (those above vanish) and
+/// their number `(top + 1)²`.
+///
+/// # Errors
+/// The errors of [`crate::bspline::square_len`]; [`ErrorKind::InvalidLength`] unless
+/// `out_len = (order + 1)²`.
+pub(crate) fn homogeneous_square(
+    order: usize,
+    (p, q): (usize, usize),
+    out_len: usize,
+) -> Result<(usize, usize)> {
+    crate::bspline::check_same_len(crate::bspline::square_len(order)?, out_len)?;
+    let top = order.min(p.max(q));
+    Ok((top, (top + 1) * (top + 1)))
+}
+
 /// Rational partial derivatives of a surface on the square `0 ≤ k, l ≤ order` from the
 /// homogeneous ones (The NURBS Book A4.4). `hom` holds the homogeneous derivatives on the
 /// square `0 ≤ i, j ≤ top` (row-major, rows of `top + 1`; those above are zero); `out` is

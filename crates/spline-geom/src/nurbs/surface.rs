@@ -1,7 +1,7 @@
 //! NURBS surfaces: the rational view over a tensor-product surface of homogeneous points.
 
 use super::{
-    NurbsCurve, Rational, cartesian_scale, check_rational_removal, mapped,
+    NurbsCurve, Rational, cartesian_scale, check_rational_removal, homogeneous_square, mapped,
     rational_surface_derivatives, unbounded, weighted_points,
 };
 use crate::homogeneous::Homogeneous;
@@ -175,13 +175,9 @@ impl<T: Scalar, const D: usize> NurbsSurface<T, D> {
         order: usize,
         out: &mut [SVector<T, D>],
     ) -> Result<()> {
-        let len = crate::bspline::square_len(order)?;
-        crate::bspline::check_same_len(len, out.len())?;
+        let (top, len) = homogeneous_square(order, self.container.degrees(), out.len())?;
         let (su, sv) = self.container.find_spans(u, v)?;
-        let (p, q) = self.container.degrees();
-        let top = order.min(p.max(q));
         // On the stack up to order 5 (the usual case), on the heap above.
-        let len = (top + 1) * (top + 1);
         let mut stack = [Homogeneous::<T, D>::origin(); 36];
         let mut heap = Vec::new();
         let hom = if len <= stack.len() {

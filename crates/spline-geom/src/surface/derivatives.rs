@@ -6,6 +6,19 @@ use super::{BasisTable, SMALL_DEGREE, SMALL_TABLE, Surface, basis_into};
 use spline_core::ErrorKind;
 use spline_core::{ControlPoint, MAX_ORDER, Result, Scalar};
 
+/// Every partial derivative at `(u, v)` finite, or the surface's overflow error.
+pub(super) fn check_finite<T: Scalar, P: ControlPoint<T>>(out: &[P], u: T, v: T) -> Result<()> {
+    if out.iter().all(ControlPoint::all_finite) {
+        Ok(())
+    } else {
+        Err(spline_core::overflow(format_args!(
+            "a partial derivative at (u, v) = ({}, {})",
+            spline_core::to_f64(u),
+            spline_core::to_f64(v)
+        )))
+    }
+}
+
 impl<T: Scalar, P: ControlPoint<T>> Surface<T, P> {
     /// All partial derivatives $\partial^{k+l} S / \partial u^k \partial v^l$ for
     /// `0 ≤ k, l ≤ order`, written into `out[k * (order + 1) + l]` (The NURBS Book A3.6 on the
@@ -19,15 +32,7 @@ impl<T: Scalar, P: ControlPoint<T>> Surface<T, P> {
         crate::bspline::check_same_len(crate::bspline::square_len(order)?, out.len())?;
         let (su, sv) = self.find_spans(u, v)?;
         self.derivatives_in_spans(su, sv, u, v, order, out);
-        if out.iter().all(ControlPoint::all_finite) {
-            Ok(())
-        } else {
-            Err(spline_core::overflow(format_args!(
-                "a partial derivative at (u, v) = ({}, {})",
-                spline_core::to_f64(u),
-                spline_core::to_f64(v)
-            )))
-        }
+        check_finite(out, u, v)
     }
 
     pub(crate) fn derivatives_in_spans(

@@ -13,9 +13,10 @@
 //! `p + 1` rows, then in `u`): no division, no basis functions, no search.
 
 use super::Surface;
+use super::derivatives::check_finite;
 use crate::bspline::{check_same_len, square_len};
 use crate::homogeneous::Homogeneous;
-use crate::nurbs::{NurbsSurface, rational_surface_derivatives};
+use crate::nurbs::{NurbsSurface, homogeneous_square, rational_surface_derivatives};
 use nalgebra::SVector;
 use spline_core::{ControlPoint, KnotVector, Result, Scalar, SpanTable, from_count};
 
@@ -149,19 +150,6 @@ impl<T: Scalar, P: ControlPoint<T>> SurfaceEvaluator<'_, T, P> {
         self.form
             .as_ref()
             .is_some_and(|form| form.derivatives_inside(self.surface, u, v, order, out))
-    }
-}
-
-/// Every derivative finite, or the surface's overflow error.
-fn check_finite<T: Scalar, P: ControlPoint<T>>(out: &[P], u: T, v: T) -> Result<()> {
-    if out.iter().all(ControlPoint::all_finite) {
-        Ok(())
-    } else {
-        Err(spline_core::overflow(format_args!(
-            "a partial derivative at (u, v) = ({}, {})",
-            spline_core::to_f64(u),
-            spline_core::to_f64(v)
-        )))
     }
 }
 
@@ -489,10 +477,8 @@ impl<T: Scalar, const D: usize> NurbsSurfaceEvaluator<'_, T, D> {
         order: usize,
         out: &mut [SVector<T, D>],
     ) -> Result<()> {
-        check_same_len(square_len(order)?, out.len())?;
-        let (p, q) = self.homogeneous.surface().degrees();
-        let top = order.min(p.max(q));
-        let len = (top + 1) * (top + 1);
+        let (top, len) =
+            homogeneous_square(order, self.homogeneous.surface().degrees(), out.len())?;
         let mut stack = [Homogeneous::<T, D>::origin(); SMALL_SQUARE];
         if len > SMALL_SQUARE
             || !self
