@@ -4,7 +4,7 @@
 
 use super::OffsetOptions;
 use super::revolution::Revolution;
-use nalgebra::Vector3;
+use nalgebra::{Matrix4, Vector3, Vector4};
 use spline_core::{Error, ErrorKind, Result, Scalar, cast, from_count, to_f64};
 use spline_fit::AdaptiveSurfaceApproximation;
 use spline_geom::{NurbsSurface, ParamSurface, SpatialSurface, Surface};
@@ -127,9 +127,15 @@ impl<T: Scalar> SurfaceOffsetSource<T> for NurbsSurface<T, 3> {
 /// (Open CASCADE's `Geom_OffsetSurface`), on the same parameters.
 ///
 /// - A plane (control points in one plane, one normal) is translated by $d\,n$: exact.
-/// - A piece of a sphere (every sample umbilic with the same centre $S + n / H$ and radius
-///   $1 / |H|$ to $10^{-12}$ of the radius, on `4 (p + 1) × 4 (q + 1)` samples per patch) is
-///   scaled about its centre by $1 - d H$ (radius $r + d$ for the outward normal): exact.
+/// - A piece of a sphere is scaled about its centre by $1 - d H$ (radius $r + d$ for the
+///   outward normal): exact. It is recognised on the `(4 p + 5) × (4 q + 5)` grid points of
+///   every patch: the sphere fitted to them (least squares) passes through every one to
+///   $16 \cdot 10^{-12}$ of the piece's size (the diagonal of their bounding box, or the
+///   radius if smaller) plus the rounding of their position ($64 ε$ times the largest
+///   coordinate of the net), and the normal is $\pm (S - c) / r$ with one sign at every
+///   regular one. On a patch, $w^2 (\lVert S - c \rVert^2 - r^2)$ is a polynomial of
+///   degrees `(2 p, 2 q)`: zero on the grid, it is zero everywhere. Nothing in the check is
+///   absolute: the same sphere is recognised at every size and wherever it is.
 /// - A NURBS surface of revolution (degree 2 around the axis, its control net a meridian
 ///   revolved, like the output of `NurbsSurface::revolution` or `NurbsSurface::torus`) has as
 ///   offset the revolution of its meridian's planar offset, on the same parameters: exact
@@ -141,7 +147,13 @@ impl<T: Scalar> SurfaceOffsetSource<T> for NurbsSurface<T, 3> {
 ///   refused, with the place; else it is approximated within `options.tolerance` by a
 ///   B-spline surface of degrees `(options.degree, options.degree)`, starting from the
 ///   surface's breaks. At singular points ($S_u \times S_v = 0$, e.g. a collapsed edge), the
-///   normal is its limit from inside the domain.
+///   normal is its limit from inside the domain, and no curvature is taken there. Singular
+///   means $\lVert S_u \times S_v \rVert \le 64 ε (1 + M / E) (\lVert S_u \rVert^2 +
+///   \lVert S_v \rVert^2)$, $M$ the largest coordinate of the control net and $E$ the
+///   diagonal of its bounding box: the derivatives carry the rounding of the position (about
+///   $ε M$ per extent $E$), so below this $S_u \times S_v$ is rounding, as at the pole of a
+///   sphere away from the origin, which has no normal there rather than a radius of
+///   curvature of $10^{-15}$.
 ///
 /// ```
 /// use nalgebra::Vector3;
@@ -256,7 +268,7 @@ pub fn offset_surface<T: Scalar, S: SurfaceOffsetSource<T>>(
             let mut out = Vec::with_capacity(us.len() * vs.len());
             for &u in us {
                 for &v in vs {
-                    out.push(offset_point(surface, u, v, distance)?);
+                    out.push(offset_point(surface, &samples.rounding, u, v, distance)?);
                 }
             }
             Ok(out)
@@ -274,39 +286,90 @@ pub fn offset_surface<T: Scalar, S: SurfaceOffsetSource<T>>(
     })
 }
 
-/// The unit normal at `(u, v)`, or `None` where $S_u \times S_v$ vanishes (numerically).
+/// The rounding that the derivatives of a surface carry: its position's (see
+/// [`offset_surface`]: $S_u \times S_v$ below `64 ε (1 + M / E) (|S_u|² + |S_v|²)` is
+/// rounding, and the point is singular).
+#[derive(Clone, Copy)]
+struct Rounding<T> {
+    /// `64 ε (1 + M / E)`, or the largest number for a net of no extent (every point
+    /// singular).
+    floor: T,
+}
+
+impl<T: Scalar> Rounding<T> {
+    /// The rounding of a surface with these Cartesian control points.
+    fn of(net: &[Vector3<T>]) -> Self {
+        let mut lo = net.first().copied().unwrap_or_else(Vector3::zeros);
+        let mut hi = lo;
+        for p in net {
+            lo = lo.inf(p);
+            hi = hi.sup(p);
+        }
+        let largest = lo.amax().max(hi.amax());
+        let extent = (hi - lo).norm();
+        let eps = T::default_epsilon() * cast::<T>(64.0);
+        let floor = if extent > T::zero() && extent.is_finite() {
+            eps * (T::one() + largest / extent)
+        } else {
+            T::max_value().unwrap_or_else(T::one)
+        };
+        Self { floor }
+    }
+
+    /// Whether $S_u \times S_v$ is no more than rounding (a singular point).
+    fn singular(&self, du: &Vector3<T>, dv: &Vector3<T>) -> bool {
+        !(du.cross(dv).norm() > self.floor * (du.norm_squared() + dv.norm_squared()))
+    }
+}
+
+/// The point and the unit normal at `(u, v)`, or `None` for the normal at a singular point.
 fn normal_at<T: Scalar, S: ParamSurface<T, Point = Vector3<T>>>(
     surface: &S,
+    rounding: &Rounding<T>,
     u: T,
     v: T,
 ) -> Result<(Vector3<T>, Option<Vector3<T>>)> {
     let mut d = [Vector3::zeros(); 4];
     surface.derivatives_into(u, v, 1, &mut d)?;
     let (du, dv) = (d[2], d[1]);
-    let cross = du.cross(&dv);
-    let len = cross.norm();
-    let floor = T::default_epsilon() * cast::<T>(8.0) * (du.norm_squared() + dv.norm_squared());
-    Ok((d[0], (len > floor).then(|| cross / len)))
+    let normal = (!rounding.singular(&du, &dv)).then(|| du.cross(&dv).normalize());
+    Ok((d[0], normal))
 }
 
 /// The point of the offset at `(u, v)`; at a singular point, with the normal's limit from
-/// inside the domain (the normal a little way towards the domain's centre).
+/// inside the domain, along the segment towards the domain's centre: towards $(a, b)$,
+/// $S_u \times S_v$ grows as $t\,[S_u \times (a S_{uv} + b S_{vv}) + (a S_{uu} + b S_{uv})
+/// \times S_v]$, whose direction is the limit (at a pole, $S_u \times S_{uv}$), free of the
+/// rounding that stepping off the point would divide by; where that vanishes too, the
+/// normal a little way towards the centre.
 fn offset_point<T: Scalar, S: ParamSurface<T, Point = Vector3<T>>>(
     surface: &S,
+    rounding: &Rounding<T>,
     u: T,
     v: T,
     distance: T,
 ) -> Result<Vector3<T>> {
-    let (point, normal) = normal_at(surface, u, v)?;
+    let (point, normal) = normal_at(surface, rounding, u, v)?;
     if let Some(n) = normal {
         return Ok(point + n * distance);
     }
     let ((a, b), (c, d)) = surface.domain();
     let half = cast::<T>(0.5);
-    let (mid_u, mid_v) = ((a + b) * half, (c + d) * half);
+    let (to_u, to_v) = ((a + b) * half - u, (c + d) * half - v);
+    let mut p = [Vector3::zeros(); 9];
+    surface.derivatives_into(u, v, 2, &mut p)?;
+    let (su, sv, suu, suv, svv) = (p[3], p[1], p[6], p[4], p[2]);
+    let growth = su.cross(&(suv * to_u + svv * to_v)) + (suu * to_u + suv * to_v).cross(&sv);
+    let size = (su.norm() + sv.norm())
+        * (suu.norm() * to_u.abs()
+            + suv.norm() * (to_u.abs() + to_v.abs())
+            + svv.norm() * to_v.abs());
+    if growth.norm() > rounding.floor * size {
+        return Ok(point + growth.normalize() * distance);
+    }
     for step in [1e-10, 1e-8, 1e-6] {
         let t = cast::<T>(step);
-        let (_, nearby) = normal_at(surface, u + (mid_u - u) * t, v + (mid_v - v) * t)?;
+        let (_, nearby) = normal_at(surface, rounding, u + to_u * t, v + to_v * t)?;
         if let Some(n) = nearby {
             return Ok(point + n * distance);
         }
@@ -333,12 +396,15 @@ struct Sample<T: Scalar> {
 }
 
 /// Local properties on a grid of `4 (p + 1) × 4 (q + 1)` points per patch (singular points
-/// left out).
+/// left out of `regular`, kept in `points`).
 struct Samples<T: Scalar> {
     regular: Vec<Sample<T>>,
+    /// Every grid point, singular or not (`(4 p + 5) × (4 q + 5)` on every patch).
+    points: Vec<Vector3<T>>,
     /// The largest coordinate of the control net (the size for relative checks).
     size: T,
     net: Vec<Vector3<T>>,
+    rounding: Rounding<T>,
 }
 
 impl<T: Scalar> Samples<T> {
@@ -355,19 +421,29 @@ impl<T: Scalar> Samples<T> {
             params.push(breaks[breaks.len() - 1]);
             params
         };
+        let net = surface.cartesian_net();
+        let rounding = Rounding::of(&net);
+        let (us, vs) = (grid(&breaks_u, 4 * (p + 1)), grid(&breaks_v, 4 * (q + 1)));
         let mut regular = Vec::new();
-        for &u in &grid(&breaks_u, 4 * (p + 1)) {
-            for &v in &grid(&breaks_v, 4 * (q + 1)) {
+        let mut points = Vec::with_capacity(us.len() * vs.len());
+        for &u in &us {
+            for &v in &vs {
                 match surface.local_properties(u, v) {
-                    Ok(l) => regular.push(Sample {
-                        u,
-                        v,
-                        point: l.point,
-                        normal: l.normal,
-                        k1: l.max_curvature,
-                        k2: l.min_curvature,
-                    }),
-                    Err(e) if e.kind() == ErrorKind::DegenerateGeometry => {}
+                    Ok(l) if !rounding.singular(&l.du, &l.dv) => {
+                        points.push(l.point);
+                        regular.push(Sample {
+                            u,
+                            v,
+                            point: l.point,
+                            normal: l.normal,
+                            k1: l.max_curvature,
+                            k2: l.min_curvature,
+                        });
+                    }
+                    Ok(l) => points.push(l.point),
+                    Err(e) if e.kind() == ErrorKind::DegenerateGeometry => {
+                        points.push(surface.eval(u, v)?);
+                    }
                     Err(e) => return Err(e),
                 }
             }
@@ -378,9 +454,14 @@ impl<T: Scalar> Samples<T> {
                 "the surface has no normal anywhere (S_u × S_v vanishes at every sample): it has no offset",
             ));
         }
-        let net = surface.cartesian_net();
         let size = net.iter().fold(T::zero(), |m, p| m.max(p.amax()));
-        Ok(Self { regular, size, net })
+        Ok(Self {
+            regular,
+            points,
+            size,
+            net,
+            rounding,
+        })
     }
 
     /// The normal of a plane, if the control net lies in one and the normal never turns.
@@ -399,25 +480,36 @@ impl<T: Scalar> Samples<T> {
         (flat && one_side).then_some(normal)
     }
 
-    /// The centre and the mean curvature of a sphere, if every sample is an umbilic of it.
+    /// The centre and the mean curvature $H = \mp 1 / r$ (outward or inward normal) of a
+    /// sphere, if every grid point lies on it and every normal is along its radius with one
+    /// orientation (see [`offset_surface`]).
     fn sphere(&self) -> Option<(Vector3<T>, T)> {
-        let first = self.regular[0];
-        let mean = (first.k1 + first.k2) * cast(0.5);
-        if !(mean != T::zero() && mean.is_finite()) {
+        let (centre, radius) = fit_sphere(&self.points)?;
+        // Relative to the piece's own size (a nearly flat surface fits a huge sphere, and
+        // 10⁻¹² of its radius would be no check), plus the rounding of the position.
+        let (mut lo, mut hi) = (self.points[0], self.points[0]);
+        for p in &self.points {
+            lo = lo.inf(p);
+            hi = hi.sup(p);
+        }
+        let extent = (hi - lo).norm().min(radius);
+        let eps = T::default_epsilon();
+        let tolerance = cast::<T>(16.0 * SHAPE_CHECK) * extent + cast::<T>(64.0) * eps * self.size;
+        let on = self
+            .points
+            .iter()
+            .all(|p| ((p - centre).norm() - radius).abs() <= tolerance);
+        if !on {
             return None;
         }
-        let radius = T::one() / mean.abs();
-        let centre = first.point + first.normal / mean;
-        let check = cast::<T>(1e-9) * radius;
-        let on = self.regular.iter().all(|s| {
-            let h = (s.k1 + s.k2) * cast(0.5);
-            ((s.point - centre).norm() - radius).abs()
-                <= cast::<T>(SHAPE_CHECK) * radius * cast(16.0)
-                && (s.k1 - s.k2).abs() * radius <= cast(1e-6)
-                && h * mean > T::zero()
-                && (s.point + s.normal / h - centre).norm() <= check
-        });
-        on.then_some((centre, mean))
+        // The orientation: +1 for the outward normal, −1 for the inward one.
+        let along = |s: &Sample<T>| s.normal.dot(&(s.point - centre)) / radius;
+        let sign = along(&self.regular[0]).signum();
+        let radial = self
+            .regular
+            .iter()
+            .all(|s| along(s) * sign >= T::one() - cast::<T>(SHAPE_CHECK).sqrt());
+        radial.then(|| (centre, -sign / radius))
     }
 
     /// An error at the first sample where the offset folds: $1 - d\,\kappa_i \le 0$.
@@ -442,4 +534,59 @@ impl<T: Scalar> Samples<T> {
         }
         Ok(())
     }
+}
+
+/// The sphere (centre, radius) nearest to `points` in the least-squares sense of
+/// $\lVert p - c \rVert^2 - r^2$ (linear in $c$ and $r^2 - \lVert c \rVert^2$), on the
+/// points moved to their mean and scaled to unit size (the fit does not depend on where the
+/// points are nor on their scale), then one Gauss–Newton step on the distances
+/// $\lVert p - c \rVert - r$; `None` for fewer than four points or no sphere (coplanar
+/// points, a singular system).
+fn fit_sphere<T: Scalar>(points: &[Vector3<T>]) -> Option<(Vector3<T>, T)> {
+    if points.len() < 4 {
+        return None;
+    }
+    let count = from_count::<T>(points.len());
+    let mean = points.iter().fold(Vector3::zeros(), |s, p| s + p) / count;
+    let scale = points
+        .iter()
+        .fold(T::zero(), |m, p| m.max((p - mean).amax()));
+    if !(scale > T::zero() && scale.is_finite()) {
+        return None;
+    }
+    let two = cast::<T>(2.0);
+    let mut normal = Matrix4::<T>::zeros();
+    let mut rhs = Vector4::<T>::zeros();
+    for p in points {
+        let q = (p - mean) / scale;
+        let row = Vector4::new(q.x * two, q.y * two, q.z * two, T::one());
+        normal += row * row.transpose();
+        rhs += row * q.norm_squared();
+    }
+    let x = normal.lu().solve(&rhs)?;
+    let mut centre = Vector3::new(x[0], x[1], x[2]);
+    let squared = x[3] + centre.norm_squared();
+    if !(squared > T::zero() && squared.is_finite()) {
+        return None;
+    }
+    let mut radius = squared.sqrt();
+    // One Gauss–Newton step on the distances (the algebraic fit weighs them unevenly).
+    let mut normal = Matrix4::<T>::zeros();
+    let mut rhs = Vector4::<T>::zeros();
+    for p in points {
+        let q = (p - mean) / scale - centre;
+        let length = q.norm();
+        if !(length > T::zero()) {
+            return None;
+        }
+        let row = Vector4::new(q.x / length, q.y / length, q.z / length, T::one());
+        normal += row * row.transpose();
+        rhs += row * (length - radius);
+    }
+    let step = normal.lu().solve(&rhs)?;
+    centre += Vector3::new(step[0], step[1], step[2]);
+    radius += step[3];
+    let centre = mean + centre * scale;
+    let radius = radius * scale;
+    (radius > T::zero() && radius.is_finite()).then_some((centre, radius))
 }

@@ -123,22 +123,26 @@ fn the_offset_of_a_torus_is_the_torus_of_a_larger_tube() {
 
 #[test]
 fn the_offset_of_an_ellipsoid_through_its_singular_poles() {
-    // x² + y² + (z / 0.5)² = 1 from the unit sphere (poles where S_u × S_v = 0).
-    let sphere = NurbsSurface::sphere(Vector3::zeros(), 1.0).unwrap();
-    let ellipsoid = sphere.map_control_points(|p| Vector3::new(p.x, p.y, 0.5 * p.z));
-    let (distance, tolerance) = (0.1, 1e-6);
-    let options = OffsetOptions {
-        degree: 3,
-        tolerance,
-    };
-    let offset = offset_surface(&ellipsoid, distance, &options).unwrap();
-    assert_eq!(offset.exact, ExactOffset::Approximate);
-    for (u, v) in grid(ellipsoid.domain(), 33) {
-        let s = ellipsoid.eval(u, v).unwrap();
-        // The outward normal of the implicit surface: the gradient (x, y, 4 z).
-        let n = Vector3::new(s.x, s.y, 4.0 * s.z).normalize();
-        let e = (eval(&offset.surface, u, v) - (s + n * distance)).norm();
-        assert!(e <= tolerance, "({u}, {v}): {e:e}");
+    // x² + y² + (z / 0.5)² = 1 from the unit sphere (poles where S_u × S_v = 0), about the
+    // origin and 10³ away (where the poles' S_v is the rounding of the position: the normal
+    // there is the limit S_u × S_uv, not the rounding's direction).
+    for centre in [Vector3::zeros(), Vector3::new(1e3, -2e2, 5e2)] {
+        let sphere = NurbsSurface::sphere(Vector3::zeros(), 1.0).unwrap();
+        let ellipsoid = sphere.map_control_points(|p| centre + Vector3::new(p.x, p.y, 0.5 * p.z));
+        let (distance, tolerance) = (0.1, 1e-6);
+        let options = OffsetOptions {
+            degree: 3,
+            tolerance,
+        };
+        let offset = offset_surface(&ellipsoid, distance, &options).unwrap();
+        assert_eq!(offset.exact, ExactOffset::Approximate);
+        for (u, v) in grid(ellipsoid.domain(), 33) {
+            let s = ellipsoid.eval(u, v).unwrap() - centre;
+            // The outward normal of the implicit surface: the gradient (x, y, 4 z).
+            let n = Vector3::new(s.x, s.y, 4.0 * s.z).normalize();
+            let e = (eval(&offset.surface, u, v) - centre - (s + n * distance)).norm();
+            assert!(e <= tolerance, "{centre:?} ({u}, {v}): {e:e}");
+        }
     }
 }
 
@@ -236,4 +240,117 @@ fn other_surfaces_of_revolution_offset_through_their_meridian() {
         let e = (eval(&offset.surface, u, v) - (derivatives[0] + n * d)).norm();
         assert!(e <= tolerance, "({u}, {v}): {e:e}");
     }
+}
+
+/// A xorshift generator of uniform numbers in `[0, 1)` (reproducible).
+fn uniform(mut seed: u64) -> impl FnMut() -> f64 {
+    move || {
+        seed ^= seed << 13;
+        seed ^= seed >> 7;
+        seed ^= seed << 17;
+        (seed >> 11) as f64 / (1u64 << 53) as f64
+    }
+}
+
+#[test]
+fn spheres_anywhere_and_of_any_size_are_offset_exactly() {
+    // The OCCT geometry suite's reproducer: about (−3, −1, −1), the rounding of the position
+    // made S_u × S_v at the poles look regular, with a radius of curvature of 6e-15, and the
+    // curvature-based centre was missed: "folds near (u, v) = (0, 0.27)".
+    let sphere = NurbsSurface::sphere(Vector3::new(-3.0, -1.0, -1.0), 0.7).unwrap();
+    let options = OffsetOptions {
+        degree: 3,
+        tolerance: 3.7e-6,
+    };
+    let offset = offset_surface(&sphere, 0.1, &options).unwrap();
+    assert_eq!(offset.exact, ExactOffset::Sphere);
+    // Random centres up to 10³ away, radii 10⁻³ to 10³, random axes, in and out.
+    let mut next = uniform(0x9e37_79b9_7f4a_7c15);
+    for k in 0..90 {
+        let far = [1.0, 1e3, 1e-3][k % 3];
+        let centre = Vector3::new(next() - 0.5, next() - 0.5, next() - 0.5) * (2.0 * far);
+        let radius = 10f64.powf(6.0 * next() - 3.0);
+        let axis = Vector3::new(next() - 0.5, next() - 0.5, next() - 0.5);
+        let sphere = NurbsSurface::sphere_about(centre, radius, axis).unwrap();
+        let sign = if k % 2 == 0 { 1.0 } else { -1.0 };
+        let distance = sign * radius * (0.05 + 0.9 * next());
+        let case = format!("centre {centre:?}, radius {radius:e}, distance {distance:e}");
+        let options = OffsetOptions {
+            degree: 3,
+            tolerance: 1e-6 * radius,
+        };
+        let offset = offset_surface(&sphere, distance, &options).unwrap();
+        assert_eq!(offset.exact, ExactOffset::Sphere, "{case}");
+        assert_eq!(offset.max_error, 0.0, "{case}");
+        let scale = radius + centre.norm();
+        for (u, v) in grid(sphere.domain(), 17) {
+            let p = eval(&offset.surface, u, v);
+            let q = sphere.eval(u, v).unwrap();
+            // S + d n with the outward normal n = (S − c) / r.
+            let want = q + (q - centre) * (distance / radius);
+            let e = (p - want).norm();
+            // To 10⁻¹² of the size, and beyond the rounding of the position only.
+            assert!(e <= 1e-12 * scale, "{case} at ({u}, {v}): {e:e}");
+            assert!(
+                e <= 1e-12 * radius + 32.0 * f64::EPSILON * centre.norm(),
+                "{case} at ({u}, {v}): {e:e}"
+            );
+        }
+    }
+}
+
+#[test]
+fn a_slightly_perturbed_sphere_is_not_a_sphere() {
+    let mut next = uniform(0x2545_f491_4f6c_dd1d);
+    for k in 0..6 {
+        let far = [1.0, 1e3][k % 2];
+        let centre = Vector3::new(next() - 0.5, next() - 0.5, next() - 0.5) * (2.0 * far);
+        let radius = [1e-3, 1.0, 1e3][k % 3];
+        let sphere = NurbsSurface::sphere(centre, radius).unwrap();
+        // A smooth non-affine map of the net by 10⁻⁶ of the radius (the poles stay poles).
+        let bent = sphere.map_control_points(|p| {
+            let x = (p.x - centre.x) / radius;
+            p + Vector3::new(1e-6 * radius * x * x, 0.0, 0.0)
+        });
+        let options = OffsetOptions {
+            degree: 3,
+            tolerance: 1e-4 * radius,
+        };
+        let case = format!("centre {centre:?}, radius {radius:e}");
+        // The sphere itself is one; the perturbed net is approximated.
+        let exact = offset_surface(&sphere, 0.2 * radius, &options).unwrap();
+        assert_eq!(exact.exact, ExactOffset::Sphere, "{case}");
+        let offset = offset_surface(&bent, 0.2 * radius, &options).unwrap();
+        assert_eq!(offset.exact, ExactOffset::Approximate, "{case}");
+        assert!(offset.max_error <= options.tolerance, "{case}");
+    }
+    // Nearly flat: z = 10⁻⁶ (x² + y²) + 10⁻⁹ x³ on [−1, 1]² is within 10⁻⁹ of a sphere of
+    // radius 5·10⁵, i.e. 2·10⁻¹⁵ of its radius: the check is relative to the piece's size,
+    // not the radius. The Bézier net: x, y linear in the control points, z the Bernstein
+    // coefficients b_i = Σ_k C(i, k) / C(3, k) a_k of the polynomials in s = (x + 1) / 2.
+    let bernstein = |a: [f64; 4]| -> [f64; 4] {
+        let choose = |n: usize, k: usize| -> f64 {
+            (0..k).fold(1.0, |c, j| c * (n - j) as f64 / (j + 1) as f64)
+        };
+        std::array::from_fn(|i| (0..=i).map(|k| choose(i, k) / choose(3, k) * a[k]).sum())
+    };
+    // x² = 4 s² − 4 s + 1, x³ = 8 s³ − 12 s² + 6 s − 1.
+    let g = bernstein([1e-6 - 1e-9, -4e-6 + 6e-9, 4e-6 - 12e-9, 8e-9]);
+    let h = bernstein([1e-6, -4e-6, 4e-6, 0.0]);
+    let net: Vec<Vec<Vector3<f64>>> = (0..4)
+        .map(|i| {
+            (0..4)
+                .map(|j| {
+                    let at = |k: usize| -1.0 + 2.0 * k as f64 / 3.0;
+                    Vector3::new(at(i), at(j), g[i] + h[j])
+                })
+                .collect()
+        })
+        .collect();
+    let shallow = Surface::bezier(net).unwrap();
+    let z = shallow.eval(0.25, 0.75).unwrap();
+    let (x, y) = (-0.5, 0.5);
+    assert!((z.z - (1e-6 * (x * x + y * y) + 1e-9 * x * x * x)).abs() <= 1e-20);
+    let offset = offset_surface(&shallow, 0.1, &OffsetOptions::default()).unwrap();
+    assert_eq!(offset.exact, ExactOffset::Approximate);
 }
