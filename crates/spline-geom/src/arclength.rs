@@ -11,20 +11,36 @@ struct Quadrature<T> {
     weights: Vec<T>,
 }
 
+/// The rule's estimate of an integral and the range of the integrand at its nodes.
+#[derive(Clone, Copy)]
+struct Estimate<T> {
+    value: T,
+    low: T,
+    high: T,
+}
+
 impl<T: Scalar> Quadrature<T> {
     fn new(n: usize) -> Self {
         let (nodes, weights) = gauss_legendre::<T>(n).into_iter().unzip();
         Self { nodes, weights }
     }
 
-    fn integrate(&self, a: T, b: T, f: &impl Fn(T) -> T) -> T {
+    fn integrate(&self, a: T, b: T, f: &impl Fn(T) -> T) -> Estimate<T> {
         let half = (b - a) * cast(0.5);
         let mid = (a + b) * cast(0.5);
-        self.nodes
-            .iter()
-            .zip(&self.weights)
-            .fold(T::zero(), |s, (&x, &w)| s + w * f(mid + half * x))
-            * half
+        let mut sum = T::zero();
+        let mut range: Option<(T, T)> = None;
+        for (&x, &w) in self.nodes.iter().zip(&self.weights) {
+            let y = f(mid + half * x);
+            sum += w * y;
+            range = Some(range.map_or((y, y), |(low, high)| (low.min(y), high.max(y))));
+        }
+        let (low, high) = range.unwrap_or((T::zero(), T::zero()));
+        Estimate {
+            value: sum * half,
+            low,
+            high,
+        }
     }
 }
 
@@ -34,6 +50,8 @@ impl<T: Scalar> Quadrature<T> {
 /// estimates agree to `accuracy` times its own length, so the sum is accurate to `accuracy`
 /// times the total at any scale of the coordinates and whatever the number of pieces (an
 /// absolute accuracy shared among 10⁵ pieces asked each for 1e-15 and took minutes).
+/// Below what rounding allows, no interval is asked for more (see [`Piece::adaptive`]): the
+/// length is then as accurate as the speed can be evaluated.
 ///
 /// # Errors
 /// [`ErrorKind::NoConvergence`] if a piece cannot reach the accuracy.
@@ -45,46 +63,115 @@ pub(crate) fn adaptive_length<T: Scalar>(
     let rule = Quadrature::<T>::new(8);
     let mut total = T::zero();
     for w in breaks.windows(2) {
-        let whole = rule.integrate(w[0], w[1], &speed);
+        let whole = rule.integrate(w[0], w[1], &speed).value;
         // The piece's share: `accuracy` times its length, split between halves on bisection.
         let budget = whole.abs() * accuracy;
-        total += adaptive(&rule, (w[0], w[1]), whole, &speed, budget, 0)?;
+        let mut piece = Piece {
+            rule: &rule,
+            f: &speed,
+            ends: (w[0], w[1]),
+            noise: None,
+            intervals: 0,
+        };
+        total += piece.adaptive((w[0], w[1]), whole, budget, 0)?;
     }
     Ok(total)
 }
 
-/// The integral over `[a, b]` given the rule's estimate `whole` there (the halves'
-/// estimates are passed down on bisection, not computed again), to the absolute `budget`
-/// (each half gets half of it: the errors of the accepted intervals add up to at most the
-/// piece's budget; no interval is asked for less than the rounding of its own value).
-fn adaptive<T: Scalar>(
-    rule: &Quadrature<T>,
-    (a, b): (T, T),
-    whole: T,
-    f: &impl Fn(T) -> T,
-    budget: T,
-    depth: usize,
-) -> Result<T> {
-    let mid = (a + b) * cast(0.5);
-    let left = rule.integrate(a, mid, f);
-    let right = rule.integrate(mid, b, f);
-    let halves = left + right;
-    // The halves estimate is far more accurate than `whole`; their difference bounds its error.
-    let tol = budget.max(halves.abs() * cast(8.0 * f64::EPSILON));
-    if (halves - whole).abs() <= tol {
-        return Ok(halves);
+/// Bisections below this depth do not measure the speed's rounding (most pieces converge
+/// before).
+const PROBE_DEPTH: usize = 6;
+
+/// The most intervals one piece may be bisected into (a bound on the work where the speed's
+/// rounding is not caught by its measure).
+const MAX_INTERVALS: usize = 1 << 16;
+
+/// One piece's quadrature: the rule, the speed, and the rounding of the speed measured on
+/// the piece when first needed.
+struct Piece<'a, T, F> {
+    rule: &'a Quadrature<T>,
+    f: &'a F,
+    ends: (T, T),
+    /// The largest second difference of the speed at neighbouring floating-point parameters
+    /// (its rounding), once measured.
+    noise: Option<T>,
+    intervals: usize,
+}
+
+impl<T: Scalar, F: Fn(T) -> T> Piece<'_, T, F> {
+    /// The rounding of the speed on the piece: at the rule's nodes $x$, the second
+    /// difference $f(x + δ) - 2 f(x) + f(x - δ)$ with $δ$ a few units in the last place of
+    /// $x$ (the smooth part, $f'' δ^2$, is far below it): what is left is the speed's
+    /// rounding, e.g. of control points far from the origin around a small curve.
+    fn noise(&mut self) -> T {
+        if let Some(noise) = self.noise {
+            return noise;
+        }
+        let (a, b) = self.ends;
+        let half = (b - a) * cast(0.5);
+        let mid = (a + b) * cast(0.5);
+        let eps = T::default_epsilon();
+        let mut noise = T::zero();
+        for &x in &self.rule.nodes {
+            let u = mid + half * x;
+            let delta = eps * cast::<T>(4.0) * (u.abs() + half.abs());
+            let second = (self.f)(u + delta) - (self.f)(u) * cast(2.0) + (self.f)(u - delta);
+            noise = noise.max(second.abs());
+        }
+        self.noise = Some(noise);
+        noise
     }
-    if depth >= 48 {
-        return Err(Error::new(
-            ErrorKind::NoConvergence,
-            format!(
-                "arc length did not reach the accuracy {:.1e} near u = {}",
-                to_f64(budget),
-                to_f64(mid)
-            ),
-        ));
+
+    /// The integral over `[a, b]` given the rule's estimate `whole` there (the halves'
+    /// estimates are passed down on bisection, not computed again), to the absolute `budget`
+    /// (each half gets half of it: the errors of the accepted intervals add up to at most
+    /// the piece's budget).
+    ///
+    /// No interval is asked for less than rounding allows:
+    /// - `8 ε` times its value (the rounding of the speeds and of their sum);
+    /// - `8 ε max(|a|, |b|)` times the spread of the speed over its nodes: the nodes are
+    ///   parameters rounded to `ε |u|`, which moves the speed by its slope times that, and
+    ///   over the interval the slope adds up to the spread. Where the speed is steep (a
+    ///   rational curve whose weights pile the length up near one end, issue 26) the two
+    ///   estimates differ by this however short the interval, and the budget, halved on
+    ///   every bisection, fell below it (an accuracy of 2e-27 asked near u = −1.897);
+    /// - from depth [`PROBE_DEPTH`] on, twice the speed's measured rounding
+    ///   ([`Self::noise`]) times the interval's width: each estimate is off by up to the
+    ///   rounding of the speeds it adds up, which no bisection reduces.
+    ///
+    /// # Errors
+    /// [`ErrorKind::NoConvergence`] past 48 bisections or [`MAX_INTERVALS`] intervals.
+    fn adaptive(&mut self, (a, b): (T, T), whole: T, budget: T, depth: usize) -> Result<T> {
+        self.intervals += 1;
+        let mid = (a + b) * cast(0.5);
+        let left = self.rule.integrate(a, mid, self.f);
+        let right = self.rule.integrate(mid, b, self.f);
+        let halves = left.value + right.value;
+        let spread = left.high.max(right.high) - left.low.min(right.low);
+        let rounding = cast::<T>(8.0) * T::default_epsilon();
+        let mut floor = rounding * (halves.abs() + a.abs().max(b.abs()) * spread);
+        // The halves estimate is far more accurate than `whole`; their difference bounds its
+        // error.
+        let difference = (halves - whole).abs();
+        if difference > budget.max(floor) && depth >= PROBE_DEPTH {
+            floor += self.noise() * cast(2.0) * (b - a);
+        }
+        let tol = budget.max(floor);
+        if difference <= tol {
+            return Ok(halves);
+        }
+        if depth >= 48 || self.intervals >= MAX_INTERVALS {
+            return Err(Error::new(
+                ErrorKind::NoConvergence,
+                format!(
+                    "arc length did not reach the accuracy {:.1e} near u = {}",
+                    to_f64(tol),
+                    to_f64(mid)
+                ),
+            ));
+        }
+        let half = budget * cast(0.5);
+        Ok(self.adaptive((a, mid), left.value, half, depth + 1)?
+            + self.adaptive((mid, b), right.value, half, depth + 1)?)
     }
-    let half = budget * cast(0.5);
-    Ok(adaptive(rule, (a, mid), left, f, half, depth + 1)?
-        + adaptive(rule, (mid, b), right, f, half, depth + 1)?)
 }

@@ -167,8 +167,10 @@ pub trait ParamCurve<T: Scalar> {
     /// # Errors
     /// [`ErrorKind::NonFinite`]/[`ErrorKind::OutOfDomain`] for the bounds;
     /// [`ErrorKind::InvalidArgument`] if `a > b`; [`ErrorKind::InvalidTolerance`] unless the
-    /// accuracy is positive; [`ErrorKind::NoConvergence`] if the requested accuracy cannot be
-    /// reached (it is far below rounding of the result).
+    /// accuracy is positive; [`ErrorKind::NoConvergence`] if the quadrature does not converge
+    /// (an accuracy below what the rounding of the speed allows is not refused: no interval
+    /// is asked for less than its rounding, and the length is then as accurate as the speed
+    /// can be evaluated).
     fn arc_length_between(&self, a: T, b: T, accuracy: T) -> Result<T> {
         check_in_domain(self.domain(), a)?;
         check_in_domain(self.domain(), b)?;
