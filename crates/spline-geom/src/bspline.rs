@@ -1,6 +1,6 @@
 //! The B-spline container and its evaluation.
 
-use crate::pieces::PieceCache;
+use crate::pieces::{PieceCache, PieceSource};
 use spline_core::{
     ControlPoint, Error, ErrorKind, KnotVector, MAX_ORDER, Result, Scalar, from_count,
 };
@@ -567,5 +567,23 @@ impl<T: Scalar, const D: usize> BSpline<T, nalgebra::SVector<T, D>> {
         translation: &nalgebra::SVector<T, D>,
     ) -> Self {
         self.map_control_points(|p| matrix * p + translation)
+    }
+}
+
+impl<T: Scalar, P: ControlPoint<T>> PieceSource<T, P> for BSpline<T, P> {
+    fn knots(&self) -> &KnotVector<T> {
+        &self.knots
+    }
+
+    fn control_points(&self) -> &[P] {
+        BSpline::control_points(self)
+    }
+
+    fn eval_in_span(&self, span: usize, u: T) -> P {
+        BSpline::eval_in_span(self, span, u)
+    }
+
+    fn derivatives_in_span(&self, span: usize, u: T, out: &mut [P]) {
+        BSpline::derivatives_in_span(self, span, u, out);
     }
 }

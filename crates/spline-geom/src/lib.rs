@@ -75,7 +75,7 @@ pub use mesh::{MAX_MESH_SEGMENTS, TriangleMesh};
 pub use nd::{NdSpline, knot_vectors};
 pub use nurbs::{
     HomogeneousContainer, NurbsCurve, NurbsCurve2, NurbsCurve3, NurbsSurface, NurbsSurface3,
-    Rational,
+    NurbsSurfaceEvaluator, Rational,
 };
 pub use operations::{Operation, Outcome, StructuralCurve, StructuralSurface};
 pub use param::{ParamCurve, ParamSurface, PlanarCurve, SpatialSurface};
@@ -83,7 +83,7 @@ pub use periodic::PeriodicBSpline;
 pub use planar::wedge;
 pub use spline_core::{ControlPoint, Error, ErrorKind, KnotVector, Result, Scalar};
 pub use structural::DEFAULT_REMOVAL_TOLERANCE;
-pub use surface::{Direction, NurbsSurfaceEvaluator, Surface, SurfaceEvaluator};
+pub use surface::{Direction, Surface, SurfaceEvaluator};
 pub use surface_geometry::{FundamentalForm, LocalProperties};
 pub use variation::sign_changes;
 

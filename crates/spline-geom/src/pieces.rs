@@ -24,11 +24,23 @@
 //! Every mutation of the knots or control points drops it. It is not part of the curve's
 //! value: equality, `Debug` and serialisation ignore it, clones share it until they change.
 
-use crate::BSpline;
 use crate::lanes::{self, LaneForm};
 use spline_core::{ControlPoint, KnotVector, Scalar, SpanTable, from_count};
 use std::sync::atomic::{AtomicUsize, Ordering};
 use std::sync::{Arc, Mutex, OnceLock, PoisonError};
+
+/// What the piecewise polynomial form needs of its curve: `BSpline` implements it (in
+/// `bspline.rs`), so the form does not depend on the container that caches it.
+pub(crate) trait PieceSource<T: Scalar, P: ControlPoint<T>> {
+    /// The knot vector (degree, domain, spans).
+    fn knots(&self) -> &KnotVector<T>;
+    /// The control points.
+    fn control_points(&self) -> &[P];
+    /// The point at `u` in the span `span` (the triangular scheme).
+    fn eval_in_span(&self, span: usize, u: T) -> P;
+    /// The derivatives of orders `0 … out.len() − 1` at `u` in the span `span`.
+    fn derivatives_in_span(&self, span: usize, u: T, out: &mut [P]);
+}
 
 /// Degrees up to this have a cached form (higher degrees keep the triangular scheme: the
 /// power form loses accuracy as the degree grows).
@@ -91,11 +103,11 @@ impl<T: Scalar, P: ControlPoint<T>> Pieces<T, P> {
     /// The Taylor coefficients of every non-empty span of `curve`, or `None` above
     /// [`MAX_CACHED_DEGREE`], for degree 0, or when a span's form would lose accuracy
     /// (see [`CONDITION`]).
-    fn new(curve: &BSpline<T, P>) -> Option<Self> {
-        if !has_form(curve.degree()) {
+    fn new(curve: &impl PieceSource<T, P>) -> Option<Self> {
+        if !has_form(curve.knots().degree()) {
             return None;
         }
-        let (start, end) = curve.domain();
+        let (start, end) = curve.knots().domain();
         let mut pieces = Self {
             table: SpanTable::new(curve.knots()),
             order: 0,
@@ -115,7 +127,7 @@ impl<T: Scalar, P: ControlPoint<T>> Pieces<T, P> {
     /// Makes these the pieces of `curve`, reusing the storage (no allocation when the curve
     /// has no more spans than the one they were built for); `false` where
     /// [`Pieces::new`] gives `None`.
-    fn refill(&mut self, curve: &BSpline<T, P>) -> bool {
+    fn refill(&mut self, curve: &impl PieceSource<T, P>) -> bool {
         if !self.fill_coefficients(curve) {
             return false;
         }
@@ -131,15 +143,15 @@ impl<T: Scalar, P: ControlPoint<T>> Pieces<T, P> {
     }
 
     /// The form for the lanes, once the coefficients and the table are built.
-    fn fill_lanes(&mut self, curve: &BSpline<T, P>) {
+    fn fill_lanes(&mut self, curve: &impl PieceSource<T, P>) {
         self.lanes
             .fill(&self.table, curve.knots(), &self.coefficients, self.order);
     }
 
     /// Everything but the span table: the Taylor coefficients, the degree and the domain;
     /// `false` where the form is refused.
-    fn fill_coefficients(&mut self, curve: &BSpline<T, P>) -> bool {
-        let p = curve.degree();
+    fn fill_coefficients(&mut self, curve: &impl PieceSource<T, P>) -> bool {
+        let p = curve.knots().degree();
         if !has_form(p) {
             return false;
         }
@@ -360,7 +372,7 @@ fn at_end<T, P>(exact: &impl Fn(T) -> P, u: T) -> P {
     exact(u)
 }
 
-/// The cache slot in a [`BSpline`]: empty, or the pieces (`None` where the degree has no
+/// The cache slot in a `BSpline`: empty, or the pieces (`None` where the degree has no
 /// cached form), the number of one-point evaluations since the curve last changed, and the
 /// pieces dropped by the last change (their storage is reused by the next build, so that a
 /// curve changed and evaluated in a loop — parameter correction — allocates nothing).
@@ -412,7 +424,7 @@ impl<T: Scalar, P: ControlPoint<T>> PieceCache<T, P> {
     }
 
     /// The pieces, built now if needed.
-    pub(crate) fn get_or_build(&self, curve: &BSpline<T, P>) -> Option<&Pieces<T, P>> {
+    pub(crate) fn get_or_build(&self, curve: &impl PieceSource<T, P>) -> Option<&Pieces<T, P>> {
         self.pieces
             .get_or_init(|| {
                 let spare = self
@@ -433,7 +445,7 @@ impl<T: Scalar, P: ControlPoint<T>> PieceCache<T, P> {
     /// Counts a one-point evaluation of a curve with `spans` spans; builds the pieces at the
     /// `spans`-th (a racy count between threads only moves that moment).
     #[inline(always)]
-    pub(crate) fn count_call(&self, curve: &BSpline<T, P>, spans: usize) {
+    pub(crate) fn count_call(&self, curve: &impl PieceSource<T, P>, spans: usize) {
         let calls = self.calls.load(Ordering::Relaxed);
         if calls >= spans {
             self.build(curve);
@@ -444,7 +456,7 @@ impl<T: Scalar, P: ControlPoint<T>> PieceCache<T, P> {
 
     #[cold]
     #[inline(never)]
-    fn build(&self, curve: &BSpline<T, P>) {
+    fn build(&self, curve: &impl PieceSource<T, P>) {
         self.get_or_build(curve);
     }
 }

@@ -16,9 +16,11 @@ use spline_core::{ControlPoint, Error, ErrorKind, Result, Scalar, cast, from_cou
 mod curve;
 mod mobius;
 mod surface;
+mod surface_evaluator;
 
 pub use curve::{NurbsCurve, NurbsCurve2, NurbsCurve3};
 pub use surface::{NurbsSurface, NurbsSurface3};
+pub use surface_evaluator::NurbsSurfaceEvaluator;
 
 use crate::bspline::BSpline;
 use crate::surface::Surface;

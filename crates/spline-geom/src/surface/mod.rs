@@ -12,7 +12,8 @@ mod derivatives;
 mod evaluator;
 mod structural;
 
-pub use evaluator::{NurbsSurfaceEvaluator, SurfaceEvaluator};
+pub(crate) use evaluator::SMALL_SQUARE;
+pub use evaluator::SurfaceEvaluator;
 
 use spline_core::{ControlPoint, Error, ErrorKind, KnotVector, MAX_ORDER, Result, Scalar};
 use std::fmt;
