@@ -110,15 +110,23 @@ struct Candidate<T> {
 /// The Bézier pieces of both curves are subdivided (de Casteljau) while the boxes of their
 /// control points come within the tolerance of each other and either piece is not flat
 /// to a quarter of the tolerance; pairs of flat pieces whose chords come within the
-/// tolerance are the candidates. The convex hull property makes the search complete: an
-/// intersection lies in every box containing it, so none is missed. A pair of pieces one
-/// of which lies on the other curve (samples projected onto it, all within the tolerance,
-/// their feet in order) is a piece of an overlap and is not split further; such pieces are
-/// chained, their ends found by bisection on the distance (so the intervals are maximal)
-/// and each interval sampled again. A run shorter than `8 √(tolerance · size)` (`size` the
-/// larger [`planar_extent`]) is a tangency, not an overlap: two curves that touch stay
-/// within the tolerance over about `√(8 tolerance / Δκ)`; it is refined as a point.
-/// Intersections inside an overlap (on both of its intervals) are not listed again.
+/// tolerance are the candidates (their parameters where the pieces reach the chords' closest
+/// points, not the chords' fractions, which are no parameters on a rational piece). The
+/// convex hull property makes the search complete: an intersection lies in every box
+/// containing it, so none is missed. A pair of pieces one of which lies on the other curve
+/// (samples projected onto it, all within the tolerance, their feet in order) is a piece of
+/// an overlap; the other piece is examined further only outside the image (where it may
+/// still cross). Flat pieces that run along each other further than a tangency can (two
+/// collinear segments overlapping in part) are split until a part lies on the other curve.
+/// The pieces of overlaps are chained, their ends found by bisection on the distance (so
+/// the intervals are maximal; where the overlap ends because the other curve does, at the
+/// foot of its end), each interval sampled again (the foot followed along, also past a
+/// sharp corner of both curves), and overlaps that meet merged into one. A run shorter than
+/// `8 √(tolerance · size)` (`size` the larger [`planar_extent`]) is a tangency, not an
+/// overlap: two curves that touch stay within the tolerance over about
+/// `√(8 tolerance / Δκ)`; it is refined as a point. Intersections inside an overlap (on both
+/// of its intervals) are not listed again. Parameters computed by affine maps are clamped
+/// to their intervals, so none is a rounding step outside the domain.
 ///
 /// ```
 /// use nalgebra::Vector2;

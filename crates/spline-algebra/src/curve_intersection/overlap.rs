@@ -4,6 +4,7 @@
 //! again by sampling, and short ones (a tangency: two curves that touch stay within the
 //! tolerance over a short arc) handed back to Newton's method as points.
 
+use super::piece::along;
 use super::refine::jet;
 use super::{Candidate, CurveOverlap};
 use nalgebra::Vector2;
@@ -73,11 +74,39 @@ pub(super) fn foot<T: Scalar, B: PlanarCurve<T>>(
     Ok((t, (d[0] - p).norm()))
 }
 
+/// The foot on `b` (within `range`) of `a(s)`, followed from `(s0, t0)` on both curves: from
+/// `t0`, and if that is not within `tolerance`, from `t0` moved as `b` runs along `a`
+/// (`dt/ds = A'·B' / |B'|²` at `(s0, t0)`), the nearer. From `t0` alone the foot may stop in
+/// a local minimum of the distance, as past a sharp corner of both curves when `a(s)` lies
+/// beyond it; the prediction lands beyond it too. Returns `(t, |B(t) − a(s)|)`.
+fn follow<T: Scalar, A: PlanarCurve<T>, B: PlanarCurve<T>>(
+    (a, s): (&A, T),
+    b: &B,
+    (s0, t0): (T, T),
+    range: (T, T),
+    tolerance: T,
+) -> Result<(T, T)> {
+    let p = a.eval(s)?;
+    let (t, d) = foot(b, p, t0, range)?;
+    if d <= tolerance || s == s0 {
+        return Ok((t, d));
+    }
+    let (_, da) = jet(a, s0)?;
+    let (_, db) = jet(b, t0)?;
+    let speed = db[1].norm_squared();
+    let predicted = t0 + (s - s0) * da[1].dot(&db[1]) / speed;
+    if !(speed > T::zero()) || !predicted.is_finite() || predicted == t0 {
+        return Ok((t, d));
+    }
+    let (t2, d2) = foot(b, p, predicted, range)?;
+    Ok(if d2 < d { (t2, d2) } else { (t, d) })
+}
+
 /// The best of a few samples of `[lo, hi]` as a start for [`foot`].
 fn start_on<T: Scalar, B: PlanarCurve<T>>(b: &B, p: Vector2<T>, (lo, hi): (T, T)) -> Result<T> {
     let mut best = (lo, T::max_value().unwrap_or_else(|| cast(f64::MAX)));
     for k in 0..=8 {
-        let t = lo + (hi - lo) * cast::<T>(f64::from(k) / 8.0);
+        let t = along((lo, hi), cast(f64::from(k) / 8.0));
         let d = (b.eval(t)? - p).norm();
         if d < best.1 {
             best = (t, d);
@@ -99,7 +128,7 @@ pub(super) fn lies_on<T: Scalar, A: PlanarCurve<T>, B: PlanarCurve<T>>(
 ) -> Result<Option<(T, T)>> {
     let samples = 4 * n + 1;
     let half = samples / 2;
-    let at = |k: usize| x0 + (x1 - x0) * cast::<T>(k as f64 / (samples - 1) as f64);
+    let at = |k: usize| along((x0, x1), cast(k as f64 / (samples - 1) as f64));
     // The middle first: most pairs fail there.
     let p = a.eval(at(half))?;
     let (t_mid, d) = foot(b, p, start_on(b, p, range)?, range)?;
@@ -111,7 +140,7 @@ pub(super) fn lies_on<T: Scalar, A: PlanarCurve<T>, B: PlanarCurve<T>>(
         let mut k = from;
         while k != to {
             let next = (k as isize + step) as usize;
-            let (t, d) = foot(b, a.eval(at(next))?, feet[k], range)?;
+            let (t, d) = follow((a, at(next)), b, (at(k), feet[k]), range, tolerance)?;
             if !(d <= tolerance) {
                 return Ok(None);
             }
@@ -152,21 +181,29 @@ impl<T: Scalar> Setting<T> {
     }
 }
 
-/// Where `a(s)` lies on `b` within the tolerance, from the foot `guess`: its foot.
+/// Where `a(s)` lies on `b` within the tolerance, followed from `from` on both curves
+/// ([`follow`]): its foot.
 fn on_b<T: Scalar, A: PlanarCurve<T>, B: PlanarCurve<T>>(
     a: &A,
     b: &B,
     s: T,
-    guess: T,
+    from: (T, T),
     setting: &Setting<T>,
 ) -> Result<Option<T>> {
-    let (t, d) = foot(b, a.eval(s)?, guess, b.domain())?;
-    let apart = !setting.same || t - s > (b.domain().1 - b.domain().0) * cast(1e-9);
-    Ok((d <= setting.tolerance && apart).then_some(t))
+    let (t, d) = follow((a, s), b, from, b.domain(), setting.tolerance)?;
+    Ok((d <= setting.tolerance && apart(b, s, t, setting)).then_some(t))
+}
+
+/// Whether `(s, t)` may be a point of an overlap: always for two curves; for a curve against
+/// itself, `t` after `s` by more than rounding.
+fn apart<T: Scalar, B: PlanarCurve<T>>(b: &B, s: T, t: T, setting: &Setting<T>) -> bool {
+    !setting.same || t - s > (b.domain().1 - b.domain().0) * cast(1e-9)
 }
 
 /// From `(s, t)` on both curves towards `limit` (where `a` is not on `b`, or the end of the
-/// domain): the last `(s, t)` on both, by doubling steps then bisection.
+/// domain): the last `(s, t)` on both, by doubling steps then bisection. Where the run ends
+/// because `b` does (its foot at an end of its domain), the end is the foot of `b`'s end on
+/// `a`: exact, not merely where `a` leaves the tolerance.
 fn reach_end<T: Scalar, A: PlanarCurve<T>, B: PlanarCurve<T>>(
     a: &A,
     b: &B,
@@ -184,7 +221,7 @@ fn reach_end<T: Scalar, A: PlanarCurve<T>, B: PlanarCurve<T>>(
         } else {
             good.0 + step
         };
-        match on_b(a, b, next, good.1, setting)? {
+        match on_b(a, b, next, good, setting)? {
             Some(t) => good = (next, t),
             None => {
                 bad = Some(next);
@@ -193,6 +230,7 @@ fn reach_end<T: Scalar, A: PlanarCurve<T>, B: PlanarCurve<T>>(
         }
         step *= cast(2.0);
     }
+    let far = bad.unwrap_or(limit);
     if let Some(mut bad) = bad {
         for _ in 0..80 {
             let m = (good.0 + bad) * cast(0.5);
@@ -201,10 +239,19 @@ fn reach_end<T: Scalar, A: PlanarCurve<T>, B: PlanarCurve<T>>(
             {
                 break;
             }
-            match on_b(a, b, m, good.1, setting)? {
+            match on_b(a, b, m, good, setting)? {
                 Some(t) => good = (m, t),
                 None => bad = m,
             }
+        }
+    }
+    let (db0, db1) = b.domain();
+    if good.0 != limit && (good.1 == db0 || good.1 == db1) {
+        // The end lies between the start and the first point off `b`.
+        let range = (s.min(far), s.max(far));
+        let (end, d) = foot(a, b.eval(good.1)?, good.0, range)?;
+        if d <= setting.tolerance && apart(b, end, good.1, setting) {
+            good.0 = end;
         }
     }
     Ok(good)
@@ -273,7 +320,47 @@ pub(super) fn overlaps<T: Scalar, A: PlanarCurve<T>, B: PlanarCurve<T>>(
         let end = reach_end(a, b, (c.s.1, c.t.1), da1, setting)?;
         check_runs(a, b, start, end, setting, &mut out, &mut starts)?;
     }
-    Ok((out, starts))
+    let (db0, db1) = b.domain();
+    let margins = ((da1 - da0) * cast(1e-9), (db1 - db0) * cast(1e-9));
+    Ok((merge_contiguous(out, margins), starts))
+}
+
+/// One maximal overlap for overlaps that meet or overlap each other on both curves (the
+/// runs found from either side of a sharp corner of both curves end past it, each where
+/// the other curve leaves the tolerance), in increasing `u.0`; an overlap inside another
+/// is dropped. `margins`: the gaps on either curve's parameters that count as meeting.
+fn merge_contiguous<T: Scalar>(
+    mut found: Vec<CurveOverlap<T>>,
+    (margin_u, margin_v): (T, T),
+) -> Vec<CurveOverlap<T>> {
+    found.sort_by(|x, y| {
+        x.u.0
+            .partial_cmp(&y.u.0)
+            .unwrap_or(std::cmp::Ordering::Equal)
+    });
+    let mut out: Vec<CurveOverlap<T>> = Vec::with_capacity(found.len());
+    for o in found {
+        // `v` measured along the direction of the overlaps.
+        let forward = |v: T, reversed: bool| if reversed { -v } else { v };
+        let joined = out.iter_mut().find(|m| {
+            let r = m.reversed;
+            m.reversed == o.reversed
+                && o.u.0 <= m.u.1 + margin_u
+                && forward(o.v.0, r) <= forward(m.v.1, r) + margin_v
+                && forward(o.v.0, r) >= forward(m.v.0, r) - margin_v
+        });
+        match joined {
+            Some(m) => {
+                if o.u.1 > m.u.1 {
+                    m.u.1 = o.u.1;
+                    m.v.1 = o.v.1;
+                    m.points.1 = o.points.1;
+                }
+            }
+            None => out.push(o),
+        }
+    }
+    out
 }
 
 /// Samples `[start.0, end.0]`: every run of samples on both curves becomes an overlap with
@@ -288,17 +375,28 @@ fn check_runs<T: Scalar, A: PlanarCurve<T>, B: PlanarCurve<T>>(
     starts: &mut Vec<Candidate<T>>,
 ) -> Result<()> {
     let n = CHECK_SAMPLES;
-    let at = |k: usize| start.0 + (end.0 - start.0) * cast::<T>(k as f64 / (n - 1) as f64);
-    let guess = |k: usize| start.1 + (end.1 - start.1) * cast::<T>(k as f64 / (n - 1) as f64);
+    let at = |k: usize| along((start.0, end.0), cast(k as f64 / (n - 1) as f64));
+    let guess = |k: usize| along((start.1, end.1), cast(k as f64 / (n - 1) as f64));
     let mut feet: Vec<Option<T>> = Vec::with_capacity(n);
     for k in 0..n {
-        let previous = feet.last().copied().flatten().unwrap_or_else(|| guess(k));
+        let from = match feet.last().copied().flatten() {
+            Some(t) => (at(k - 1), t),
+            None => (at(k), guess(k)),
+        };
         let t = match k {
             0 => Some(start.1),
             _ if k == n - 1 => Some(end.1),
-            _ => on_b(a, b, at(k), previous, setting)?,
+            _ => on_b(a, b, at(k), from, setting)?,
         };
         feet.push(t);
+    }
+    // Samples missed from the side before (a foot tracked from there stops in a local
+    // minimum of the distance, as past a sharp corner of both curves), tried from the side
+    // after.
+    for k in (1..n - 1).rev() {
+        if let (None, Some(next)) = (feet[k], feet[k + 1]) {
+            feet[k] = on_b(a, b, at(k), (at(k + 1), next), setting)?;
+        }
     }
     let mut k = 0;
     while k < n {
@@ -355,13 +453,11 @@ fn is_contact<T: Scalar, A: PlanarCurve<T>, B: PlanarCurve<T>>(
 ) -> Result<bool> {
     const N: usize = 16;
     let mut gaps = [T::zero(); N + 1];
-    let mut t = lo.1;
+    let mut from = lo;
     for (k, gap) in gaps.iter_mut().enumerate() {
-        let f: T = cast(k as f64 / N as f64);
-        let s = lo.0 + (hi.0 - lo.0) * f;
-        let guess = if k == 0 { lo.1 } else { t };
-        let (foot_t, d) = foot(b, a.eval(s)?, guess, b.domain())?;
-        t = foot_t;
+        let s = along((lo.0, hi.0), cast(k as f64 / N as f64));
+        let (t, d) = follow((a, s), b, from, b.domain(), tolerance)?;
+        from = (s, t);
         *gap = d;
     }
     let smallest = gaps.iter().fold(gaps[0], |m, &g| m.min(g));

@@ -58,14 +58,50 @@ impl<T: Scalar, Q: ControlPoint<T>> Piece<T, Q> {
         self.bezier.interval()
     }
 
+    /// Splits in the middle of the interval (`None` at the resolution of floating point).
     pub(super) fn split(&self, project: &impl Fn(&Q) -> Vector2<T>) -> Option<(Self, Self)> {
+        self.split_at(mid(self.interval()), project)
+    }
+
+    /// Splits at `t`, strictly inside the interval (`None` otherwise).
+    pub(super) fn split_at(
+        &self,
+        t: T,
+        project: &impl Fn(&Q) -> Vector2<T>,
+    ) -> Option<(Self, Self)> {
         let (a, b) = self.bezier.interval();
-        let mid = (a + b) * cast(0.5);
-        if !(mid > a && mid < b) {
+        if !(t > a && t < b) {
             return None;
         }
-        let (l, r) = self.bezier.subdivide(mid).ok()?;
+        let (l, r) = self.bezier.subdivide(t).ok()?;
         Some((Piece::new(l, project), Piece::new(r, project)))
+    }
+
+    /// The parameter where the piece reaches the fraction `f` of its chord (the projection
+    /// of its point on the chord's direction), by bisection on the piece itself: the fraction
+    /// goes from 0 to 1 over the interval, so bisection finds a place where it is `f`
+    /// (where the speed along the piece varies, as on a rational piece with unequal
+    /// weights, the parameter is not the fraction mapped onto the interval).
+    pub(super) fn at_fraction(&self, f: T, project: &impl Fn(&Q) -> Vector2<T>) -> T {
+        let chord = self.last - self.first;
+        let length = chord.norm_squared();
+        let (mut lo, mut hi) = self.interval();
+        if !(length > T::zero()) {
+            return along((lo, hi), f);
+        }
+        for _ in 0..200 {
+            let m = mid((lo, hi));
+            if !(m > lo && m < hi) {
+                break;
+            }
+            let Ok(q) = self.bezier.eval(m) else { break };
+            if (project(&q) - self.first).dot(&chord) / length < f {
+                lo = m;
+            } else {
+                hi = m;
+            }
+        }
+        mid((lo, hi))
     }
 
     /// Whether the boxes of the two pieces come within `slack` of each other and neither
@@ -125,7 +161,22 @@ pub(super) fn pieces_of<T: Scalar, C: ParamCurve<T, Point = Vector2<T>>>(
 
 /// The middle of an interval.
 pub(super) fn mid<T: Scalar>((a, b): (T, T)) -> T {
-    (a + b) * cast(0.5)
+    along((a, b), cast(0.5))
+}
+
+/// The affine map `a + (b − a) f` of `f ∈ [0, 1]` onto the parameters from `a` to `b`
+/// (either order), clamped between them: `a` and `b` exactly at `f = 0` and `f = 1`, and
+/// never a rounding step beyond either (a parameter one step past the end of a domain is
+/// outside it).
+pub(super) fn along<T: Scalar>((a, b): (T, T), f: T) -> T {
+    if f <= T::zero() {
+        return a;
+    }
+    if f >= T::one() {
+        return b;
+    }
+    let x = a + (b - a) * f;
+    x.max(a.min(b)).min(a.max(b))
 }
 
 /// The closest points `p0 + s (p1 − p0)` and `q0 + t (q1 − q0)` of two segments and their

@@ -1,12 +1,16 @@
 //! The subdivision: pairs of Bézier pieces whose boxes and fat lines meet are split until
 //! they are flat (a candidate for Newton's method where their chords meet) or until one lies
-//! on the other curve along its whole length (a piece of an overlap). The work is bounded by
-//! the geometry: a pair is split only while neither holds, which near a crossing or a
-//! tangency takes `log₂(size / tolerance)` levels and near the end of an overlap as many.
+//! on the other curve along its whole length (a piece of an overlap; the other piece is
+//! examined further outside that one's image only). The work is bounded by the geometry: a
+//! pair is split only while neither holds, which near a crossing or a tangency takes
+//! `log₂(size / tolerance)` levels and near the end of an overlap as many; a piece left
+//! beside an overlap is at most three quarters of the one it came from, and flat pieces
+//! are split further only while longer than the shortest overlap.
 
 use super::overlap::{OverlapPiece, lies_on};
 use super::piece::{Piece, mid, segment_closest};
 use super::{Candidate, MAX_INTERSECTION_PAIRS};
+use nalgebra::Vector2;
 use spline_core::{ControlPoint, Error, ErrorKind, Result, Scalar, cast};
 use spline_geom::PlanarCurve;
 
@@ -67,7 +71,11 @@ pub(super) fn subdivide<T: Scalar, A: PlanarCurve<T>, B: PlanarCurve<T>>(
         // One piece on the other curve along its whole length. Pieces shorter than an
         // overlap can be (a tangency stays within the tolerance over less than `shortest`)
         // are left to the subdivision and Newton's method.
-        if x.size() > shortest && y.size() > shortest {
+        let long = x.size() > shortest && y.size() > shortest;
+        // Which piece to split when an overlap covers too little of the other piece to
+        // split that piece at its image: that one (`true` for `x`), until it does.
+        let mut force = None;
+        if long {
             let (x0, x1) = x.interval();
             let (y0, y1) = y.interval();
             let (ylo, yhi) = widen((y0, y1), (db0, db1), reach);
@@ -77,30 +85,54 @@ pub(super) fn subdivide<T: Scalar, A: PlanarCurve<T>, B: PlanarCurve<T>>(
                     s: (x0, x1),
                     t: (t0, t1),
                 });
-                continue;
-            }
-            let (xlo, xhi) = widen((x0, x1), (da0, da1), reach);
-            if let Some((s0, s1)) = lies_on(b, (y0, y1), a, (xlo, xhi), tolerance, y.points.len())?
-            {
-                let (s, t) = if s0 <= s1 {
-                    ((s0, s1), (y0, y1))
-                } else {
-                    ((s1, s0), (y1, y0))
-                };
-                found.overlaps.push(OverlapPiece { s, t });
-                continue;
+                // The rest of `y` (beyond the image of `x`) may still cross `x`.
+                if let Some(rest) = outside(&y, (t0.min(t1), t0.max(t1)), &B::project) {
+                    stack.extend(rest.into_iter().map(|r| (x.clone(), r)));
+                    continue;
+                }
+                force = Some(false);
+            } else {
+                let (xlo, xhi) = widen((x0, x1), (da0, da1), reach);
+                let n = y.points.len();
+                if let Some((s0, s1)) = lies_on(b, (y0, y1), a, (xlo, xhi), tolerance, n)? {
+                    let (s, t) = if s0 <= s1 {
+                        ((s0, s1), (y0, y1))
+                    } else {
+                        ((s1, s0), (y1, y0))
+                    };
+                    found.overlaps.push(OverlapPiece { s, t });
+                    // The rest of `x` (beyond the image of `y`) may still cross `y`.
+                    if let Some(rest) = outside(&x, s, &A::project) {
+                        stack.extend(rest.into_iter().map(|r| (r, y.clone())));
+                        continue;
+                    }
+                    force = Some(true);
+                }
             }
         }
         let flat_x = x.flatness <= flat;
         let flat_y = y.flatness <= flat;
-        if flat_x && flat_y {
-            if let Some(c) = chord_candidate(&x, &y, tolerance) {
-                found.starts.push(c);
+        if force.is_none() && flat_x && flat_y {
+            // Flat pieces that run along each other further than a tangency can (an overlap
+            // in part of each, as of two collinear segments that overlap in part) are split
+            // until a part lies on the other curve; others meet at most once, where their
+            // chords do.
+            let slack = tolerance + x.flatness + y.flatness;
+            let along_x = shared_length((&x, &y), slack).max(shared_length((&y, &x), slack));
+            if !(long && along_x > shortest) {
+                let pair = ((&x, &A::project), (&y, &B::project));
+                if let Some(c) = chord_candidate(pair.0, pair.1, tolerance) {
+                    found.starts.push(c);
+                }
+                continue;
             }
-            continue;
         }
-        // Split the larger piece that is not flat.
-        let split_x = !flat_x && (flat_y || x.size() >= y.size());
+        // Split the larger piece that is not flat (or the larger of two flat ones).
+        let split_x = force.unwrap_or(if flat_x == flat_y {
+            x.size() >= y.size()
+        } else {
+            !flat_x
+        });
         let split = if split_x {
             x.split(&A::project)
                 .map(|(l, r)| [(l, y.clone()), (r, y.clone())])
@@ -122,6 +154,69 @@ pub(super) fn subdivide<T: Scalar, A: PlanarCurve<T>, B: PlanarCurve<T>>(
     Ok(())
 }
 
+/// The parts of `piece` outside `[lo, hi]` (the image of the other piece, which lies on
+/// this curve there), or `None` when the image covers less than a quarter of the piece (it
+/// lies mostly on a neighbour; the pair is then subdivided as any other, so every step
+/// leaves at most three quarters of the piece to examine).
+fn outside<T: Scalar, Q: ControlPoint<T>>(
+    piece: &Piece<T, Q>,
+    (lo, hi): (T, T),
+    project: &impl Fn(&Q) -> Vector2<T>,
+) -> Option<Vec<Piece<T, Q>>> {
+    let (p0, p1) = piece.interval();
+    let covered = hi.min(p1) - lo.max(p0);
+    if !(covered * cast(4.0) >= p1 - p0) {
+        return None;
+    }
+    let mut rest = Vec::new();
+    let mut right = Some(piece.clone());
+    if lo > p0 {
+        let (l, r) = piece.split_at(lo, project)?;
+        rest.push(l);
+        right = Some(r);
+    }
+    if hi < p1 {
+        if let Some(r) = right.and_then(|r| r.split_at(hi, project)) {
+            rest.push(r.1);
+        }
+    }
+    Some(rest)
+}
+
+/// The length of `x`'s chord within `slack` of the rectangle along `y`'s chord (its
+/// length, `slack` on either side and beyond either end): about `2 slack / sin θ` where the
+/// chords cross at an angle `θ`, the length of the common part where they run along each
+/// other.
+fn shared_length<T: Scalar, QX: ControlPoint<T>, QY: ControlPoint<T>>(
+    (x, y): (&Piece<T, QX>, &Piece<T, QY>),
+    slack: T,
+) -> T {
+    let d = y.last - y.first;
+    let length = d.norm();
+    let dx = x.last - x.first;
+    if !(length > T::zero()) {
+        return T::zero();
+    }
+    let (e, n) = (d / length, Vector2::new(-d.y, d.x) / length);
+    let r = x.first - y.first;
+    // a + b s within [lo, hi], for s in [0, 1].
+    let clip = |(s0, s1): (T, T), a: T, b: T, lo: T, hi: T| {
+        if b == T::zero() {
+            return if a >= lo && a <= hi {
+                (s0, s1)
+            } else {
+                (T::one(), T::zero())
+            };
+        }
+        let (p, q) = ((lo - a) / b, (hi - a) / b);
+        (s0.max(p.min(q)), s1.min(p.max(q)))
+    };
+    let unit = (T::zero(), T::one());
+    let across = clip(unit, n.dot(&r), n.dot(&dx), -slack, slack);
+    let (s0, s1) = clip(across, e.dot(&r), e.dot(&dx), -slack, length + slack);
+    (s1 - s0).max(T::zero()) * dx.norm()
+}
+
 /// The interval of a piece widened by its width on either side within the domain.
 fn widen<T: Scalar>((lo, hi): (T, T), (d0, d1): (T, T), reach: Reach) -> (T, T) {
     match reach {
@@ -133,21 +228,23 @@ fn widen<T: Scalar>((lo, hi): (T, T), (d0, d1): (T, T), reach: Reach) -> (T, T) 
     }
 }
 
-/// The start of Newton's method for two flat pieces: the closest points of their chords,
-/// if those come within the tolerance (plus the flatness of the pieces).
+/// The start of Newton's method for two flat pieces: where their chords come closest, if
+/// that is within the tolerance (plus the flatness of the pieces), the parameters where the
+/// pieces reach those points' fractions of their chords ([`Piece::at_fraction`]: the
+/// fraction mapped onto the interval is no parameter where the speed along the piece
+/// varies, as on a rational piece with unequal weights, and Newton's method may not recover
+/// from such a start).
 fn chord_candidate<T: Scalar, QA: ControlPoint<T>, QB: ControlPoint<T>>(
-    pa: &Piece<T, QA>,
-    pb: &Piece<T, QB>,
+    (pa, project_a): (&Piece<T, QA>, &impl Fn(&QA) -> Vector2<T>),
+    (pb, project_b): (&Piece<T, QB>, &impl Fn(&QB) -> Vector2<T>),
     tolerance: T,
 ) -> Option<Candidate<T>> {
     let (s, t, distance) = segment_closest(pa.first, pa.last, pb.first, pb.last);
     if distance > tolerance + pa.flatness + pb.flatness {
         return None;
     }
-    let (a0, a1) = pa.interval();
-    let (b0, b1) = pb.interval();
     Some(Candidate {
-        u: a0 + (a1 - a0) * s,
-        v: b0 + (b1 - b0) * t,
+        u: pa.at_fraction(s, project_a),
+        v: pb.at_fraction(t, project_b),
     })
 }

@@ -10,6 +10,7 @@ mod curves_features;
 mod features;
 mod intersections;
 mod intersections_examples;
+mod intersections_occt;
 mod maps;
 mod offset_cusps;
 mod overlaps;
