@@ -516,6 +516,33 @@ pub(crate) fn uniform_samples((a, b): (f64, f64), count: usize) -> Result<Vec<f6
         .collect())
 }
 
+/// The points `(us[a], vs[b])` of a grid, row after row (`b` fastest).
+pub(crate) fn grid_pairs<'a>(
+    us: &'a [f64],
+    vs: &'a [f64],
+) -> impl Iterator<Item = (f64, f64)> + 'a {
+    us.iter()
+        .flat_map(move |&u| vs.iter().map(move |&v| (u, v)))
+}
+
+/// `f` sampled on the grid of `counts.0 × counts.1` [`uniform_samples`] of the rectangle
+/// `domains`: the samples in each direction and the values, row after row.
+///
+/// # Errors
+/// As [`uniform_samples`] and `f`.
+pub(crate) fn sampled_grid(
+    domains: ((f64, f64), (f64, f64)),
+    counts: (usize, usize),
+    mut f: impl FnMut(f64, f64) -> Result<f64>,
+) -> Result<(Vec<f64>, Vec<f64>, Vec<f64>)> {
+    let us = uniform_samples(domains.0, counts.0)?;
+    let vs = uniform_samples(domains.1, counts.1)?;
+    let values = grid_pairs(&us, &vs)
+        .map(|(u, v)| f(u, v))
+        .collect::<Result<_>>()?;
+    Ok((us, vs, values))
+}
+
 /// Parameters in `[a, b]`: the knots of `knots` inside, each span split into `per_span`.
 pub(crate) fn span_samples(knots: &KnotVector<f64>, a: f64, b: f64, per_span: usize) -> Vec<f64> {
     let mut breaks = vec![a];

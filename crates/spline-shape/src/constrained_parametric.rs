@@ -16,11 +16,10 @@
 //! of `L` with the chosen sign (linear); the problem is the same [`ApproximationProblem`]
 //! as the convexity of functions.
 
-use crate::barrier::{BarrierOptions, BarrierReport};
-use crate::problem::{
-    ApproximationProblem, LeastSquaresObjective, Sign, furthest_feasible, normalized_rows, solve,
-    strictly_feasible, vstack,
-};
+use crate::barrier::BarrierOptions;
+use crate::constrained::{grid_pairs, sampled_grid};
+use crate::constrained_surface::ConstrainedSurfaceFit;
+use crate::problem::{ApproximationProblem, LeastSquaresObjective, Sign, normalized_rows, vstack};
 use crate::problem::{check_grid, normalized_forms};
 use nalgebra::{DMatrix, Vector2, Vector3};
 use nalgebra_sparse::CsrMatrix;
@@ -28,22 +27,9 @@ use spline_algebra::{SparseBilinear, curvature_numerators_with_jacobians};
 use spline_core::{Error, ErrorKind, Result};
 use spline_geom::{NurbsSurface, Surface};
 
-/// The fitted patch of [`ParametricConvexity::fit_grid`].
-#[derive(Clone, Debug)]
-pub struct ParametricConvexFit {
-    /// The patch `(X, Y, z)`.
-    pub surface: Surface<f64, Vector3<f64>>,
-    /// The patch of the unconstrained least-squares heights.
-    pub unconstrained: Surface<f64, Vector3<f64>>,
-    /// `½ Σ (z − h)²` at the samples.
-    pub objective: f64,
-    /// The same for the unconstrained fit.
-    pub unconstrained_objective: f64,
-    /// The solver's report.
-    pub report: BarrierReport,
-    /// `(linear, quadratic)` constraints.
-    pub num_constraints: (usize, usize),
-}
+/// The fitted patch `(X, Y, z)` of [`ParametricConvexity::fit_grid`]: its objective is
+/// `½ Σ (z − h)²` at the samples.
+pub type ParametricConvexFit = ConstrainedSurfaceFit<Vector3<f64>>;
 
 /// Heights over a planar parametrisation with `K ≥ 0` and the sign of `L` (see the module
 /// documentation).
@@ -183,37 +169,20 @@ impl ParametricConvexity {
         let n = self.base.control_points().len();
         let (linear, quadratic) = self.constraint_forms()?;
         let problem = ApproximationProblem::new(lsq, vstack(n, &[linear]), Some(quadratic));
-        let x_ls = problem.unconstrained_solution()?;
-        let unconstrained_objective = problem.least_squares().value(&x_ls);
         // A start inside: the paraboloid ± (X² + Y²) fitted at the samples (strictly convex
         // over any planar parametrisation), moved towards the unconstrained fit as far as
         // feasibility allows.
-        let bowl: Vec<f64> = us
-            .iter()
-            .flat_map(|&u| vs.iter().map(move |&v| (u, v)))
-            .map(|(u, v)| {
-                self.base
-                    .eval(u, v)
-                    .map(|p| self.sign.factor() * p.norm_squared())
-            })
-            .collect::<Result<_>>()?;
-        let bowl = problem.least_squares().solve_for(&bowl)?;
-        let mut start = x_ls.clone();
-        if strictly_feasible(&problem, &bowl) {
-            start = furthest_feasible(&problem, &bowl, &x_ls);
-        }
-        let solution = solve(&problem, std::slice::from_ref(&start), &self.options)?;
-        Ok(ParametricConvexFit {
-            surface: self.patch(solution.x.as_slice())?,
-            unconstrained: self.patch(x_ls.as_slice())?,
-            objective: solution.report.objective,
-            unconstrained_objective,
-            num_constraints: (
-                problem.num_linear_constraints(),
-                problem.num_quadratic_constraints(),
-            ),
-            report: solution.report,
-        })
+        let bowl = || {
+            let heights: Vec<f64> = grid_pairs(us, vs)
+                .map(|(u, v)| {
+                    self.base
+                        .eval(u, v)
+                        .map(|p| self.sign.factor() * p.norm_squared())
+                })
+                .collect::<Result<_>>()?;
+            problem.least_squares().solve_for(&heights).map(Some)
+        };
+        ConstrainedSurfaceFit::solve(&problem, bowl, &self.options, |x| self.patch(x.as_slice()))
     }
 
     /// Fits `f(X, Y)` sampled on a uniform grid of `counts.0 × counts.1` parameters.
@@ -226,13 +195,10 @@ impl ParametricConvexity {
         counts: (usize, usize),
         f: impl Fn(f64, f64) -> f64,
     ) -> Result<ParametricConvexFit> {
-        let us = crate::constrained::uniform_samples(self.base.knots_u().domain(), counts.0)?;
-        let vs = crate::constrained::uniform_samples(self.base.knots_v().domain(), counts.1)?;
-        let values: Vec<f64> = us
-            .iter()
-            .flat_map(|&u| vs.iter().map(move |&v| (u, v)))
-            .map(|(u, v)| self.base.eval(u, v).map(|p| f(p.x, p.y)))
-            .collect::<Result<_>>()?;
+        let domains = (self.base.knots_u().domain(), self.base.knots_v().domain());
+        let (us, vs, values) = sampled_grid(domains, counts, |u, v| {
+            self.base.eval(u, v).map(|p| f(p.x, p.y))
+        })?;
         self.fit_grid(&us, &vs, &values)
     }
 }

@@ -33,7 +33,7 @@
 //! ```
 
 use crate::barrier::{BarrierOptions, BarrierReport};
-use crate::constrained::{ConstraintCheck, span_samples, uniform_samples};
+use crate::constrained::{ConstraintCheck, sampled_grid, span_samples};
 use crate::problem::{
     ApproximationProblem, LeastSquaresObjective, Sign, check_interval, check_samples, derived_map,
     furthest_feasible, normalized_rows, refined, solve, strictly_feasible, vstack,
@@ -42,7 +42,7 @@ use crate::problem::{check_grid, normalized_forms};
 use nalgebra::{DVector, Matrix2, Matrix6, Vector6};
 
 use spline_algebra::{SparseBilinear, SplineMap, TensorMap, hessian_determinant};
-use spline_core::{Error, ErrorKind, KnotVector, Result};
+use spline_core::{ControlPoint, Error, ErrorKind, KnotVector, Result};
 use spline_geom::Surface;
 
 /// A rectangle `([a, b], [c, d])` of the parameter domain.
@@ -71,14 +71,17 @@ pub enum SurfaceConstraint {
     },
 }
 
-/// The result of [`SurfaceApproximation::fit_grid`].
+/// The result of [`SurfaceApproximation::fit_grid`] (a function: scalar control points, `P`
+/// = `f64`) and of [`crate::ParametricConvexity::fit_grid`] (the patch `(X, Y, z)`, `P` =
+/// `Vector3<f64>`: [`crate::ParametricConvexFit`]).
 #[derive(Clone, Debug)]
-pub struct ConstrainedSurfaceFit {
-    /// The constrained least-squares surface (a function: scalar control points).
-    pub surface: Surface<f64, f64>,
+pub struct ConstrainedSurfaceFit<P = f64> {
+    /// The constrained least-squares surface.
+    pub surface: Surface<f64, P>,
     /// The unconstrained least-squares surface on the same knots.
-    pub unconstrained: Surface<f64, f64>,
-    /// $f_0 = \tfrac12\\|Ax - b\\|^2$ of the constrained surface.
+    pub unconstrained: Surface<f64, P>,
+    /// $f_0 = \tfrac12\\|Ax - b\\|^2$ of the constrained surface: half the sum of the
+    /// squared errors of the heights at the samples.
     pub objective: f64,
     /// $f_0$ of the unconstrained surface.
     pub unconstrained_objective: f64,
@@ -86,6 +89,43 @@ pub struct ConstrainedSurfaceFit {
     pub report: BarrierReport,
     /// The number of linear and of quadratic constraints.
     pub num_constraints: (usize, usize),
+}
+
+impl<P: ControlPoint<f64>> ConstrainedSurfaceFit<P> {
+    /// Solves `problem` from its unconstrained least-squares solution, or, when `inside`
+    /// gives a strictly feasible point, from the point furthest from it towards that
+    /// solution found strictly feasible; `surface` makes the surfaces of the solutions.
+    ///
+    /// # Errors
+    /// As [`ApproximationProblem::unconstrained_solution`], `inside`, the solver and
+    /// `surface`.
+    pub(crate) fn solve(
+        problem: &ApproximationProblem,
+        inside: impl FnOnce() -> Result<Option<DVector<f64>>>,
+        options: &BarrierOptions,
+        surface: impl Fn(&DVector<f64>) -> Result<Surface<f64, P>>,
+    ) -> Result<Self> {
+        let x_ls = problem.unconstrained_solution()?;
+        let unconstrained_objective = problem.least_squares().value(&x_ls);
+        let mut start = x_ls.clone();
+        if let Some(inside) = inside()? {
+            if strictly_feasible(problem, &inside) {
+                start = furthest_feasible(problem, &inside, &x_ls);
+            }
+        }
+        let solution = solve(problem, std::slice::from_ref(&start), options)?;
+        Ok(Self {
+            surface: surface(&solution.x)?,
+            unconstrained: surface(&x_ls)?,
+            objective: solution.report.objective,
+            unconstrained_objective,
+            num_constraints: (
+                problem.num_linear_constraints(),
+                problem.num_quadratic_constraints(),
+            ),
+            report: solution.report,
+        })
+    }
 }
 
 /// Constrained least-squares approximation of a function of two variables on a grid of
@@ -345,39 +385,24 @@ impl SurfaceApproximation {
         values: &[f64],
     ) -> Result<ConstrainedSurfaceFit> {
         let problem = self.problem(us, vs, values)?;
-        let x_ls = problem.unconstrained_solution()?;
-        let unconstrained_objective = problem.least_squares().value(&x_ls);
-        let mut start = x_ls.clone();
-        if let Some(sign) = self.constraints.iter().find_map(|c| match c {
+        // Phase I on the non-convex constraints can stall at a local minimum of the largest
+        // violation: start instead from a strictly convex quadratic fitted to the data,
+        // moved as far towards the unconstrained fit as feasibility allows.
+        let convex = self.constraints.iter().find_map(|c| match c {
             SurfaceConstraint::Convex { sign, .. } => Some(*sign),
             SurfaceConstraint::Sign { .. } => None,
-        }) {
-            // Phase I on the non-convex constraints can stall at a local minimum of the
-            // largest violation: start instead from a strictly convex quadratic fitted to
-            // the data, moved as far towards the unconstrained fit as feasibility allows.
-            let q = self.quadratic_start(&problem, sign, us, vs, values)?;
-            if strictly_feasible(&problem, &q) {
-                start = furthest_feasible(&problem, &q, &x_ls);
-            }
-        }
-        let solution = solve(&problem, std::slice::from_ref(&start), &self.options)?;
-        let surface = |x: &DVector<f64>| {
+        });
+        let inside = || {
+            convex
+                .map(|sign| self.quadratic_start(&problem, sign, us, vs, values))
+                .transpose()
+        };
+        ConstrainedSurfaceFit::solve(&problem, inside, &self.options, |x| {
             Surface::new(
                 self.knots_u.clone(),
                 self.knots_v.clone(),
                 x.as_slice().to_vec(),
             )
-        };
-        Ok(ConstrainedSurfaceFit {
-            surface: surface(&solution.x)?,
-            unconstrained: surface(&x_ls)?,
-            objective: solution.report.objective,
-            unconstrained_objective,
-            num_constraints: (
-                problem.num_linear_constraints(),
-                problem.num_quadratic_constraints(),
-            ),
-            report: solution.report,
         })
     }
 
@@ -392,13 +417,8 @@ impl SurfaceApproximation {
         counts: (usize, usize),
         f: impl Fn(f64, f64) -> f64,
     ) -> Result<ConstrainedSurfaceFit> {
-        let us = uniform_samples(self.knots_u.domain(), counts.0)?;
-        let vs = uniform_samples(self.knots_v.domain(), counts.1)?;
-        let values: Vec<f64> = us
-            .iter()
-            .flat_map(|&u| vs.iter().map(move |&v| (u, v)))
-            .map(|(u, v)| f(u, v))
-            .collect();
+        let domains = (self.knots_u.domain(), self.knots_v.domain());
+        let (us, vs, values) = sampled_grid(domains, counts, |u, v| Ok(f(u, v)))?;
         self.fit_grid(&us, &vs, &values)
     }
 

@@ -293,6 +293,20 @@ pub(super) fn barrier_value(
     f.is_finite().then_some(f)
 }
 
+/// [`barrier_value`] at an iterate, which must lie in the domain.
+///
+/// # Errors
+/// [`ErrorKind::NonFinite`] when the iterate left it (or the value is not finite).
+pub(super) fn iterate_value(
+    problem: &impl BarrierProblem,
+    x: &DVector<f64>,
+    t: f64,
+    c: &mut DVector<f64>,
+) -> Result<f64> {
+    barrier_value(problem, x, t, c)
+        .ok_or_else(|| Error::new(ErrorKind::NonFinite, "iterate left the barrier domain"))
+}
+
 /// At an iterate, into the workspace: the constraints' Jacobian, the weights `1 / (−f_i)`
 /// and the gradient of the barrier objective, `t ∇f0 + Σ ∇f_i / (−f_i)`.
 pub(super) fn barrier_gradient(
@@ -373,8 +387,7 @@ pub(super) fn centre_in(
         }
         let direction = &ws.direction;
         let decrement = -ws.gradient.dot(direction);
-        let f = barrier_value(problem, x, t, &mut ws.c_trial)
-            .ok_or_else(|| Error::new(ErrorKind::NonFinite, "iterate left the barrier domain"))?;
+        let f = iterate_value(problem, x, t, &mut ws.c_trial)?;
         // Relative to the barrier value: at large t the gradient is a difference of large terms.
         if decrement / 2.0 <= options.newton_tolerance * (1.0 + f.abs()) {
             return Ok(step);

@@ -5,7 +5,7 @@ use super::{BarrierOptions, BarrierProblem, centre};
 use nalgebra::{DMatrix, DVector};
 use nalgebra_sparse::{CooMatrix, CsrMatrix};
 use spline_core::{Error, ErrorKind, Result};
-use std::cell::RefCell;
+use std::cell::{RefCell, RefMut};
 
 /// Phase I: a strictly feasible point near `x0`, found by minimising `s` subject to
 /// `f_i(x) < s` from `s = max f_i(x0) + 1` and stopping as soon as `s < −margin`.
@@ -146,14 +146,65 @@ fn bordered(inner: &CsrMatrix<f64>, scale: f64, out: &mut Option<CsrMatrix<f64>>
     }
 }
 
+impl PhaseScratch {
+    /// The first `m` of `weights` (the inner problem's constraints') in `self.weights`.
+    fn inner_weights(&mut self, weights: &DVector<f64>, m: usize) {
+        if self.weights.len() != m {
+            self.weights = DVector::zeros(m);
+        }
+        self.weights.copy_from(&weights.rows(0, m));
+    }
+
+    /// `self.dense`, `n × n` and zero.
+    fn zero_dense(&mut self, n: usize) {
+        if self.dense.nrows() != n {
+            self.dense = DMatrix::zeros(n, n);
+        }
+        self.dense.fill(0.0);
+    }
+
+    /// Adds `f(v)` to `out` for every entry `v ≠ 0` of `self.dense` (`n × n`), column after
+    /// column.
+    fn add_dense_to(&self, n: usize, out: &mut DMatrix<f64>, f: impl Fn(f64) -> f64) {
+        for j in 0..n {
+            for i in 0..n {
+                let v = self.dense[(i, j)];
+                if v != 0.0 {
+                    out[(i, j)] += f(v);
+                }
+            }
+        }
+    }
+}
+
 impl<P: BarrierProblem> PhaseOne<'_, P> {
-    /// The inner problem's variables of `x` in the scratch memory.
-    fn inner_x(&self, x: &DVector<f64>, scratch: &mut PhaseScratch) {
+    /// The scratch memory, with the inner problem's variables of `x` in it.
+    fn scratch_at(&self, x: &DVector<f64>) -> RefMut<'_, PhaseScratch> {
         let n = self.inner.dimension();
+        let mut scratch = self.scratch.borrow_mut();
         if scratch.x.len() != n {
             scratch.x = DVector::zeros(n);
         }
         scratch.x.copy_from(&x.rows(0, n));
+        scratch
+    }
+
+    /// The constraints at `x = (y, s)` into `out` from the inner ones `inner` at `y`:
+    /// `f_i(y) − s`, the bound `−s − 2 margin − 1` on `s`, then the box `±(y_j − centre_j) −
+    /// radius` coordinate after coordinate.
+    fn constraints_from(&self, x: &DVector<f64>, inner: &DVector<f64>, out: &mut DVector<f64>) {
+        let n = self.inner.dimension();
+        let m = inner.len();
+        let s = x[n];
+        for (i, v) in inner.iter().enumerate() {
+            out[i] = v - s;
+        }
+        out[m] = -s - 2.0 * self.margin - 1.0;
+        for j in 0..n {
+            let offset = x[j] - self.centre[j];
+            out[m + 1 + 2 * j] = offset - self.radius;
+            out[m + 2 + 2 * j] = -offset - self.radius;
+        }
     }
 }
 
@@ -197,19 +248,9 @@ impl<P: BarrierProblem> BarrierProblem for PhaseOne<'_, P> {
     }
     fn constraints(&self, x: &DVector<f64>) -> DVector<f64> {
         let n = self.inner.dimension();
-        let s = x[n];
         let inner = self.inner.constraints(&x.rows(0, n).into_owned());
-        let m = inner.len();
-        let mut c = DVector::zeros(m + 1 + 2 * n);
-        for (i, v) in inner.iter().enumerate() {
-            c[i] = v - s;
-        }
-        c[m] = -s - 2.0 * self.margin - 1.0;
-        for j in 0..n {
-            let offset = x[j] - self.centre[j];
-            c[m + 1 + 2 * j] = offset - self.radius;
-            c[m + 2 + 2 * j] = -offset - self.radius;
-        }
+        let mut c = DVector::zeros(inner.len() + 1 + 2 * n);
+        self.constraints_from(x, &inner, &mut c);
         c
     }
     fn constraint_jacobian(&self, x: &DVector<f64>) -> CsrMatrix<f64> {
@@ -252,9 +293,8 @@ impl<P: BarrierProblem> BarrierProblem for PhaseOne<'_, P> {
         let n = self.inner.dimension();
         out.fill(0.0);
         if self.objective_weight > 0.0 {
-            let mut scratch = self.scratch.borrow_mut();
+            let mut scratch = self.scratch_at(x);
             let s = &mut *scratch;
-            self.inner_x(x, s);
             if s.values.len() != n {
                 s.values = DVector::zeros(n);
             }
@@ -271,24 +311,13 @@ impl<P: BarrierProblem> BarrierProblem for PhaseOne<'_, P> {
             return;
         }
         let n = self.inner.dimension();
-        let mut scratch = self.scratch.borrow_mut();
+        let mut scratch = self.scratch_at(x);
         let s = &mut *scratch;
-        self.inner_x(x, s);
-        if s.dense.nrows() != n {
-            s.dense = DMatrix::zeros(n, n);
-        }
         // The inner Hessian first (as its own matrix), then weighted and scaled entry by
         // entry: the sums of the owned form.
-        s.dense.fill(0.0);
+        s.zero_dense(n);
         self.inner.add_objective_hessian(&s.x, 1.0, &mut s.dense);
-        for j in 0..n {
-            for i in 0..n {
-                let v = s.dense[(i, j)];
-                if v != 0.0 {
-                    out[(i, j)] += scale * (self.objective_weight * v);
-                }
-            }
-        }
+        s.add_dense_to(n, out, |v| scale * (self.objective_weight * v));
     }
 
     fn objective_hessian_into(&self, x: &DVector<f64>, out: &mut Option<CsrMatrix<f64>>) {
@@ -302,9 +331,8 @@ impl<P: BarrierProblem> BarrierProblem for PhaseOne<'_, P> {
             }
             return;
         }
-        let mut scratch = self.scratch.borrow_mut();
+        let mut scratch = self.scratch_at(x);
         let s = &mut *scratch;
-        self.inner_x(x, s);
         self.inner
             .objective_hessian_into(&s.x, &mut s.sparse_objective);
         if let Some(h) = &s.sparse_objective {
@@ -318,14 +346,9 @@ impl<P: BarrierProblem> BarrierProblem for PhaseOne<'_, P> {
         weights: &DVector<f64>,
         out: &mut Option<CsrMatrix<f64>>,
     ) -> bool {
-        let m = self.inner.num_constraints();
-        let mut scratch = self.scratch.borrow_mut();
+        let mut scratch = self.scratch_at(x);
         let s = &mut *scratch;
-        self.inner_x(x, s);
-        if s.weights.len() != m {
-            s.weights = DVector::zeros(m);
-        }
-        s.weights.copy_from(&weights.rows(0, m));
+        s.inner_weights(weights, self.inner.num_constraints());
         if !self
             .inner
             .weighted_constraint_hessian_into(&s.x, &s.weights, &mut s.sparse)
@@ -339,32 +362,20 @@ impl<P: BarrierProblem> BarrierProblem for PhaseOne<'_, P> {
     }
 
     fn constraints_into(&self, x: &DVector<f64>, out: &mut DVector<f64>) {
-        let n = self.inner.dimension();
         let m = self.inner.num_constraints();
-        let s = x[n];
-        let mut scratch = self.scratch.borrow_mut();
+        let mut scratch = self.scratch_at(x);
         let sc = &mut *scratch;
-        self.inner_x(x, sc);
         if sc.values.len() != m {
             sc.values = DVector::zeros(m);
         }
         self.inner.constraints_into(&sc.x, &mut sc.values);
-        for (i, v) in sc.values.iter().enumerate() {
-            out[i] = v - s;
-        }
-        out[m] = -s - 2.0 * self.margin - 1.0;
-        for j in 0..n {
-            let offset = x[j] - self.centre[j];
-            out[m + 1 + 2 * j] = offset - self.radius;
-            out[m + 2 + 2 * j] = -offset - self.radius;
-        }
+        self.constraints_from(x, &sc.values, out);
     }
 
     fn constraint_jacobian_into(&self, x: &DVector<f64>, out: &mut SparseRows) {
         let n = self.inner.dimension();
-        let mut scratch = self.scratch.borrow_mut();
+        let mut scratch = self.scratch_at(x);
         let s = &mut *scratch;
-        self.inner_x(x, s);
         self.inner.constraint_jacobian_into(&s.x, &mut s.rows);
         out.clear(n + 1);
         for (cols, vals) in s.rows.rows() {
@@ -391,30 +402,15 @@ impl<P: BarrierProblem> BarrierProblem for PhaseOne<'_, P> {
         out: &mut DMatrix<f64>,
     ) -> bool {
         let n = self.inner.dimension();
-        let m = self.inner.num_constraints();
-        let mut scratch = self.scratch.borrow_mut();
+        let mut scratch = self.scratch_at(x);
         let s = &mut *scratch;
-        self.inner_x(x, s);
-        if s.weights.len() != m {
-            s.weights = DVector::zeros(m);
-        }
-        s.weights.copy_from(&weights.rows(0, m));
-        if s.dense.nrows() != n {
-            s.dense = DMatrix::zeros(n, n);
-        }
-        s.dense.fill(0.0);
+        s.inner_weights(weights, self.inner.num_constraints());
+        s.zero_dense(n);
         if self
             .inner
             .add_weighted_constraint_hessian(&s.x, &s.weights, &mut s.dense)
         {
-            for j in 0..n {
-                for i in 0..n {
-                    let v = s.dense[(i, j)];
-                    if v != 0.0 {
-                        out[(i, j)] += v;
-                    }
-                }
-            }
+            s.add_dense_to(n, out, |v| v);
         } else if self
             .inner
             .weighted_constraint_hessian_into(&s.x, &s.weights, &mut s.sparse)

@@ -1,6 +1,9 @@
 //! The dense path: Newton's method with a trust region in the barrier's local metric.
 
-use super::{BarrierOptions, BarrierProblem, StopRule, Workspace, barrier_gradient, barrier_value};
+use super::{
+    BarrierOptions, BarrierProblem, StopRule, Workspace, barrier_gradient, barrier_value,
+    iterate_value,
+};
 use nalgebra::{Cholesky, DMatrix, DVector, Dyn};
 use spline_core::{Error, ErrorKind, Result};
 
@@ -22,8 +25,7 @@ pub(super) fn centre_trust_region(
 ) -> Result<usize> {
     let mut radius = 1.0;
     let mut accepted = 0;
-    let mut f = barrier_value(problem, x, t, &mut ws.c_trial)
-        .ok_or_else(|| Error::new(ErrorKind::NonFinite, "iterate left the barrier domain"))?;
+    let mut f = iterate_value(problem, x, t, &mut ws.c_trial)?;
     for _ in 0..options.max_newton_iterations {
         barrier_gradient(problem, x, t, ws)?;
         let metric = &mut ws.metric;

@@ -57,15 +57,7 @@ pub fn smooth_fewest_extrema(
     let mut k = step;
     while k <= MOST_AUTO_EXTREMA.min(room) {
         let mut o = options.clone();
-        o.extrema = (0..k)
-            .map(|i| {
-                if i % 2 == 0 {
-                    Extremum::maximum()
-                } else {
-                    Extremum::minimum()
-                }
-            })
-            .collect();
+        o.extrema = Extremum::alternating(k);
         match smooth(points, &o) {
             Ok(result) => {
                 let max = result.deviation.to_curve.max;

@@ -65,15 +65,7 @@ impl SmoothingOptions {
                 format!("at most {MAX_CURVATURE_EXTREMA} extrema can be allowed, got {k}"),
             ));
         }
-        self.extrema = (0..k)
-            .map(|i| {
-                if i % 2 == 0 {
-                    Extremum::maximum()
-                } else {
-                    Extremum::minimum()
-                }
-            })
-            .collect();
+        self.extrema = Extremum::alternating(k);
         Ok(())
     }
 }

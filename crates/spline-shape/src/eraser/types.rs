@@ -86,6 +86,20 @@ impl Extremum {
             at: None,
         }
     }
+
+    /// `count` extrema alternating from a maximum (`max, min, max, …`), each placed
+    /// automatically.
+    pub(crate) fn alternating(count: usize) -> Vec<Self> {
+        (0..count)
+            .map(|i| {
+                if i % 2 == 0 {
+                    Self::maximum()
+                } else {
+                    Self::minimum()
+                }
+            })
+            .collect()
+    }
 }
 
 impl FromStr for Extremum {

@@ -95,6 +95,21 @@ impl ApproximationProblem {
         }
     }
 
+    /// $\sum_k w_k H_k$ for the weights `weights` of the constraints (linear ones first)
+    /// into `out` (in place when it has the pattern already); `false` (`out` untouched)
+    /// without quadratic constraints.
+    pub(super) fn weighted_hessian_in_place(
+        &self,
+        weights: &[f64],
+        out: &mut Option<CsrMatrix<f64>>,
+    ) -> bool {
+        let Some(pattern) = &self.pattern else {
+            return false;
+        };
+        pattern.weighted_into(&weights[self.linear.nrows()..], out);
+        true
+    }
+
     /// The Jacobian of the constraints into `out`.
     pub(super) fn jacobian_in_place(&self, x: &DVector<f64>, out: &mut SparseRows) {
         out.clear(self.dimension());

@@ -333,11 +333,7 @@ impl BarrierProblem for ApproximationProblem {
         weights: &DVector<f64>,
         out: &mut Option<CsrMatrix<f64>>,
     ) -> bool {
-        let Some(pattern) = &self.pattern else {
-            return false;
-        };
-        pattern.weighted_into(&weights.as_slice()[self.linear.nrows()..], out);
-        true
+        self.weighted_hessian_in_place(weights.as_slice(), out)
     }
 }
 
@@ -441,13 +437,10 @@ impl BarrierProblem for Boxed<'_> {
         weights: &DVector<f64>,
         out: &mut Option<CsrMatrix<f64>>,
     ) -> bool {
-        let Some(pattern) = &self.inner.pattern else {
-            return false;
-        };
         let _ = x;
         let m = self.inner.num_constraints();
-        pattern.weighted_into(&weights.as_slice()[self.inner.linear.nrows()..m], out);
-        true
+        self.inner
+            .weighted_hessian_in_place(&weights.as_slice()[..m], out)
     }
 }
 
