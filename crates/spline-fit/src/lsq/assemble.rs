@@ -5,7 +5,7 @@
 // Index loops mirror the formulas (basis index ↔ control-point index).
 #![allow(clippy::needless_range_loop)]
 
-use super::{LeastSquares, LsqMethod};
+use super::{LeastSquares, LsqMethod, Rows};
 use crate::banded::{BandCholesky, BandQr};
 use spline_core::{
     ControlPoint, Error, ErrorKind, KnotVector, MAX_ORDER, Result, Scalar, SpanBasis, cast,
@@ -239,16 +239,6 @@ fn assemble_normal<T: Scalar, P: ControlPoint<T>>(
         ));
     }
     normal_dispatch::<T, P, true>(rows, check, band, rhs)
-}
-
-/// The data rows of a curve fit as the assembly kernels take them: the knots, the data's
-/// parameters and points, and their weights (`None`: all ones).
-#[derive(Clone, Copy)]
-pub(super) struct Rows<'a, T, P> {
-    pub(super) knots: &'a KnotVector<T>,
-    pub(super) params: &'a [T],
-    pub(super) points: &'a [P],
-    pub(super) weights: Option<&'a [T]>,
 }
 
 /// Data sets at least this large are assembled in parallel (`parallel` feature): curve fits,

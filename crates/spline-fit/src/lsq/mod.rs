@@ -25,6 +25,16 @@ use spline_core::{
 };
 use spline_geom::BSpline;
 
+/// The data rows of a curve fit as the assembly kernels take them: the knots, the data's
+/// parameters and points, and their weights (`None`: all ones).
+#[derive(Clone, Copy)]
+pub(crate) struct Rows<'a, T, P> {
+    pub(crate) knots: &'a KnotVector<T>,
+    pub(crate) params: &'a [T],
+    pub(crate) points: &'a [P],
+    pub(crate) weights: Option<&'a [T]>,
+}
+
 /// How the least-squares problem is solved.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub enum LsqMethod {

@@ -6,7 +6,7 @@
 //! The kernels come from the caller (`assemble`'s per-degree dispatch, the one-pass square
 //! sum): this module knows how to split and sum, not what a chunk computes.
 
-use super::assemble::Rows;
+use super::Rows;
 use rayon::prelude::*;
 use spline_core::{ControlPoint, KnotVector, Scalar};
 

@@ -19,7 +19,8 @@
 
 use super::profile::ProfileCholesky;
 use super::residual::{
-    Data, Placement, ResidualFit, TOL, check_degree, check_lengths, jump_rows, smoothed,
+    Data, Placement, ResidualFit, TOL, check_degree, check_lengths, check_periodic_ends, jump_rows,
+    smoothed,
 };
 use super::splrep_options::knots_around_data;
 use crate::interpolate::interpolate_with_knots;
@@ -27,7 +28,7 @@ use crate::lsq::LeastSquares;
 use crate::periodic::interpolate_periodic;
 use spline_core::{
     ControlPoint, Error, ErrorKind, KnotVector, MAX_DEGREE, Result, Scalar, cast, check_params,
-    from_count, to_f64,
+    from_count,
 };
 use spline_geom::BSpline;
 
@@ -42,33 +43,6 @@ struct Lsq<T, P> {
     fp: T,
     /// The sum of the diagonal of the triangular factor (FITPACK's start of `p`).
     diagonal: T,
-}
-
-/// scipy's test that data are periodic: every coordinate of the first and the last value
-/// agree as `numpy.allclose(y[0], y[-1], atol=1e-15)` has it (relative `1e-5` of the last).
-pub(super) fn check_periodic_ends<T: Scalar, P: ControlPoint<T>>(y: &[P]) -> Result<()> {
-    let (first, last) = (y[0], y[y.len() - 1]);
-    let close = (0..P::DIM).all(|c| {
-        let (a, b) = (first.coord(c), last.coord(c));
-        (a - b).abs() <= cast::<T>(1e-15) + cast::<T>(1e-5) * b.abs()
-    });
-    if close {
-        Ok(())
-    } else {
-        Err(Error::new(
-            ErrorKind::InvalidArgument,
-            format!(
-                "First and last points does not match which is required for `bc_type='periodic'`: \
-                 the first value is {:?}, the last {:?}",
-                (0..P::DIM)
-                    .map(|c| to_f64(first.coord(c)))
-                    .collect::<Vec<_>>(),
-                (0..P::DIM)
-                    .map(|c| to_f64(last.coord(c)))
-                    .collect::<Vec<_>>()
-            ),
-        ))
-    }
 }
 
 /// The wrapped knots around one period `t[k] = xb … t[n − k − 1] = xe` (FITPACK's

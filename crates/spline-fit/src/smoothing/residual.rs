@@ -12,7 +12,6 @@
 //!    least-squares problem with the jump rows weighted by `1/p`, `p` found by FITPACK's
 //!    rational interpolation (`fprati`) to a relative accuracy of `0.001`.
 
-use super::periodic::check_periodic_ends;
 use crate::banded::BandCholesky;
 use crate::interpolate::interpolate_with_knots;
 use crate::lsq::{LeastSquares, LsqMethod};
@@ -675,4 +674,31 @@ pub(super) fn jump_rows<T: Scalar>(t: &[T], k: usize) -> Vec<(usize, Vec<T>)> {
             (jj, row)
         })
         .collect()
+}
+
+/// scipy's test that data are periodic: every coordinate of the first and the last value
+/// agree as `numpy.allclose(y[0], y[-1], atol=1e-15)` has it (relative `1e-5` of the last).
+pub(super) fn check_periodic_ends<T: Scalar, P: ControlPoint<T>>(y: &[P]) -> Result<()> {
+    let (first, last) = (y[0], y[y.len() - 1]);
+    let close = (0..P::DIM).all(|c| {
+        let (a, b) = (first.coord(c), last.coord(c));
+        (a - b).abs() <= cast::<T>(1e-15) + cast::<T>(1e-5) * b.abs()
+    });
+    if close {
+        Ok(())
+    } else {
+        Err(Error::new(
+            ErrorKind::InvalidArgument,
+            format!(
+                "First and last points does not match which is required for `bc_type='periodic'`: \
+                 the first value is {:?}, the last {:?}",
+                (0..P::DIM)
+                    .map(|c| to_f64(first.coord(c)))
+                    .collect::<Vec<_>>(),
+                (0..P::DIM)
+                    .map(|c| to_f64(last.coord(c)))
+                    .collect::<Vec<_>>()
+            ),
+        ))
+    }
 }
