@@ -8,7 +8,8 @@
 //! 3. The Python package (`python/`): built as a wheel and installed into a virtual
 //!    environment under `target/`, then its pytest suite (`test_python`), scipy's own
 //!    `test_bsplines.py` with the package in scipy's place among them.
-//! 4. Open CASCADE's second opinion on the STEP and IGES files (`test_occt`).
+//! 4. Open CASCADE's second opinion on the STEP and IGES files and on the geometry
+//!    operations (`test_occt`).
 //!
 //! Suites that need more than the Rust toolchain (a Python virtual environment, a browser)
 //! install what they need under `target/` or through the system's package manager first, so

@@ -1,7 +1,12 @@
-//! The Open CASCADE suite of `cargo xtask test` (`cargo xtask test occt` alone):
-//! `tests/occt/check.py` writes random B-spline and NURBS curves and surfaces to STEP and IGES
-//! with the tool and reads them with Open CASCADE 8, and the other way round, then whole
-//! B-rep solids and malformed files (see `tests/occt/README.md`).
+//! The Open CASCADE suite of `cargo xtask test` (`cargo xtask test occt` alone), two scripts
+//! (see `tests/occt/README.md`):
+//!
+//! 1. `tests/occt/check.py`, the CAD exchange: writes random B-spline and NURBS curves and
+//!    surfaces to STEP and IGES with the tool and reads them with Open CASCADE 8, and the
+//!    other way round, then whole B-rep solids and malformed files;
+//! 2. `tests/occt/geometry.py`, the geometry: evaluation, knot insertion, degree elevation,
+//!    knot removal, closest points, intersections, offsets, arc length and the constructions
+//!    of `spline make` on random cases, each against Open CASCADE's own operation.
 //!
 //! Open CASCADE comes from the Python package index (`cadquery-ocp-novtk`, OCCT 8 with
 //! Python bindings), installed into the test virtual environment `target/python-venv` on
@@ -11,7 +16,7 @@ use crate::bench::{ensure_venv_with, target_dir};
 use std::path::Path;
 use std::process::Command;
 
-/// Builds the tool, then runs the check; fails with its table on any disagreement.
+/// Builds the tool, then runs both checks; fails with the table of the first that disagrees.
 pub(crate) fn run_suite(root: &Path) -> Result<(), String> {
     let cargo = std::env::var("CARGO").unwrap_or_else(|_| "cargo".into());
     let status = Command::new(cargo)
@@ -33,18 +38,22 @@ pub(crate) fn run_suite(root: &Path) -> Result<(), String> {
         &["numpy", "cadquery-ocp-novtk"],
     )?;
     let binary = target.join("debug").join("spline");
-    let status = Command::new(&python)
-        .arg(root.join("tests/occt/check.py"))
-        .arg(&binary)
-        .arg(target.join("occt"))
-        .env("PYTHONDONTWRITEBYTECODE", "1")
-        .status()
-        .map_err(|e| format!("occt: cannot run {}: {e}", python.display()))?;
-    if status.success() {
-        Ok(())
-    } else {
-        Err(format!(
-            "the Open CASCADE check (tests/occt/check.py) failed ({status})"
-        ))
+    for (script, work, what) in [
+        ("check.py", "occt", "CAD exchange"),
+        ("geometry.py", "occt-geometry", "geometry"),
+    ] {
+        let status = Command::new(&python)
+            .arg(root.join("tests/occt").join(script))
+            .arg(&binary)
+            .arg(target.join(work))
+            .env("PYTHONDONTWRITEBYTECODE", "1")
+            .status()
+            .map_err(|e| format!("occt: cannot run {}: {e}", python.display()))?;
+        if !status.success() {
+            return Err(format!(
+                "the Open CASCADE check of the {what} (tests/occt/{script}) failed ({status})"
+            ));
+        }
     }
+    Ok(())
 }
