@@ -25,10 +25,12 @@
 //!    the sufficient conditions closer to `g ≥ 0` itself). The best curve is kept.
 
 mod closed;
+mod closed_topology;
 mod distances;
 mod driver;
 mod fewest_extrema;
 mod input;
+mod open_topology;
 mod pieces;
 mod placement;
 mod problem;
