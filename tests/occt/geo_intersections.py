@@ -14,7 +14,7 @@ from OCP.GeomAPI import GeomAPI_IntCS, GeomAPI_IntSS, GeomAPI_ProjectPointOnSurf
 from OCP.gp import gp_Pnt, gp_Pnt2d
 
 from check import distinct, domain, occt_curve, occt_surface, random_knots, size_of
-from geo_support import (ask, curve_json, curve_samples, EXACT, failed, graph_surface, moved, occt_curve2d,
+from geo_support import (ask, ask_or_fail, curve_json, curve_samples, EXACT, graph_surface, moved, occt_curve2d,
                          rotation, save, segment_distances, values, xyz)
 
 
@@ -98,10 +98,8 @@ def curve_curve(tool, rng, row, n):
         fa, fb = save(tool, a), save(tool, b)
         detail = f"{label}spline intersect {fa} {fb}"
         size = max(size_of(a), size_of(b))
-        try:
-            mine = ask(tool, "intersect", fa, fb)
-        except RuntimeError as e:
-            row.add(False, math.inf, f"{detail}: {failed(e)}")
+        mine = ask_or_fail(tool, row, detail, "intersect", fa, fb)
+        if mine is None:
             continue
         ca, cb = occt_curve2d(a), occt_curve2d(b)
         tol = 1e-9 * size
@@ -282,10 +280,8 @@ def curve_surface(tool, rng, row, n):
         fc, fs = save(tool, curve), save(tool, surface)
         detail = f"spline intersect {fc} {fs}"
         size = max(size_of(surface), size_of(curve))
-        try:
-            mine = ask(tool, "intersect", fc, fs)
-        except RuntimeError as e:
-            row.add(False, math.inf, f"{detail}: {failed(e)}")
+        mine = ask_or_fail(tool, row, detail, "intersect", fc, fs)
+        if mine is None:
             continue
         gc, gs = occt_curve(curve), occt_surface(surface)
         inter = GeomAPI_IntCS(gc, gs)
@@ -411,10 +407,8 @@ def compare_surface_pair(tool, row, a, b, label=""):
     size = max(size_of(a), size_of(b))
     tolerance = 1e-6 * size
     detail = f"{label}spline intersect {fa} {fb} --tolerance {tolerance!r}"
-    try:
-        mine = ask(tool, "intersect", fa, fb, "--tolerance", repr(tolerance))
-    except RuntimeError as e:
-        row.add(False, math.inf, f"{detail}: {failed(e)}")
+    mine = ask_or_fail(tool, row, detail, "intersect", fa, fb, "--tolerance", repr(tolerance))
+    if mine is None:
         return
     ga, gb = occt_surface(a), occt_surface(b)
     inter = GeomAPI_IntSS(ga, gb, 1e-7 * size)

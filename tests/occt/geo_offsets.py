@@ -20,7 +20,7 @@ from OCP.gp import gp_Ax1, gp_Ax2, gp_Ax3, gp_Circ, gp_Dir, gp_Pnt, gp_Vec
 
 from check import domain, occt_curve, occt_surface, random_object, size_of
 from geo_structural import CURVE_KINDS
-from geo_support import (ask, EXACT, failed, gauss_length, graph_surface, moved, occt_curve2d, pad, rotation,
+from geo_support import (ask, ask_or_fail, EXACT, failed, gauss_length, graph_surface, moved, occt_curve2d, pad, rotation,
                          save, smooth_curve, values, xyz)
 
 
@@ -145,10 +145,8 @@ def run_curve_offset(tool, rng, row, obj, direction, exact=False, distance=None,
     if direction is not None:
         args += ["--direction", json.dumps(np.asarray(direction).tolist())]
     detail = label + "spline " + " ".join(args)
-    try:
-        out = ask(tool, *args)
-    except RuntimeError as e:
-        row.add(False, math.inf, f"{detail}: {failed(e)}")
+    out = ask_or_fail(tool, row, detail, *args)
+    if out is None:
         return
     if dim == 2:
         theirs = Geom2d_OffsetCurve(occt_curve2d(obj), -distance)
@@ -170,7 +168,7 @@ def run_curve_offset(tool, rng, row, obj, direction, exact=False, distance=None,
     # (the reproducers) may pass it: the cusps are then where 1 - d kappa changes sign (kappa
     # signed, positive turning left), found here from Open CASCADE's derivatives.
     expected = [] if fixed_distance is None else planar_cusps(geom, a, b, distance)
-    cusps = [c if isinstance(c, (int, float)) else c["u"] for c in out["cusps"]]
+    cusps = out["cusps"]  # their parameters
     ok = ok and len(cusps) == len(expected) and all(abs(c - e) <= 1e-9 * (b - a) for c, e in zip(cusps, expected))
     ok = ok and (not exact or out["max_error"] == 0)
     row.add(ok, worst / size, f"{detail}: {worst:.3e} from Open CASCADE's offset (max_error {out['max_error']:.3e}, cusps {cusps}, expected {expected})")
@@ -281,10 +279,8 @@ def arclength(tool, rng, row, n):
         f = save(tool, obj)
         lengths = [theirs * x for x in fractions]
         detail = f"{label}spline arclength {f} --tolerance 1e-12 --at-length '{json.dumps(lengths)}'"
-        try:
-            out = ask(tool, "arclength", f, "--tolerance", "1e-12", "--at-length", json.dumps(lengths))
-        except RuntimeError as e:
-            row.add(False, math.inf, f"{detail}: {failed(e)}")
+        out = ask_or_fail(tool, row, detail, "arclength", f, "--tolerance", "1e-12", "--at-length", json.dumps(lengths))
+        if out is None:
             continue
         mine = out["length"]
         err = abs(mine - theirs) / theirs
@@ -334,10 +330,8 @@ def circles(tool, rng, row, n):
             start, sweep = float(rng.uniform(-360, 360)), float(rng.choice([-1, 1]) * rng.uniform(1, 360))
             args = ["make", "arc"] + args + ["--start", repr(start), "--sweep", repr(sweep), "--max-piece", repr(float(rng.uniform(30, 170)))]
         detail = "spline " + " ".join(args)
-        try:
-            obj = ask(tool, *args)
-        except RuntimeError as e:
-            row.add(False, math.inf, f"{detail}: {failed(e)}")
+        obj = ask_or_fail(tool, row, detail, *args)
+        if obj is None:
             continue
         xdir = np.array([1.0, 0.0, 0.0]) if planar else least_aligned_axis(normal)
         circ = gp_Circ(gp_Ax2(gp_Pnt(*pad(center)), gp_Dir(*normal), gp_Dir(*xdir)), radius)
@@ -376,10 +370,8 @@ def spheres_tori(tool, rng, row, n):
                     "--axis", json.dumps(axis.tolist())]
             scale, small = max(major + minor, float(np.max(np.abs(center)))), minor
         detail = "spline " + " ".join(args)
-        try:
-            obj = ask(tool, *args)
-        except RuntimeError as e:
-            row.add(False, math.inf, f"{detail}: {failed(e)}")
+        obj = ask_or_fail(tool, row, detail, *args)
+        if obj is None:
             continue
         frame = gp_Ax3(gp_Pnt(*center), gp_Dir(*axis))
         surface = Geom_SphericalSurface(frame, radius) if k % 2 == 0 else Geom_ToroidalSurface(frame, major, minor)
@@ -439,10 +431,8 @@ def revolutions(tool, rng, row, n):
         args = ["make", "revolve", f, "--axis-point", json.dumps(point.tolist()), "--axis-direction", json.dumps(direction.tolist()),
                 "--angle", repr(angle)]
         detail = "spline " + " ".join(args)
-        try:
-            obj = ask(tool, *args)
-        except RuntimeError as e:
-            row.add(False, math.inf, f"{detail}: {failed(e)}")
+        obj = ask_or_fail(tool, row, detail, *args)
+        if obj is None:
             continue
         geom = occt_curve(profile)
         rev = Geom_SurfaceOfRevolution(geom, gp_Ax1(gp_Pnt(*point), gp_Dir(*direction)))

@@ -54,6 +54,16 @@ def ask(tool, *args):
     return json.loads(tool.run(*[str(a) for a in args]))
 
 
+def ask_or_fail(tool, row, detail, *args):
+    """The tool's answer to `args`, or None after the row records its error (with the known
+    bug it shows named) as a failure of the case `detail`."""
+    try:
+        return ask(tool, *args)
+    except RuntimeError as e:
+        row.add(False, math.inf, f"{detail}: {failed(e)}")
+        return None
+
+
 def failed(e):
     """The tool's error message, with the known bug it shows named."""
     if "outside the domain" in str(e):

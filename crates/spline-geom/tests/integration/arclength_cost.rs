@@ -180,6 +180,26 @@ fn tight_accuracies_on_a_steep_rational_sextic() {
     }
 }
 
+/// A circular arc (centre, radius, start and sweep in radians) made steep by the Möbius
+/// reparametrization with `factor`, raised to degree 6 and mapped onto `[-1.9, -0.5]`: the
+/// kind of curve of the reproducer, with a closed-form length.
+fn steep_sextic_arc(
+    centre: Vector2<f64>,
+    radius: f64,
+    start: f64,
+    sweep: f64,
+    factor: f64,
+) -> NurbsCurve<f64, 2> {
+    NurbsCurve::arc(&Frame::planar(centre), radius, start, sweep)
+        .unwrap()
+        .mobius_reparametrized(factor)
+        .unwrap()
+        .elevate_degree(4)
+        .unwrap()
+        .reparametrized(-1.9, -0.5)
+        .unwrap()
+}
+
 #[test]
 fn lengths_and_parameters_at_lengths_of_steep_rational_circular_arcs() {
     // Arcs of circles (rational quadratic pieces of at most 90°), made steep by a Möbius
@@ -194,14 +214,7 @@ fn lengths_and_parameters_at_lengths_of_steep_rational_circular_arcs() {
         (Vector2::new(0.5, 0.25), 250.0, 2.5, 2.0, 40.0),
     ];
     for (centre, radius, start, sweep, factor) in cases {
-        let arc = NurbsCurve::arc(&Frame::planar(centre), radius, start, sweep)
-            .unwrap()
-            .mobius_reparametrized(factor)
-            .unwrap()
-            .elevate_degree(4)
-            .unwrap()
-            .reparametrized(-1.9, -0.5)
-            .unwrap();
+        let arc = steep_sextic_arc(centre, radius, start, sweep, factor);
         let exact = radius * sweep;
         let case = format!("radius {radius}, sweep {sweep}, factor {factor}");
         let angle = |u: f64| {
@@ -256,14 +269,7 @@ fn accuracies_below_the_rounding_of_the_speed_give_what_rounding_allows() {
     // estimates closer than that. The accuracy asked is then raised to the speed's rounding
     // (it took 2⁴⁸ bisections): the length is as accurate as the curve's own rounding.
     let (centre, radius, sweep): (Vector2<f64>, f64, f64) = (Vector2::new(1e3, -5e2), 2e-3, 5.5);
-    let arc = NurbsCurve::arc(&Frame::planar(centre), radius, 1.0, sweep)
-        .unwrap()
-        .mobius_reparametrized(0.05)
-        .unwrap()
-        .elevate_degree(4)
-        .unwrap()
-        .reparametrized(-1.9, -0.5)
-        .unwrap();
+    let arc = steep_sextic_arc(centre, radius, 1.0, sweep, 0.05);
     let exact = radius * sweep;
     let rounding = 64.0 * f64::EPSILON * centre.norm() / radius;
     for accuracy in [1e-12, 1e-15] {
