@@ -77,7 +77,9 @@ pub(crate) fn ensure_venv_with(
         eprintln!("installing {} with pip", packages.join(", "));
         status_of(
             Command::new(&python)
-                .args(["-m", "pip", "install", "--quiet"])
+                // No wheel cache: on a CI machine the cache is written once and never read
+                // again, and the Open CASCADE wheel alone is hundreds of megabytes.
+                .args(["-m", "pip", "install", "--quiet", "--no-cache-dir"])
                 .args(packages),
             &format!("pip install {}", packages.join(" ")),
         )?;

@@ -91,6 +91,7 @@ pub(crate) fn prepare(root: &Path, build: Build) -> Result<PathBuf, String> {
                 "--quiet",
                 "--force-reinstall",
                 "--no-deps",
+                "--no-cache-dir",
             ])
             .arg(&wheel),
         "pip install (the wheel)",
