@@ -5,15 +5,15 @@
 
 mod band_inverse;
 mod brent;
+mod fitpack_steps;
 mod periodic;
 mod profile;
 mod residual;
 mod splrep;
 mod splrep_options;
 
-pub use residual::{
-    MAX_RESIDUAL_ITERATIONS, ResidualFit, smoothing_curve_to_residual, smoothing_to_residual,
-};
+pub use fitpack_steps::MAX_RESIDUAL_ITERATIONS;
+pub use residual::{ResidualFit, smoothing_curve_to_residual, smoothing_to_residual};
 pub use splrep::{
     SplrepOptions, chord_length_parameters, generate_knots, make_splprep, make_splrep,
 };

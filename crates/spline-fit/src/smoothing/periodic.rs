@@ -17,10 +17,10 @@
 //! then the jumps of the `k`-th derivative at the interior knots minimised subject to the
 //! residual target.
 
+use super::fitpack_steps::jump_rows;
 use super::profile::ProfileCholesky;
 use super::residual::{
-    Data, Placement, ResidualFit, TOL, check_degree, check_lengths, check_periodic_ends, jump_rows,
-    smoothed,
+    Data, Placement, ResidualFit, TOL, check_degree, check_lengths, check_periodic_ends, smoothed,
 };
 use super::splrep_options::knots_around_data;
 use crate::interpolate::interpolate_with_knots;
