@@ -196,7 +196,7 @@ pub fn intersect_curves<T: Scalar, A: PlanarCurve<T>, B: PlanarCurve<T>>(
         }
     }
     Ok(CurveIntersections {
-        points: deduplicate(points, merge_u, merge_v, setting.radius()),
+        points: deduplicate(points, (merge_u, merge_v), setting.radius(), tolerance),
         overlaps,
     })
 }
@@ -362,7 +362,7 @@ pub fn self_intersections<T: Scalar, C: PlanarCurve<T>>(
         }
     }
     Ok(CurveIntersections {
-        points: deduplicate(points, merge, merge, setting.radius()),
+        points: deduplicate(points, (merge, merge), setting.radius(), tolerance),
         overlaps,
     })
 }

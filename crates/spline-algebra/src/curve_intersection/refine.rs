@@ -134,16 +134,18 @@ fn refine_tangency<T: Scalar, A: PlanarCurve<T>, B: PlanarCurve<T>>(
 }
 
 /// Keeps one intersection per point: results whose parameters differ by less than
-/// `merge_u`, `merge_v` are the same intersection; so are results whose points lie within
-/// `radius` of each other with parameters within `10⁵` times those (two crossings closer
-/// than `√(8 tolerance R)` on a curve of radius `R` cannot be told from a tangency at that
-/// tolerance; the branches on either side of a cusp meet like that). The first in `u` is
-/// kept, tangential if any of its group is.
+/// `merge_u`, `merge_v` are the same intersection; so are results with parameters within
+/// `10⁵` times those whose points lie within `tolerance` of each other (the branches on
+/// either side of a cusp meet like that), or within `radius` when either is a tangency (two
+/// curves that touch stay within the tolerance along an arc of half-width about
+/// `√(8 tolerance R)` on a curve of radius `R`, and Newton's method may stop anywhere on
+/// it). Two transversal crossings farther apart than the tolerance are two intersections
+/// however close. The first in `u` is kept, tangential if any of its group is.
 pub(super) fn deduplicate<T: Scalar>(
     mut found: Vec<CurveIntersection<T>>,
-    merge_u: T,
-    merge_v: T,
+    (merge_u, merge_v): (T, T),
     radius: T,
+    tolerance: T,
 ) -> Vec<CurveIntersection<T>> {
     found.sort_by(|x, y| x.u.partial_cmp(&y.u).unwrap_or(std::cmp::Ordering::Equal));
     let wide: T = cast(1e5);
@@ -151,10 +153,14 @@ pub(super) fn deduplicate<T: Scalar>(
     for f in found {
         if let Some(same) = out.iter_mut().find(|g| {
             let (du, dv) = ((g.u - f.u).abs(), (g.v - f.v).abs());
+            let distance = (g.point - f.point).norm();
+            let reach = if g.tangential || f.tangential {
+                radius
+            } else {
+                tolerance
+            };
             (du <= merge_u && dv <= merge_v)
-                || ((g.point - f.point).norm() <= radius
-                    && du <= merge_u * wide
-                    && dv <= merge_v * wide)
+                || (distance <= reach && du <= merge_u * wide && dv <= merge_v * wide)
         }) {
             same.tangential |= f.tangential;
             continue;
