@@ -124,7 +124,9 @@ pub use space::{
     torsion,
 };
 pub use sparse::kron;
-pub use surface_features::{SurfaceFeatureLines, surface_feature_lines};
+pub use surface_features::{
+    SurfaceFeatureLines, SurfaceFeatures, surface_feature_lines, surface_features,
+};
 pub use surface_numerators::{
     CurvatureNumerators, NumeratorJacobians, curvature_numerators,
     curvature_numerators_with_jacobians, parabolic_lines,

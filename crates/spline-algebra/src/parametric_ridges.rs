@@ -13,7 +13,7 @@
 mod march;
 
 use crate::ridge_function::{Patch, best_form, degenerate, snapped};
-use crate::surface_numerators::curvature_numerators;
+use crate::surface_numerators::{CurvatureNumerators, curvature_numerators};
 use crate::umbilics::CommonZeros;
 use crate::zero_set::{UvPolyline, bezier_patches, chain};
 use march::{Marcher, march_all};
@@ -110,14 +110,31 @@ pub fn surface_ridges_with_umbilics(
     samples: usize,
     umbilics: &CommonZeros,
 ) -> Result<SurfaceRidges> {
+    check_samples(samples)?;
+    ridges_from(surface, &curvature_numerators(surface)?, samples, umbilics)
+}
+
+/// The samples per patch of the ridges: 1 to 10 000.
+fn check_samples(samples: usize) -> Result<()> {
     if samples == 0 || samples > 10_000 {
         return Err(Error::new(
             ErrorKind::InvalidArgument,
             format!("the samples per patch must be between 1 and 10000, got {samples}"),
         ));
     }
+    Ok(())
+}
+
+/// [`surface_ridges_with_umbilics`] from the surface's curvature numerators, already
+/// computed.
+pub(crate) fn ridges_from(
+    surface: &NurbsSurface<f64, 3>,
+    n: &CurvatureNumerators<f64>,
+    samples: usize,
+    umbilics: &CommonZeros,
+) -> Result<SurfaceRidges> {
+    check_samples(samples)?;
     let level = (samples.next_power_of_two().trailing_zeros()).clamp(MIN_LEVEL, MAX_LEVEL);
-    let n = curvature_numerators(surface)?;
     let bu = n.first[0].knots_u().domain_breaks();
     let bv = n.first[0].knots_v().domain_breaks();
     let mut columns: Vec<Vec<Patch>> = Vec::new();

@@ -312,7 +312,14 @@ fn numerators<T: Scalar>(
 /// # Errors
 /// As [`curvature_numerators`] and [`crate::zero_set`].
 pub fn parabolic_lines(surface: &NurbsSurface<f64, 3>, samples: usize) -> Result<ZeroSet> {
-    let numerators = curvature_numerators(surface)?;
+    parabolic_lines_from(&curvature_numerators(surface)?, samples)
+}
+
+/// [`parabolic_lines`] from the surface's curvature numerators, already computed.
+pub(crate) fn parabolic_lines_from(
+    numerators: &CurvatureNumerators<f64>,
+    samples: usize,
+) -> Result<ZeroSet> {
     let mut set = zero_set(&numerators.gaussian, samples)?;
     let regular = |p: &[f64; 2]| numerators.area.eval(p[0], p[1]).map(|a| a != 0.0);
     let mut curves = Vec::new();

@@ -2,7 +2,7 @@
 //! the umbilics of a surface as the common zeros of its umbilic numerators.
 
 use crate::ridge_function::Patch;
-use crate::surface_numerators::curvature_numerators;
+use crate::surface_numerators::{CurvatureNumerators, curvature_numerators};
 use crate::zero_set::bezier_patches;
 use spline_core::{Error, ErrorKind, KnotVector, Result};
 use spline_geom::{NurbsSurface, Surface};
@@ -334,7 +334,14 @@ fn newton(
 /// # Errors
 /// As [`crate::curvature_numerators`].
 pub fn umbilics(surface: &NurbsSurface<f64, 3>) -> Result<CommonZeros> {
-    let n = curvature_numerators(surface)?;
+    umbilics_from(surface, &curvature_numerators(surface)?)
+}
+
+/// [`umbilics`] from the surface's curvature numerators, already computed.
+pub(crate) fn umbilics_from(
+    surface: &NurbsSurface<f64, 3>,
+    n: &CurvatureNumerators<f64>,
+) -> Result<CommonZeros> {
     let [a, b] = &n.umbilic;
     let mut zeros = common_zeros(a, b)?;
     let scale = n

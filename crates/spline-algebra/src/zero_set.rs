@@ -10,9 +10,10 @@ use spline_geom::{BSpline, Direction, Surface};
 
 /// Largest number of halvings of a patch before it is reported as a singular point.
 const MAX_DEPTH: usize = 24;
-/// Largest number of boxes examined in all: a zero curve along which `f` does not change
-/// sign (a double zero) is never separated by subdivision; past the budget the remaining
-/// boxes are reported as singular points instead of halved further.
+/// Largest number of boxes examined in all (shared out among the groups of patches in
+/// proportion to their number, [`trace_patches`]): a zero curve along which `f` does not
+/// change sign (a double zero) is never separated by subdivision; past the budget the
+/// remaining boxes are reported as singular points instead of halved further.
 const BOX_BUDGET: usize = 50_000;
 
 /// Points of a polyline in the parameter domain.
@@ -71,15 +72,8 @@ pub fn zero_set(f: &Surface<f64, f64>, samples: usize) -> Result<ZeroSet> {
         ));
     }
     let (bu, bv) = (f.knots_u().domain_breaks(), f.knots_v().domain_breaks());
-    let mut tracer = Tracer {
-        samples,
-        out: ZeroSet::default(),
-        pieces: Vec::new(),
-        budget: BOX_BUDGET,
-    };
-    for patch in bezier_patches(f, &bu, &bv)? {
-        tracer.patch(&patch, 0)?;
-    }
+    let patches = bezier_patches(f, &bu, &bv)?;
+    let mut tracer = trace_patches(&patches, samples)?;
     let scale = (bu[bu.len() - 1] - bu[0]).max(bv[bv.len() - 1] - bv[0]);
     let width = [
         (bu[bu.len() - 1] - bu[0]) / (bu.len() - 1) as f64,
@@ -88,6 +82,64 @@ pub fn zero_set(f: &Surface<f64, f64>, samples: usize) -> Result<ZeroSet> {
     let pieces = merge_lines(std::mem::take(&mut tracer.pieces), width, samples);
     tracer.out.curves = chain(pieces, 1e-9 * scale);
     Ok(tracer.out)
+}
+
+/// Patches per group of [`trace_patches`]: each group is traced on its own, with its share
+/// of [`BOX_BUDGET`].
+const PATCHES_PER_GROUP: usize = 64;
+
+/// Traces the patches in groups of [`PATCHES_PER_GROUP`] on every core, each group with
+/// the share of [`BOX_BUDGET`] of its patches (all of it for a spline of one group); what
+/// the groups find is gathered in patch order, so the result does not depend on the
+/// number of threads.
+fn trace_patches(patches: &[Surface<f64, f64>], samples: usize) -> Result<Tracer> {
+    let groups: Vec<&[Surface<f64, f64>]> = patches.chunks(PATCHES_PER_GROUP).collect();
+    let trace_group = |group: &[Surface<f64, f64>]| -> Result<Tracer> {
+        let mut tracer = Tracer {
+            samples,
+            out: ZeroSet::default(),
+            pieces: Vec::new(),
+            budget: (BOX_BUDGET * group.len()).div_ceil(patches.len()).max(1),
+        };
+        for patch in group {
+            tracer.patch(patch, 0)?;
+        }
+        Ok(tracer)
+    };
+    let threads = std::thread::available_parallelism()
+        .map_or(1, std::num::NonZero::get)
+        .min(groups.len())
+        .max(1);
+    let traced: Vec<Result<Tracer>> = if threads == 1 {
+        groups.iter().map(|g| trace_group(g)).collect()
+    } else {
+        let per_thread = groups.len().div_ceil(threads);
+        std::thread::scope(|scope| {
+            let handles: Vec<_> = groups
+                .chunks(per_thread)
+                .map(|part| {
+                    scope.spawn(move || part.iter().map(|g| trace_group(g)).collect::<Vec<_>>())
+                })
+                .collect();
+            handles
+                .into_iter()
+                .flat_map(|h| h.join().unwrap_or_else(|e| std::panic::resume_unwind(e)))
+                .collect()
+        })
+    };
+    let mut all = Tracer {
+        samples,
+        out: ZeroSet::default(),
+        pieces: Vec::new(),
+        budget: 0,
+    };
+    for tracer in traced {
+        let tracer = tracer?;
+        all.out.regions.extend(tracer.out.regions);
+        all.out.singular.extend(tracer.out.singular);
+        all.pieces.extend(tracer.pieces);
+    }
+    Ok(all)
 }
 
 /// The Bézier patches of a bivariate spline on the grid of `breaks` (which must contain its
@@ -255,7 +307,9 @@ fn monotone(s: &Surface<f64, f64>, direction: Direction) -> bool {
 }
 
 /// The root of a monotone function on `[lo, hi]` (an end where it vanishes there, or the
-/// end of smaller magnitude where rounding leaves both ends with one sign), by bisection.
+/// end of smaller magnitude where rounding leaves both ends with one sign), by the Illinois
+/// method (regula falsi halving the value at an end kept twice) with a bisection wherever
+/// two steps did not halve the bracket, until the bracket is two adjacent floats.
 fn monotone_root(f: &BSpline<f64, f64>, lo: f64, hi: f64) -> Result<f64> {
     let (fa, fb) = (f.eval(lo)?, f.eval(hi)?);
     if fa == 0.0 {
@@ -267,20 +321,37 @@ fn monotone_root(f: &BSpline<f64, f64>, lo: f64, hi: f64) -> Result<f64> {
     if fa.signum() == fb.signum() {
         return Ok(if fa.abs() <= fb.abs() { lo } else { hi });
     }
-    let (mut a, mut b) = (lo, hi);
-    for _ in 0..200 {
-        let m = 0.5 * (a + b);
-        if m <= a || m >= b {
+    let (mut a, mut b, mut fa, mut fb) = (lo, hi, fa, fb);
+    let mut kept = 0i8; // +1: `a` kept last time, −1: `b`.
+    let mut widths = [b - a; 2]; // the bracket one and two steps ago
+    for _ in 0..400 {
+        let mid = 0.5 * (a + b);
+        if mid <= a || mid >= b {
             break;
         }
+        let secant = (a * fb - b * fa) / (fb - fa);
+        let m = if b - a > 0.5 * widths[1] || !(secant > a && secant < b) {
+            mid
+        } else {
+            secant
+        };
+        widths = [b - a, widths[0]];
         let fm = f.eval(m)?;
         if fm == 0.0 {
             return Ok(m);
         }
         if fm.signum() == fa.signum() {
-            a = m;
+            (a, fa) = (m, fm);
+            if kept == -1 {
+                fb *= 0.5;
+            }
+            kept = -1;
         } else {
-            b = m;
+            (b, fb) = (m, fm);
+            if kept == 1 {
+                fa *= 0.5;
+            }
+            kept = 1;
         }
     }
     Ok(0.5 * (a + b))

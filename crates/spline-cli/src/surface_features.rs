@@ -51,9 +51,12 @@ pub fn surface_features(args: &SurfaceFeaturesArgs) -> Result<()> {
         }
     }
     let surface = surface3(&object, &args.surface, "surface-features")?;
-    let set = spline_algebra::parabolic_lines(&surface, args.samples)
+    let spline_algebra::SurfaceFeatures {
+        parabolic_lines: set,
+        umbilics,
+        ridges,
+    } = spline_algebra::surface_features(&surface, args.samples)
         .map_err(|e| e.context(&args.surface))?;
-    let umbilics = spline_algebra::umbilics(&surface).map_err(|e| e.context(&args.surface))?;
     let pole = |p: &[f64; 2], on_line: bool| -> Result<Value> {
         let x = surface.eval(p[0], p[1])?;
         Ok(json!({"uv": p, "point": [x.x, x.y, x.z], "singular_line": on_line}))
@@ -65,8 +68,6 @@ pub fn surface_features(args: &SurfaceFeaturesArgs) -> Result<()> {
     for p in &umbilics.poles {
         points.push(pole(p, true)?);
     }
-    let ridges = spline_algebra::surface_ridges_with_umbilics(&surface, args.samples, &umbilics)
-        .map_err(|e| e.context(&args.surface))?;
     let mut coloured = Vec::new();
     let mut constant = Vec::new();
     for (colour, lines, regions) in [

@@ -3,11 +3,11 @@
 //! the finest boxes left; the patches are independent and run on every core.
 
 use crate::ridge_function::{
-    Interval, Jet, NEAR_UMBILIC, Patch, RidgeValue, VANISHING, degenerate, degenerate_umbilic,
-    ridge_value, singular_edges, snapped,
+    Jet, LineRestriction, Magnitude, NEAR_UMBILIC, Patch, RidgeValue, VANISHING, degenerate,
+    degenerate_umbilic, ridge_value, singular_edges, snapped,
 };
 use crate::zero_set::UvPolyline;
-use std::collections::HashMap;
+use rustc_hash::FxHashMap as HashMap;
 
 /// A crossing is kept when the gradient of the curvature is within this cosine of orthogonal
 /// to the principal direction there (from the better-conditioned direction form: a zero of
@@ -34,6 +34,9 @@ pub(super) struct Marcher<'a> {
     singular_edges: [bool; 4],
     corners: HashMap<(usize, usize), Option<RidgeValue<f64>>>,
     crossings: HashMap<(usize, usize, bool, usize), Option<[f64; 2]>>,
+    /// The factors restricted to the grid lines met so far, by `(along_u, k)`: the line
+    /// `v = v_k` along `u`, or `u = u_k` along `v` ([`Marcher::line_through`]).
+    lines: HashMap<(bool, usize), [LineRestriction; 7]>,
 }
 
 impl<'a> Marcher<'a> {
@@ -48,8 +51,9 @@ impl<'a> Marcher<'a> {
                 let b = f.bounds();
                 b.map(|x| x.lo.abs().max(x.hi.abs()))
             }),
-            corners: HashMap::new(),
-            crossings: HashMap::new(),
+            corners: HashMap::default(),
+            crossings: HashMap::default(),
+            lines: HashMap::default(),
         }
     }
 
@@ -62,10 +66,10 @@ impl<'a> Marcher<'a> {
         ]
     }
 
-    /// The ridge function at a point; within [`POLE_ZONE`] of a patch edge where the
-    /// parametrisation is singular, at that distance from the edge (the formula loses its
-    /// digits as `Â → 0`).
-    fn value(&self, p: [f64; 2]) -> Option<RidgeValue<f64>> {
+    /// The point at which the ridge function stands for its value at `p`: `p` itself, or
+    /// within [`POLE_ZONE`] of a patch edge where the parametrisation is singular, the
+    /// point at that distance from the edge (the formula loses its digits as `Â → 0`).
+    fn evaluated_at(&self, p: [f64; 2]) -> [f64; 2] {
         let (u, v) = (self.factors[0].u, self.factors[0].v);
         let mut q = p;
         for (k, (a, b)) in [(0, u), (1, v)] {
@@ -77,20 +81,46 @@ impl<'a> Marcher<'a> {
                 q[k] = b - d;
             }
         }
-        let jets: [Jet<f64>; 7] = Patch::jets(self.factors, q[0], q[1]);
-        let mut r = ridge_value(&jets, self.sigma, f64::abs);
-        // The rounding scale: the same formula on magnitudes, each jet's magnitude raised by
-        // `ROUNDING_FLOOR` of its bound on the patch (at a point of symmetry every partial
-        // derivative along one direction vanishes, and with them the local magnitudes of the
-        // terms, while rounding does not).
-        let symmetric = |x: f64, floor: f64| {
-            let m = x.abs() + ROUNDING_FLOOR * floor;
-            Interval { lo: -m, hi: m }
-        };
-        let magnitudes: [Jet<Interval>; 7] =
-            std::array::from_fn(|i| [0, 1, 2].map(|k| symmetric(jets[i][k], self.slopes[i][k])));
+        q
+    }
+
+    /// The ridge function at a point ([`Marcher::evaluated_at`]).
+    fn value(&self, p: [f64; 2]) -> Option<RidgeValue<f64>> {
+        let q = self.evaluated_at(p);
+        self.ridge_from_jets(&Patch::jets(self.factors, q[0], q[1]))
+    }
+
+    /// The ridge function at a point `p` of a grid line along `u` (`along_u`) or `v`, from
+    /// the factors restricted to that line ([`Marcher::line_through`]).
+    fn value_on_line(
+        &self,
+        lines: &[LineRestriction; 7],
+        along_u: bool,
+        p: [f64; 2],
+    ) -> Option<RidgeValue<f64>> {
+        let q = self.evaluated_at(p);
+        self.ridge_from_jets(&LineRestriction::jets(lines, q[usize::from(!along_u)]))
+    }
+
+    /// The factors restricted to the grid line through `p` along `u` (`along_u`) or `v`
+    /// (at the clamped position across it: [`Marcher::evaluated_at`]).
+    fn line_through(&self, p: [f64; 2], along_u: bool) -> [LineRestriction; 7] {
+        let q = self.evaluated_at(p);
+        let fixed = if along_u { q[1] } else { q[0] };
+        std::array::from_fn(|i| self.factors[i].restricted(along_u, fixed))
+    }
+
+    /// The ridge function from the jets of the factors, with its rounding scale: the same
+    /// formula on magnitudes, each jet's magnitude raised by `ROUNDING_FLOOR` of its bound
+    /// on the patch (at a point of symmetry every partial derivative along one direction
+    /// vanishes, and with them the local magnitudes of the terms, while rounding does not).
+    fn ridge_from_jets(&self, jets: &[Jet<f64>; 7]) -> Option<RidgeValue<f64>> {
+        let mut r = ridge_value(jets, self.sigma, f64::abs);
+        let magnitudes: [Jet<Magnitude>; 7] = std::array::from_fn(|i| {
+            [0, 1, 2].map(|k| Magnitude(jets[i][k].abs() + ROUNDING_FLOOR * self.slopes[i][k]))
+        });
         let m = ridge_value(&magnitudes, self.sigma, |x| x);
-        r.scale = [m.g[0].hi, m.g[1].hi];
+        r.scale = [m.g[0].0, m.g[1].0];
         let finite =
             r.g.iter()
                 .chain(&r.t2)
@@ -141,13 +171,29 @@ impl<'a> Marcher<'a> {
             .collect()
     }
 
+    /// The ridge function at the grid node `(i, j)` (from the factors restricted to the
+    /// grid line `v = v_j`: equal to [`Marcher::value`] there, bit for bit).
     pub(super) fn corner(&mut self, i: usize, j: usize) -> Option<RidgeValue<f64>> {
         if let Some(r) = self.corners.get(&(i, j)) {
             return *r;
         }
-        let r = self.value(self.point(i, j));
+        self.ensure_line(true, j);
+        let r = self.value_on_line(&self.lines[&(true, j)], true, self.point(i, j));
         self.corners.insert((i, j), r);
         r
+    }
+
+    /// Restricts the factors to the grid line `v = v_k` (`along_u`) or `u = u_k`, once.
+    fn ensure_line(&mut self, along_u: bool, k: usize) {
+        if !self.lines.contains_key(&(along_u, k)) {
+            let p = if along_u {
+                self.point(0, k)
+            } else {
+                self.point(k, 0)
+            };
+            let line = self.line_through(p, along_u);
+            self.lines.insert((along_u, k), line);
+        }
     }
 
     /// Whether the ridge condition with the better direction form vanishes at `p`.
@@ -172,48 +218,65 @@ impl<'a> Marcher<'a> {
         } else {
             (a.0, a.1 + 1)
         };
-        let found = (|| {
-            let fa = snapped(&self.corner(a.0, a.1)?, form);
-            let fb = snapped(&self.corner(b.0, b.1)?, form);
-            if (fa >= 0.0) == (fb >= 0.0) {
-                return None;
-            }
-            let (pa, pb) = (self.point(a.0, a.1), self.point(b.0, b.1));
-            let at = |t: f64| [pa[0] + t * (pb[0] - pa[0]), pa[1] + t * (pb[1] - pa[1])];
-            let f = |t: f64| self.value(at(t)).map(|r| snapped(&r, form));
-            // Illinois (regula falsi with halving of the retained end).
-            let (mut t0, mut t1, mut f0, mut f1) = (0.0f64, 1.0f64, fa, fb);
-            let mut side = 0i32;
-            for _ in 0..100 {
-                if t1 - t0 <= 1e-15 {
-                    break;
-                }
-                let mut t = (t0 * f1 - t1 * f0) / (f1 - f0);
-                if !(t > t0 && t < t1) {
-                    t = 0.5 * (t0 + t1);
-                }
-                let ft = f(t)?;
-                if (ft >= 0.0) == (f0 >= 0.0) {
-                    t0 = t;
-                    f0 = ft;
-                    if side == 1 {
-                        f1 *= 0.5;
-                    }
-                    side = 1;
-                } else {
-                    t1 = t;
-                    f1 = ft;
-                    if side == -1 {
-                        f0 *= 0.5;
-                    }
-                    side = -1;
-                }
-            }
-            let p = at(0.5 * (t0 + t1));
-            self.genuine(p).then_some(p)
-        })();
+        let found = self.locate_crossing(a, b, along_u, form);
         self.crossings.insert(key, found);
         found
+    }
+
+    /// The genuine zero of `g` (form `form`) between the neighbouring grid nodes `a` and
+    /// `b` along `u` (`along_u`) or `v`, by the Illinois method on the factors restricted to
+    /// that grid line (each value along it then costs O(degree) per factor).
+    fn locate_crossing(
+        &mut self,
+        a: (usize, usize),
+        b: (usize, usize),
+        along_u: bool,
+        form: usize,
+    ) -> Option<[f64; 2]> {
+        let fa = snapped(&self.corner(a.0, a.1)?, form);
+        let fb = snapped(&self.corner(b.0, b.1)?, form);
+        if (fa >= 0.0) == (fb >= 0.0) {
+            return None;
+        }
+        let key = if along_u { (true, a.1) } else { (false, a.0) };
+        self.ensure_line(key.0, key.1);
+        let line = &self.lines[&key];
+        let (pa, pb) = (self.point(a.0, a.1), self.point(b.0, b.1));
+        let at = |t: f64| [pa[0] + t * (pb[0] - pa[0]), pa[1] + t * (pb[1] - pa[1])];
+        let f = |t: f64| {
+            self.value_on_line(line, along_u, at(t))
+                .map(|r| snapped(&r, form))
+        };
+        // Illinois (regula falsi with halving of the retained end).
+        let (mut t0, mut t1, mut f0, mut f1) = (0.0f64, 1.0f64, fa, fb);
+        let mut side = 0i32;
+        for _ in 0..100 {
+            if t1 - t0 <= 1e-15 {
+                break;
+            }
+            let mut t = (t0 * f1 - t1 * f0) / (f1 - f0);
+            if !(t > t0 && t < t1) {
+                t = 0.5 * (t0 + t1);
+            }
+            let ft = f(t)?;
+            if (ft >= 0.0) == (f0 >= 0.0) {
+                t0 = t;
+                f0 = ft;
+                if side == 1 {
+                    f1 *= 0.5;
+                }
+                side = 1;
+            } else {
+                t1 = t;
+                f1 = ft;
+                if side == -1 {
+                    f0 *= 0.5;
+                }
+                side = -1;
+            }
+        }
+        let p = at(0.5 * (t0 + t1));
+        self.genuine(p).then_some(p)
     }
 
     /// The pieces of ridge in the finest box `(i, j)`.
@@ -347,6 +410,10 @@ fn march_patch(pair: &mut [Marcher<'_>; 2], umbilics: &[[f64; 2]]) -> [Found; 2]
             );
         }
         out.constant = marcher.merged(constant);
+        // Only the corners are asked for again (the ridges along patch boundaries): the
+        // memory of the rest goes now, not when every patch is done.
+        marcher.crossings = HashMap::default();
+        marcher.lines = HashMap::default();
     }
     found
 }
