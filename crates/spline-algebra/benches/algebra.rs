@@ -122,5 +122,48 @@ fn surface_features(c: &mut Criterion) {
     group.finish();
 }
 
-criterion_group!(benches, products, curvature_numerator, surface_features);
+/// All the features of a random bicubic (`n × n` control points over the unit square,
+/// heights from a fixed sequence): the workload of `spline surface-features` on the
+/// reproducers' 60×60 random bicubic, at a size a benchmark can repeat.
+fn random_bicubic_features(c: &mut Criterion) {
+    let mut group = c.benchmark_group("random_bicubic_features");
+    group.sample_size(10);
+    group.warm_up_time(Duration::from_millis(300));
+    group.measurement_time(Duration::from_secs(5));
+    let n = 16usize;
+    let knots = {
+        let mut k = vec![0.0; 3];
+        k.extend((0..=n - 3).map(|i| i as f64 / (n - 3) as f64));
+        k.extend([1.0; 3]);
+        spline_core::KnotVector::new(3, k).unwrap()
+    };
+    let mut state = 0x2545_f491_4f6c_dd1du64;
+    let mut height = || {
+        state ^= state << 13;
+        state ^= state >> 7;
+        state ^= state << 17;
+        (state >> 11) as f64 / (1u64 << 53) as f64 * 0.1 - 0.05
+    };
+    let mut points = Vec::with_capacity(n * n);
+    for i in 0..n {
+        for j in 0..n {
+            let (x, y) = (i as f64 / (n - 1) as f64, j as f64 / (n - 1) as f64);
+            points.push(nalgebra::Vector3::new(x, y, height()));
+        }
+    }
+    let surface = spline_geom::Surface::new(knots.clone(), knots, points).unwrap();
+    let surface = spline_geom::NurbsSurface::from_surface(&surface);
+    group.bench_function(BenchmarkId::new("surface_features_8", n), |bench| {
+        bench.iter(|| spline_algebra::surface_features(black_box(&surface), 8).unwrap());
+    });
+    group.finish();
+}
+
+criterion_group!(
+    benches,
+    products,
+    curvature_numerator,
+    surface_features,
+    random_bicubic_features
+);
 criterion_main!(benches);
