@@ -180,13 +180,7 @@ pub fn two_sided_deviation<T: Scalar, P: ControlPoint<T>>(
     let inverse = T::one() / scale;
     let unit_curve = curve.map_control_points(|c| *c * inverse);
     let unit_points: Vec<P> = points.iter().map(|q| *q * inverse).collect();
-    let mut distances = Vec::with_capacity(points.len());
-    let mut params = Vec::with_capacity(points.len());
-    for q in &unit_points {
-        let hit = closest_point(&unit_curve, *q)?;
-        distances.push(hit.distance);
-        params.push(hit.param);
-    }
+    let (distances, params) = feet_of(&unit_curve, &unit_points)?;
     let (to_data, to_data_param, to_data_excess) = curve_to_polyline(&unit_curve, &unit_points)?;
     let mut to_curve = Deviation::from_distances(distances);
     to_curve.max *= scale;
@@ -245,4 +239,29 @@ fn curve_to_polyline<T: Scalar, P: ControlPoint<T>>(
         }
     }
     Ok((best, best_u, excess))
+}
+
+/// The distances of `points` to the curve and the parameters of their closest points, in
+/// the order of the points. With the `parallel` feature, for at least
+/// [`crate::PARALLEL_MIN_POINTS`] points, on every core: each closest point is independent
+/// of the others, so the result is the same bit for bit.
+fn feet_of<T: Scalar, P: ControlPoint<T>>(
+    curve: &BSpline<T, P>,
+    points: &[P],
+) -> Result<(Vec<T>, Vec<T>)> {
+    let foot = |q: &P| closest_point(curve, *q).map(|hit| (hit.distance, hit.param));
+    #[cfg(feature = "parallel")]
+    if points.len() >= crate::PARALLEL_MIN_POINTS && rayon::current_num_threads() > 1 {
+        use rayon::prelude::*;
+        let hits: Vec<Result<(T, T)>> = points.par_iter().map(foot).collect();
+        return hits
+            .into_iter()
+            .collect::<Result<Vec<_>>>()
+            .map(|h| h.into_iter().unzip());
+    }
+    points
+        .iter()
+        .map(foot)
+        .collect::<Result<Vec<_>>>()
+        .map(|h| h.into_iter().unzip())
 }

@@ -40,18 +40,78 @@ pub(super) struct Distances {
     pub(super) closed: bool,
 }
 
+/// Data points at least this many have their foot points found on every core (each foot
+/// is independent of the others, so the result is the same bit for bit); fewer (an
+/// airfoil's few hundred) stay on the calling thread, where spawning would cost more than it
+/// gains and a batch already runs one file per core.
+const PARALLEL_POINTS: usize = 8192;
+
 impl Distances {
-    /// The foot point of data point `j` near its cached parameter, with the derivatives of
-    /// its squared distance when `derivatives`, written into `out` (its buffers reused: no
-    /// allocation once they have their size). With `found`, the foot point is already known
-    /// to be at `out.param` (found by an earlier call for the same control points): only the
-    /// derivatives are computed there.
-    pub(super) fn foot_into(
+    /// The foot points of every data point at the curve of `control`, into `feet` (one per
+    /// data point), with the derivatives of the squared distances when `derivatives`; with
+    /// `found`, each foot is already known to be at its `param` (as
+    /// [`FootSolver::foot_into`]). Many points are shared out among the cores.
+    pub(super) fn feet_into(
+        &self,
+        control: &[Vector2<f64>],
+        derivatives: bool,
+        found: bool,
+        feet: &mut [Foot],
+    ) {
+        let anchors = self.params.borrow();
+        let anchors: &[f64] = &anchors;
+        let solver = FootSolver {
+            knots: &self.knots,
+            points: &self.points,
+            project: self.project,
+            closed: self.closed,
+        };
+        let threads = if feet.len() < PARALLEL_POINTS {
+            1
+        } else {
+            std::thread::available_parallelism().map_or(1, std::num::NonZero::get)
+        };
+        if threads <= 1 {
+            for (j, foot) in feet.iter_mut().enumerate() {
+                solver.foot_into(control, j, anchors[j], (derivatives, found), foot);
+            }
+            return;
+        }
+        let chunk = feet.len().div_ceil(threads);
+        std::thread::scope(|scope| {
+            for (c, part) in feet.chunks_mut(chunk).enumerate() {
+                let solver = &solver;
+                scope.spawn(move || {
+                    for (k, foot) in part.iter_mut().enumerate() {
+                        let j = c * chunk + k;
+                        solver.foot_into(control, j, anchors[j], (derivatives, found), foot);
+                    }
+                });
+            }
+        });
+    }
+}
+
+/// What finding one foot point needs, shareable between threads.
+pub(super) struct FootSolver<'a> {
+    knots: &'a KnotVector<f64>,
+    points: &'a [Vector2<f64>],
+    project: bool,
+    closed: bool,
+}
+
+impl FootSolver<'_> {
+    /// The foot point of data point `j` near its cached parameter `anchor`, with the
+    /// derivatives of its squared distance when `derivatives`, written into `out` (its
+    /// buffers reused: no allocation once they have their size). With `found`, the foot
+    /// point is already known to be at `out.param` (found by an earlier call for the same
+    /// control points): only the derivatives are computed there.
+    fn foot_into(
         &self,
         control: &[Vector2<f64>],
         j: usize,
-        derivatives: bool,
-        found: bool,
+        anchor: f64,
+        (derivatives, found): (bool, bool),
         out: &mut Foot,
     ) {
         let p = self.knots.degree();
@@ -65,12 +125,12 @@ impl Distances {
         } else if found {
             out.param
         } else {
-            self.params.borrow()[j]
+            anchor
         };
-        // The basis functions and their first two derivatives at `u` (`basis`) and at a
-        // candidate step (`trial`).
-        let mut basis = [0.0; 3 * spline_core::MAX_ORDER];
-        let mut trial = [0.0; 3 * spline_core::MAX_ORDER];
+        // The basis functions and their first two derivatives: `buffers[current]` at `u`,
+        // the other one at a candidate step (taking the step flips `current`: no copy).
+        let mut buffers = [[0.0; 3 * spline_core::MAX_ORDER]; 2];
+        let mut current = 0;
         let eval = |u: f64, basis: &mut [f64]| -> (usize, [Vector2<f64>; 3]) {
             let span = self.knots.span_in_domain(u);
             self.knots
@@ -83,7 +143,7 @@ impl Distances {
             }
             (span, d)
         };
-        let (mut span, mut d) = eval(u, &mut basis);
+        let (mut span, mut d) = eval(u, &mut buffers[current]);
         if !fixed && !found {
             let mut dist2 = (d[0] - q).norm_squared();
             for _ in 0..30 {
@@ -107,11 +167,11 @@ impl Distances {
                     if (candidate - u).abs() <= FOOT_PARAMETER_RESOLUTION {
                         break;
                     }
-                    let (s2, d2) = eval(candidate, &mut trial);
+                    let (s2, d2) = eval(candidate, &mut buffers[1 - current]);
                     let c2 = (d2[0] - q).norm_squared();
                     if c2 <= dist2 {
                         moved = true;
-                        basis = trial;
+                        current = 1 - current;
                         u = candidate;
                         span = s2;
                         d = d2;
@@ -125,6 +185,7 @@ impl Distances {
                 }
             }
         }
+        let basis = &buffers[current];
         let r = d[0] - q;
         let squared = r.norm_squared();
         let first = span - p;

@@ -310,9 +310,7 @@ impl EraserProblem {
                 ..
             } = &mut *cache;
             *with_derivatives = true;
-            for (j, foot) in feet.iter_mut().enumerate() {
-                self.distances.foot_into(points, j, true, true, foot);
-            }
+            self.distances.feet_into(points, true, true, feet);
         } else if !fresh {
             let mut cache = self.feet.borrow_mut();
             let FeetCache {
@@ -326,10 +324,7 @@ impl EraserProblem {
             *with_derivatives = derivatives;
             self.fill_control(x, points);
             feet.resize_with(self.distances.points.len(), Foot::default);
-            for (j, foot) in feet.iter_mut().enumerate() {
-                self.distances
-                    .foot_into(points, j, derivatives, false, foot);
-            }
+            self.distances.feet_into(points, derivatives, false, feet);
         }
         self.feet.borrow()
     }
