@@ -120,7 +120,9 @@ fn check_samples(samples: usize) -> Result<()> {
         return Err(Error::new(
             ErrorKind::InvalidArgument,
             format!("the samples per patch must be between 1 and 10000, got {samples}"),
-        ));
+        )
+        .with_value(samples as f64)
+        .with_interval(1.0, 10_000.0));
     }
     Ok(())
 }

@@ -229,7 +229,9 @@ fn analyse<T: Scalar>(f: &BSpline<T, T>, accuracy: T) -> Result<Analysis<T>> {
                 "the accuracy must be positive and finite, got {}",
                 to_f64(accuracy)
             ),
-        ));
+        )
+        .with_value(to_f64(accuracy))
+        .with_interval(0.0, f64::INFINITY));
     }
     let (a, b) = f.domain();
     let d = f.degree();

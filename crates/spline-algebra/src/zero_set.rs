@@ -63,7 +63,9 @@ pub fn zero_set(f: &Surface<f64, f64>, samples: usize) -> Result<ZeroSet> {
         return Err(Error::new(
             ErrorKind::InvalidArgument,
             format!("the samples per patch must be between 1 and 10000, got {samples}"),
-        ));
+        )
+        .with_value(samples as f64)
+        .with_interval(1.0, 10_000.0));
     }
     if let Some(i) = f.control_points().iter().position(|c| !c.is_finite()) {
         return Err(Error::new(

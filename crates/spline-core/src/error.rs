@@ -215,7 +215,8 @@ impl Error {
         self
     }
 
-    /// Records the interval involved (a domain).
+    /// Records the interval involved: a domain, or the allowed range of an argument (an
+    /// open end as `±∞`: `(0, ∞)` for "positive").
     #[must_use]
     pub fn with_interval(mut self, a: f64, b: f64) -> Self {
         self.inner.fields.interval = Some((a, b));
@@ -269,7 +270,8 @@ impl Error {
         self.inner.fields.value
     }
 
-    /// The interval involved (the domain of an out-of-domain parameter).
+    /// The interval involved: the domain of an out-of-domain parameter, or the allowed
+    /// range of an argument outside it (with [`Error::value`]).
     #[must_use]
     pub fn interval(&self) -> Option<(f64, f64)> {
         self.inner.fields.interval

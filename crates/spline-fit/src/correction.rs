@@ -203,7 +203,9 @@ fn check_inputs<T: Scalar, P: ControlPoint<T>>(
                 "the angle tolerance must be positive, got {}",
                 to_f64(options.angle_tolerance)
             ),
-        ));
+        )
+        .with_value(to_f64(options.angle_tolerance))
+        .with_interval(0.0, f64::INFINITY));
     }
     Ok(())
 }

@@ -373,7 +373,9 @@ pub fn approximate_surface_scattered<T: Scalar, P: ControlPoint<T>>(
                 "the smoothing weight must be finite and non-negative, got {}",
                 to_f64(smoothing)
             ),
-        ));
+        )
+        .with_value(to_f64(smoothing))
+        .with_interval(0.0, f64::INFINITY));
     }
     if !params_inside_on_every_core(params, knots_u, knots_v) {
         // Sequentially (also when a parallel check failed): the error names the first bad

@@ -57,7 +57,9 @@ pub(crate) fn refined_knots(
         return Err(Error::new(
             ErrorKind::InvalidArgument,
             format!("at most 8 refinements, got {refine}"),
-        ));
+        )
+        .with_value(refine as f64)
+        .with_interval(0.0, 8.0));
     }
     let mut knots: KnotVector<f64> = meridian.knots().clone();
     for _ in 0..refine {
@@ -251,7 +253,9 @@ pub fn control_ridge_circles(
         return Err(Error::new(
             ErrorKind::InvalidArgument,
             format!("between 2 and 100000 samples of the meridian, got {samples}"),
-        ));
+        )
+        .with_value(samples as f64)
+        .with_interval(2.0, 100_000.0));
     }
     let (a, b) = meridian.domain();
     let points: Vec<Vector2<f64>> = (0..samples)
@@ -262,7 +266,9 @@ pub fn control_ridge_circles(
                 return Err(Error::new(
                     ErrorKind::InvalidArgument,
                     format!("the meridian radius must be positive, got {r} at z = {z}"),
-                ));
+                )
+                .with_value(r)
+                .with_interval(0.0, f64::INFINITY));
             }
             Ok(Vector2::new(r, z))
         })

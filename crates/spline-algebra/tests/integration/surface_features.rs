@@ -222,7 +222,12 @@ fn zero_sets_of_closed_forms() {
             (0.0, 1.0)
         );
     }
-    assert!(zero_set(&f, 0).is_err());
+    let e = zero_set(&f, 0).unwrap_err();
+    assert_eq!(e.kind(), spline_core::ErrorKind::InvalidArgument);
+    assert_eq!(
+        (e.value(), e.interval()),
+        (Some(0.0), Some((1.0, 10_000.0)))
+    );
 }
 
 /// The umbilics of the ellipsoid `x²/b² + y²/a² + z²/c² = 1` (a > b > c, the largest axis

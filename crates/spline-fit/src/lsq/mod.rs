@@ -322,7 +322,9 @@ impl<'a, T: Scalar, P: ControlPoint<T>> LeastSquares<'a, T, P> {
                     "the smoothing weight must be finite and non-negative, got {}",
                     to_f64(self.smoothing)
                 ),
-            ));
+            )
+            .with_value(to_f64(self.smoothing))
+            .with_interval(0.0, f64::INFINITY));
         }
         let n = self.knots.num_basis();
         for &(i, v) in &self.fixed_points {

@@ -108,7 +108,9 @@ pub fn smoothing_spline<T: Scalar, P: ControlPoint<T>>(
                         "the smoothing weight λ must be finite and non-negative, got {}",
                         to_f64(l)
                     ),
-                ));
+                )
+                .with_value(to_f64(l))
+                .with_interval(0.0, f64::INFINITY));
             }
             l
         }

@@ -157,7 +157,9 @@ pub(super) fn check_data<T: Scalar, P: ControlPoint<T>>(
                 "the residual target s must be finite and non-negative, got {}",
                 to_f64(s)
             ),
-        ));
+        )
+        .with_value(to_f64(s))
+        .with_interval(0.0, f64::INFINITY));
     }
     let m = x.len();
     check_lengths(m, y.len())?;

@@ -273,6 +273,9 @@ fn other_argument_errors() {
         .solve()
         .unwrap_err();
     assert_eq!(e.kind(), ErrorKind::InvalidArgument);
+    // The offending value and the allowed range, for a program to read.
+    assert_eq!(e.value(), Some(-1.0));
+    assert_eq!(e.interval(), Some((0.0, f64::INFINITY)));
     let e = natural_spline(&[0.0, 1.0, 2.0], &[0.0, 1.0, 0.0], 3).unwrap_err();
     assert_eq!(e.kind(), ErrorKind::InvalidArgument);
     let short = KnotVector::averaging(2, &params[..4]).unwrap();

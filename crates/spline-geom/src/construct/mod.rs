@@ -46,7 +46,9 @@ pub(super) fn check_positive<T: Scalar>(value: T, what: &str) -> Result<()> {
         return Err(Error::new(
             ErrorKind::InvalidArgument,
             format!("{what} must be positive, got {}", to_f64(value)),
-        ));
+        )
+        .with_value(to_f64(value))
+        .with_interval(0.0, f64::INFINITY));
     }
     Ok(())
 }

@@ -48,7 +48,8 @@ impl<T: Scalar, const D: usize> NurbsCurve<T, D> {
                     to_f64(factor)
                 ),
             )
-            .with_value(to_f64(factor)));
+            .with_value(to_f64(factor))
+            .with_interval(0.0, f64::INFINITY));
         }
         let curve = self.clamped();
         let p = curve.degree();

@@ -37,7 +37,9 @@ pub fn smooth_fewest_extrema(
             return Err(Error::new(
                 ErrorKind::InvalidArgument,
                 format!("the maximum deviation must be positive and finite, got {t}"),
-            ));
+            )
+            .with_value(t)
+            .with_interval(0.0, f64::INFINITY));
         }
         None => AUTO_EXTREMA_TOLERANCE * frame(&distinct(points)?).1,
     };

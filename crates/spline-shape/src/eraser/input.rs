@@ -28,7 +28,8 @@ pub(crate) fn check_options(options: &SmoothingOptions) -> Result<()> {
                 "at most {MAX_CURVATURE_EXTREMA} curvature extrema can be allowed, got {}",
                 options.extrema.len()
             ),
-        ));
+        )
+        .with_counts(MAX_CURVATURE_EXTREMA, options.extrema.len()));
     }
     if options.knot_exponents.is_empty()
         || options

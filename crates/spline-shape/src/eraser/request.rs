@@ -63,7 +63,8 @@ impl SmoothingOptions {
             return Err(Error::new(
                 ErrorKind::InvalidArgument,
                 format!("at most {MAX_CURVATURE_EXTREMA} extrema can be allowed, got {k}"),
-            ));
+            )
+            .with_counts(MAX_CURVATURE_EXTREMA, k));
         }
         self.extrema = Extremum::alternating(k);
         Ok(())

@@ -26,7 +26,9 @@ pub fn smooth_to_tolerance(
         return Err(Error::new(
             ErrorKind::InvalidArgument,
             format!("the maximum deviation must be positive and finite, got {tolerance}"),
-        ));
+        )
+        .with_value(tolerance)
+        .with_interval(0.0, f64::INFINITY));
     }
     let p = options.degree;
     let smallest = p + 1 + options.extrema.len() * p.saturating_sub(2);
