@@ -15,6 +15,11 @@ use rustc_hash::FxHashMap as HashMap;
 /// cosine is rounding, up to about `10⁻⁵` where the terms of `g` cancel strongly.
 const GENUINE: f64 = 1e-3;
 
+/// `|g|` at most this fraction of the sum of the magnitudes of its terms is zero to the
+/// rounding of its evaluation (a few units in the last place of the largest term): the
+/// location of a crossing stops there.
+const ROOT_ROUNDING: f64 = 1e-14;
+
 /// Within this fraction of a patch from an edge where the parametrisation is singular, the
 /// ridge function is evaluated at this distance.
 const POLE_ZONE: f64 = 1e-2;
@@ -243,9 +248,20 @@ impl<'a> Marcher<'a> {
         let line = &self.lines[&key];
         let (pa, pb) = (self.point(a.0, a.1), self.point(b.0, b.1));
         let at = |t: f64| [pa[0] + t * (pb[0] - pa[0]), pa[1] + t * (pb[1] - pa[1])];
+        // Between two definite ends the raw `g` is followed to its root (snapped, it is zero
+        // on a zone of about `VANISHING` of its terms around the root, where the method
+        // could only bisect), and the search stops where `g` is zero to rounding. An end
+        // snapped to zero is a root at the rounding of `g` there: its raw sign may not
+        // bracket one, so the snapped values are followed to the edge of that zone.
+        let raw = fa != 0.0 && fb != 0.0;
         let f = |t: f64| {
-            self.value_on_line(line, along_u, at(t))
-                .map(|r| snapped(&r, form))
+            self.value_on_line(line, along_u, at(t)).map(|r| {
+                if raw {
+                    (r.g[form], ROOT_ROUNDING * r.scale[form])
+                } else {
+                    (snapped(&r, form), -1.0)
+                }
+            })
         };
         // Illinois (regula falsi with halving of the retained end).
         let (mut t0, mut t1, mut f0, mut f1) = (0.0f64, 1.0f64, fa, fb);
@@ -258,7 +274,12 @@ impl<'a> Marcher<'a> {
             if !(t > t0 && t < t1) {
                 t = 0.5 * (t0 + t1);
             }
-            let ft = f(t)?;
+            let (ft, rounding) = f(t)?;
+            if ft.abs() <= rounding {
+                // `g` is zero to the rounding of its terms: no step can do better.
+                (t0, t1) = (t, t);
+                break;
+            }
             if (ft >= 0.0) == (f0 >= 0.0) {
                 t0 = t;
                 f0 = ft;
