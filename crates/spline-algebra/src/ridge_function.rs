@@ -374,6 +374,11 @@ pub(crate) struct LineRestriction {
 }
 
 impl LineRestriction {
+    /// The Bernstein coefficients of the value along the line.
+    pub(crate) fn into_values(self) -> Vec<f64> {
+        self.value
+    }
+
     /// Value and partial derivatives `[f, ∂f/∂u, ∂f/∂v]` from the basis along the line and
     /// its derivative.
     fn combine(&self, b: &[f64], db: &[f64]) -> Jet<f64> {

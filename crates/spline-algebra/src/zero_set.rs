@@ -3,6 +3,7 @@
 //! tracing, so that the topology is decided by the coefficients, not by a sampling step.
 
 use crate::maps::SplineMap;
+use crate::ridge_function::Patch;
 use crate::roots::zeros;
 use crate::tensor::TensorMap;
 use spline_core::{Error, ErrorKind, KnotVector, Result};
@@ -227,12 +228,7 @@ impl Tracer {
         } else {
             Direction::V
         };
-        let (a, b) = if direction == Direction::U {
-            (u0, u1)
-        } else {
-            (v0, v1)
-        };
-        let (left, right) = s.split(direction, 0.5 * (a + b))?;
+        let (left, right) = halve(s, direction)?;
         self.patch(&left, depth + 1)?;
         self.patch(&right, depth + 1)
     }
@@ -246,8 +242,9 @@ impl Tracer {
             Direction::U => (u0, u1, v0, v1),
             Direction::V => (v0, v1, u0, u1),
         };
-        let a = s.iso_curve(along, lo)?;
-        let b = s.iso_curve(along, hi)?;
+        let patch = Patch::of(s);
+        let a = bezier_iso_curve(&patch, along, lo)?;
+        let b = bezier_iso_curve(&patch, along, hi)?;
         let accuracy = 1e-14 * (t1 - t0).abs().max(f64::MIN_POSITIVE);
         let mut breaks = vec![t0, t1];
         for edge in [&a, &b] {
@@ -278,7 +275,7 @@ impl Tracer {
                 } else {
                     ta + (tb - ta) * k as f64 / n as f64
                 };
-                let line = s.iso_curve(along.other(), t)?;
+                let line = bezier_iso_curve(&patch, along.other(), t)?;
                 let r = monotone_root(&line, lo, hi)?;
                 piece.push(match along {
                     Direction::U => [r, t],
@@ -289,6 +286,41 @@ impl Tracer {
         }
         Ok(())
     }
+}
+
+/// One Bézier patch halved in `direction` (de Casteljau at the middle of its interval: the
+/// same patches as [`Surface::split`] there, without the general knot insertion).
+fn halve(
+    s: &Surface<f64, f64>,
+    direction: Direction,
+) -> Result<(Surface<f64, f64>, Surface<f64, f64>)> {
+    let (left, right) = Patch::of(s).halves(direction == Direction::U);
+    Ok((bezier_surface(left)?, bezier_surface(right)?))
+}
+
+/// A Bézier patch as a surface on its domain.
+fn bezier_surface(patch: Patch) -> Result<Surface<f64, f64>> {
+    Ok(Surface::new_unchecked(
+        KnotVector::bernstein(patch.p, &[patch.u.0, patch.u.1])?,
+        KnotVector::bernstein(patch.q, &[patch.v.0, patch.v.1])?,
+        patch.c,
+    ))
+}
+
+/// A Bézier patch with the parameter of direction `fixed` held at `value`, as a Bézier
+/// curve in the other parameter ([`Surface::iso_curve`] of one patch, from the patch
+/// restricted to the line: `O(p q)`).
+fn bezier_iso_curve(patch: &Patch, fixed: Direction, value: f64) -> Result<BSpline<f64, f64>> {
+    let along_u = fixed == Direction::V;
+    let (degree, (a, b)) = if along_u {
+        (patch.p, patch.u)
+    } else {
+        (patch.q, patch.v)
+    };
+    Ok(BSpline::new_unchecked(
+        KnotVector::bernstein(degree, &[a, b])?,
+        patch.restricted(along_u, value).into_values(),
+    ))
 }
 
 /// Whether the differences of the coefficients along `direction` all have one strict sign
