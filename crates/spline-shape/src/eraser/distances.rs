@@ -231,3 +231,61 @@ impl FootSolver<'_> {
         out.param = u;
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::{Distances, Foot, FootSolver, PARALLEL_POINTS};
+    use nalgebra::Vector2;
+    use spline_core::KnotVector;
+    use std::cell::RefCell;
+
+    /// The feet found on every core are those of the one-by-one loop, bit for bit, with
+    /// and without derivatives, open and closed.
+    #[test]
+    fn feet_on_every_core_equal_the_sequential_ones() {
+        let knots = KnotVector::uniform(3, 9, 0.0, 1.0).unwrap();
+        let control: Vec<Vector2<f64>> = (0..9)
+            .map(|i| {
+                let t = f64::from(i) / 8.0;
+                Vector2::new(t, (5.0 * t).sin() * 0.3)
+            })
+            .collect();
+        let m = PARALLEL_POINTS + 1234;
+        let points: Vec<Vector2<f64>> = (0..m)
+            .map(|j| {
+                let t = j as f64 / (m - 1) as f64;
+                Vector2::new(t, (5.0 * t).sin() * 0.3 + 0.01 * (37.0 * t).cos())
+            })
+            .collect();
+        let anchors: Vec<f64> = (0..m).map(|j| j as f64 / (m - 1) as f64).collect();
+        for closed in [false, true] {
+            let distances = Distances {
+                knots: knots.clone(),
+                points: points.clone(),
+                params: RefCell::new(anchors.clone()),
+                project: true,
+                closed,
+            };
+            for derivatives in [false, true] {
+                let mut together = vec![Foot::default(); m];
+                distances.feet_into(&control, derivatives, false, &mut together);
+                let solver = FootSolver {
+                    knots: &knots,
+                    points: &points,
+                    project: true,
+                    closed,
+                };
+                for (j, foot) in together.iter().enumerate() {
+                    let mut alone = Foot::default();
+                    solver.foot_into(&control, j, anchors[j], (derivatives, false), &mut alone);
+                    assert_eq!(foot.squared.to_bits(), alone.squared.to_bits(), "{j}");
+                    assert_eq!(foot.param.to_bits(), alone.param.to_bits(), "{j}");
+                    assert_eq!(
+                        (foot.first, &foot.gradient, &foot.hessian),
+                        (alone.first, &alone.gradient, &alone.hessian)
+                    );
+                }
+            }
+        }
+    }
+}
