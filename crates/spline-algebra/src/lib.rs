@@ -67,6 +67,7 @@
 //! # Feature flags
 //! None.
 
+mod bezier_patch;
 mod bilinear;
 mod bounds;
 mod curve_intersection;
@@ -77,6 +78,7 @@ mod numerator;
 mod offset;
 mod parametric_ridges;
 mod pole_umbilics;
+mod polylines;
 mod product;
 mod revolution;
 mod ridge_function;
@@ -107,6 +109,7 @@ pub use maps::SplineMap;
 pub use nalgebra_sparse::CsrMatrix;
 pub use offset::{OffsetCusp, offset_cusps};
 pub use parametric_ridges::{SurfaceRidges, surface_ridges, surface_ridges_with_umbilics};
+pub use polylines::UvPolyline;
 pub use product::{
     ProductJacobians, ProductMap, Square, bernstein_product, common_space, difference, dot_product,
     linear_combination, product, product_knots, product_with_jacobians, scale, square, sum,
@@ -136,4 +139,4 @@ pub use tensor::{
     partials, ridge_polynomials, tensor_linear_combination, tensor_product,
 };
 pub use umbilics::{CommonZeros, common_zeros, umbilics};
-pub use zero_set::{UvPolyline, ZeroSet, zero_set};
+pub use zero_set::{ZeroSet, zero_set};

@@ -12,10 +12,12 @@
 
 mod march;
 
-use crate::ridge_function::{Patch, best_form, degenerate, snapped};
+use crate::bezier_patch::Patch;
+use crate::polylines::{UvPolyline, chain};
+use crate::ridge_function::{best_form, degenerate, snapped};
 use crate::surface_numerators::{CurvatureNumerators, curvature_numerators};
 use crate::umbilics::CommonZeros;
-use crate::zero_set::{UvPolyline, bezier_patches, chain};
+use crate::zero_set::bezier_patches;
 use march::{Marcher, march_all};
 use spline_core::{Error, ErrorKind, Result};
 use spline_geom::NurbsSurface;

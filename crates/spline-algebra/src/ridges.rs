@@ -2,8 +2,9 @@
 //! extremal along its own eigendirection, traced as the zero sets of the root-free ridge
 //! polynomials ([`crate::ridge_polynomials`]) and coloured per eigenvalue (thesis 7.1).
 
+use crate::polylines::UvPolyline;
 use crate::tensor::ridge_polynomials;
-use crate::zero_set::{UvPolyline, zero_set};
+use crate::zero_set::zero_set;
 use spline_core::Result;
 use spline_geom::Surface;
 use std::collections::HashMap;

@@ -1,7 +1,7 @@
 //! Common zeros of two bivariate splines (Bernstein subdivision, then Newton's method), and
 //! the umbilics of a surface as the common zeros of its umbilic numerators.
 
-use crate::ridge_function::Patch;
+use crate::bezier_patch::Patch;
 use crate::surface_numerators::{CurvatureNumerators, curvature_numerators};
 use crate::zero_set::bezier_patches;
 use spline_core::{Error, ErrorKind, KnotVector, Result};

@@ -2,11 +2,12 @@
 //! numerators: exclusion on boxes shared by the colours, then crossings on the edges of
 //! the finest boxes left; the patches are independent and run on every core.
 
+use crate::bezier_patch::{LineRestriction, Patch};
+use crate::polylines::UvPolyline;
 use crate::ridge_function::{
-    Jet, LineRestriction, Magnitude, NEAR_UMBILIC, Patch, RidgeValue, VANISHING, degenerate,
-    degenerate_umbilic, ridge_value, singular_edges, snapped,
+    Jet, Magnitude, NEAR_UMBILIC, RidgeValue, VANISHING, degenerate, degenerate_umbilic,
+    ridge_value, snapped,
 };
-use crate::zero_set::UvPolyline;
 use rustc_hash::FxHashMap as HashMap;
 
 /// A crossing is kept when the gradient of the curvature is within this cosine of orthogonal
@@ -526,4 +527,25 @@ pub(super) fn march_all<'a>(
         })
     };
     (pairs, found)
+}
+
+/// The edges `[u = u₀, u = u₁, v = v₀, v = v₁]` of a patch along which `Â = ÊĜ − F̂²`
+/// vanishes (below `floor` at five points).
+fn singular_edges(factors: &[Patch; 7], floor: f64) -> [bool; 4] {
+    let (u, v) = (factors[0].u, factors[0].v);
+    let area = |p: [f64; 2]| {
+        let [e, f, g] = [0, 1, 2].map(|i| factors[i].jet(p[0], p[1])[0]);
+        e * g - f * f
+    };
+    let along = |k: usize, t: f64| match k {
+        0 => [u.0, v.0 + t * (v.1 - v.0)],
+        1 => [u.1, v.0 + t * (v.1 - v.0)],
+        2 => [u.0 + t * (u.1 - u.0), v.0],
+        _ => [u.0 + t * (u.1 - u.0), v.1],
+    };
+    std::array::from_fn(|k| {
+        [0.0, 0.25, 0.5, 0.75, 1.0]
+            .iter()
+            .all(|&t| area(along(k, t)).abs() <= floor)
+    })
 }
