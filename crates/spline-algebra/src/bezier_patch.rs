@@ -343,6 +343,14 @@ impl Patch {
 
     /// De Casteljau halving along `u` (`along_u`) or `v`.
     pub(crate) fn halves(&self, along_u: bool) -> (Self, Self) {
+        let (mut left, mut right) = (self.clone(), self.clone());
+        self.halves_into(along_u, &mut left, &mut right);
+        (left, right)
+    }
+
+    /// [`Patch::halves`] into `left` and `right` (their buffers reused: no allocation once
+    /// they have the size of this patch's coefficients).
+    pub(crate) fn halves_into(&self, along_u: bool, left: &mut Self, right: &mut Self) {
         let (n, m) = if along_u {
             (self.p, self.q)
         } else {
@@ -356,7 +364,10 @@ impl Patch {
                 line * nv + k
             }
         };
-        let (mut left, mut right) = (vec![0.0; self.c.len()], vec![0.0; self.c.len()]);
+        for half in [&mut *left, &mut *right] {
+            half.c.resize(self.c.len(), 0.0);
+            (half.p, half.q, half.u, half.v) = (self.p, self.q, self.u, self.v);
+        }
         let mut stack = [0.0; STACK_DEGREE + 1];
         let mut heap = Vec::new();
         let work: &mut [f64] = if n <= STACK_DEGREE {
@@ -370,24 +381,22 @@ impl Patch {
                 *w = self.c[at(line, k)];
             }
             for r in 0..=n {
-                left[at(line, r)] = work[0];
-                right[at(line, n - r)] = work[n - r];
+                left.c[at(line, r)] = work[0];
+                right.c[at(line, n - r)] = work[n - r];
                 for k in 0..n - r {
                     work[k] = 0.5 * (work[k] + work[k + 1]);
                 }
             }
         }
-        let (mut a, mut b) = (Self { c: left, ..*self }, Self { c: right, ..*self });
         if along_u {
             let mid = 0.5 * (self.u.0 + self.u.1);
-            a.u.1 = mid;
-            b.u.0 = mid;
+            left.u.1 = mid;
+            right.u.0 = mid;
         } else {
             let mid = 0.5 * (self.v.0 + self.v.1);
-            a.v.1 = mid;
-            b.v.0 = mid;
+            left.v.1 = mid;
+            right.v.0 = mid;
         }
-        (a, b)
     }
 }
 

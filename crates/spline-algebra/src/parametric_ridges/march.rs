@@ -410,7 +410,17 @@ fn march_patch(pair: &mut [Marcher<'_>; 2], umbilics: &[[f64; 2]]) -> [Found; 2]
     let mut found = [Found::default(), Found::default()];
     let live = [!pair[0].vanishes(), !pair[1].vanishes()];
     let mut leaves = [Vec::new(), Vec::new()];
-    exclude(pair, pair[0].factors, 0, (0, 0), live, &mut leaves);
+    let mut scratch: Vec<Subdivision> = (0..pair[0].level)
+        .map(|_| Subdivision::like(pair[0].factors))
+        .collect();
+    exclude(
+        pair,
+        pair[0].factors,
+        (0, (0, 0)),
+        live,
+        &mut leaves,
+        &mut scratch,
+    );
     for ((marcher, out), (live, leaves)) in pair
         .iter_mut()
         .zip(&mut found)
@@ -440,15 +450,33 @@ fn march_patch(pair: &mut [Marcher<'_>; 2], umbilics: &[[f64; 2]]) -> [Found; 2]
     found
 }
 
+/// The factors of the four children of a box (and of its two halves along `u` on the way),
+/// one per depth of [`exclude`]: their buffers are reused from box to box.
+struct Subdivision {
+    halves: [[Patch; 7]; 2],
+    quarters: [[Patch; 7]; 4],
+}
+
+impl Subdivision {
+    /// Buffers the size of `factors`.
+    fn like(factors: &[Patch; 7]) -> Self {
+        Self {
+            halves: std::array::from_fn(|_| factors.clone()),
+            quarters: std::array::from_fn(|_| factors.clone()),
+        }
+    }
+}
+
 /// Boxes (at the finest level, by index) whose enclosure of `g` contains zero for both
-/// direction forms, per colour still `live`; the subdivision of the factors is shared.
+/// direction forms, per colour still `live`; the subdivision of the factors is shared, its
+/// children written into `scratch` (one [`Subdivision`] per level below this box's).
 fn exclude(
     pair: &[Marcher<'_>; 2],
     box_factors: &[Patch; 7],
-    depth: u32,
-    index: (usize, usize),
+    (depth, index): (u32, (usize, usize)),
     mut live: [bool; 2],
     leaves: &mut [Vec<(usize, usize)>; 2],
+    scratch: &mut [Subdivision],
 ) {
     let bounds = box_factors.each_ref().map(Patch::bounds);
     for (marcher, live) in pair.iter().zip(&mut live) {
@@ -460,28 +488,35 @@ fn exclude(
     if live == [false, false] {
         return;
     }
-    if depth == pair[0].level {
+    let Some((here, deeper)) = scratch.split_first_mut().filter(|_| depth < pair[0].level) else {
         for (list, live) in leaves.iter_mut().zip(live) {
             if live {
                 list.push(index);
             }
         }
         return;
+    };
+    let Subdivision { halves, quarters } = here;
+    let [low, high] = halves;
+    for (k, factor) in box_factors.iter().enumerate() {
+        factor.halves_into(true, &mut low[k], &mut high[k]);
     }
-    let (low, high): (Vec<Patch>, Vec<Patch>) = box_factors.iter().map(|p| p.halves(true)).unzip();
-    for (a, column) in [low, high].into_iter().enumerate() {
-        let (low, high): (Vec<Patch>, Vec<Patch>) = column.iter().map(|p| p.halves(false)).unzip();
-        for (b, child) in [low, high].into_iter().enumerate() {
-            let child: [Patch; 7] = child.try_into().expect("seven factors");
-            exclude(
-                pair,
-                &child,
-                depth + 1,
-                (2 * index.0 + a, 2 * index.1 + b),
-                live,
-                leaves,
-            );
+    for (a, column) in [&*low, &*high].into_iter().enumerate() {
+        let (first, second) = quarters.split_at_mut(2 * a + 1);
+        let (bottom, top) = (&mut first[2 * a], &mut second[0]);
+        for (k, factor) in column.iter().enumerate() {
+            factor.halves_into(false, &mut bottom[k], &mut top[k]);
         }
+    }
+    for (a, b) in [(0, 0), (0, 1), (1, 0), (1, 1)] {
+        exclude(
+            pair,
+            &quarters[2 * a + b],
+            (depth + 1, (2 * index.0 + a, 2 * index.1 + b)),
+            live,
+            leaves,
+            deeper,
+        );
     }
 }
 
