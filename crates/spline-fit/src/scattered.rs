@@ -185,7 +185,8 @@ pub fn fit_scattered<T: Scalar, S: ParamSurface<T, Point = Vector3<T>>>(
                 "{} correction sweeps: at most {MAX_CORRECTION_ITERATIONS}",
                 options.corrections
             ),
-        ));
+        )
+        .with_counts(MAX_CORRECTION_ITERATIONS, options.corrections));
     }
     if points.len() < nu * nv && !(options.smoothing > T::zero()) {
         return Err(Error::new(

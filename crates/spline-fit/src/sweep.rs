@@ -53,7 +53,8 @@ pub fn sweep<T: Scalar, C: ParamCurve<T, Point = Vector3<T>>>(
         return Err(Error::new(
             ErrorKind::InvalidArgument,
             format!("{sections} sections: at most {MAX_SWEEP_SECTIONS}"),
-        ));
+        )
+        .with_counts(MAX_SWEEP_SECTIONS, sections));
     }
     let (a, b) = path.domain();
     let params: Vec<T> = (0..sections)

@@ -86,7 +86,8 @@ impl ParametricConvexity {
                 format!(
                     "at most 400 control points for the convexity of a parametric patch, got {n}"
                 ),
-            ));
+            )
+            .with_counts(400, n));
         }
         Ok(Self {
             base,

@@ -53,7 +53,9 @@ pub fn count(value: usize, max: usize, what: &str) -> Result<usize> {
         return Err(Error::new(
             ErrorKind::InvalidArgument,
             format!("{what} must be between 1 and {max}, got {value}"),
-        ));
+        )
+        .with_value(value as f64)
+        .with_interval(1.0, max as f64));
     }
     Ok(value)
 }

@@ -175,7 +175,9 @@ pub(super) fn arc_pieces<T: Scalar>(sweep: T, max_piece: T) -> Result<usize> {
                 "the sweep angle must be non-zero and at most 2π in magnitude, got {} rad",
                 to_f64(sweep)
             ),
-        ));
+        )
+        .with_value(to_f64(sweep))
+        .with_interval(-std::f64::consts::TAU, std::f64::consts::TAU));
     }
     if !(max_piece > T::zero() && max_piece < T::pi()) {
         return Err(Error::new(
@@ -184,7 +186,9 @@ pub(super) fn arc_pieces<T: Scalar>(sweep: T, max_piece: T) -> Result<usize> {
                 "the largest piece of an arc must lie strictly between 0 and π, got {} rad",
                 to_f64(max_piece)
             ),
-        ));
+        )
+        .with_value(to_f64(max_piece))
+        .with_interval(0.0, std::f64::consts::PI));
     }
     // Sweeps that are whole multiples of the piece angle (360° / 90°) up to rounding.
     let ratio = (to_f64(sweep.abs() / max_piece) * (1.0 - 1e-12))

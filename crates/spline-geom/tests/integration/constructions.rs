@@ -352,4 +352,11 @@ fn circular_arcs_from_isosceles_polygons() {
     )
     .unwrap_err();
     assert_eq!(e.kind(), ErrorKind::DegenerateGeometry);
+    // A sweep or a piece outside its range says which value and which range, in fields.
+    let frame = Frame::planar(Vector2::zeros());
+    let e = NurbsCurve::arc(&frame, 1.0, 0.0, 7.0).unwrap_err();
+    assert_eq!(e.kind(), ErrorKind::InvalidArgument);
+    assert_eq!((e.value(), e.interval()), (Some(7.0), Some((-TAU, TAU))));
+    let e = NurbsCurve::arc_with_max_piece(&frame, 1.0, 0.0, 1.0, 4.0).unwrap_err();
+    assert_eq!((e.value(), e.interval()), (Some(4.0), Some((0.0, PI))));
 }

@@ -115,7 +115,8 @@ impl SpatialConvexity {
                 format!(
                     "at most {MAX_SPATIAL_CONTROL_POINTS} control points for the convexity of a patch moving in space, got {n}"
                 ),
-            ));
+            )
+            .with_counts(MAX_SPATIAL_CONTROL_POINTS, n));
         }
         Ok(Self {
             knots: (knots_u, knots_v),
