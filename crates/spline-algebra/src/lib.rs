@@ -90,6 +90,7 @@ mod sparse;
 mod surface_features;
 mod surface_numerators;
 mod tensor;
+mod threads;
 mod umbilics;
 mod zero_set;
 

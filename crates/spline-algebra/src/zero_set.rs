@@ -7,6 +7,7 @@ use crate::maps::SplineMap;
 use crate::polylines::{UvPolyline, chain};
 use crate::roots::zeros;
 use crate::tensor::TensorMap;
+use crate::threads::map_in_order;
 use spline_core::{Error, ErrorKind, KnotVector, Result};
 use spline_geom::{BSpline, Direction, Surface};
 
@@ -94,7 +95,7 @@ const PATCHES_PER_GROUP: usize = 64;
 /// the groups find is gathered in patch order, so the result does not depend on the
 /// number of threads.
 fn trace_patches(patches: &[Surface<f64, f64>], samples: usize) -> Result<Tracer> {
-    let groups: Vec<&[Surface<f64, f64>]> = patches.chunks(PATCHES_PER_GROUP).collect();
+    let mut groups: Vec<&[Surface<f64, f64>]> = patches.chunks(PATCHES_PER_GROUP).collect();
     let trace_group = |group: &[Surface<f64, f64>]| -> Result<Tracer> {
         let mut tracer = Tracer {
             samples,
@@ -107,27 +108,8 @@ fn trace_patches(patches: &[Surface<f64, f64>], samples: usize) -> Result<Tracer
         }
         Ok(tracer)
     };
-    let threads = std::thread::available_parallelism()
-        .map_or(1, std::num::NonZero::get)
-        .min(groups.len())
-        .max(1);
-    let traced: Vec<Result<Tracer>> = if threads == 1 {
-        groups.iter().map(|g| trace_group(g)).collect()
-    } else {
-        let per_thread = groups.len().div_ceil(threads);
-        std::thread::scope(|scope| {
-            let handles: Vec<_> = groups
-                .chunks(per_thread)
-                .map(|part| {
-                    scope.spawn(move || part.iter().map(|g| trace_group(g)).collect::<Vec<_>>())
-                })
-                .collect();
-            handles
-                .into_iter()
-                .flat_map(|h| h.join().unwrap_or_else(|e| std::panic::resume_unwind(e)))
-                .collect()
-        })
-    };
+    let threads = std::thread::available_parallelism().map_or(1, std::num::NonZero::get);
+    let traced = map_in_order(&mut groups, threads, |g| trace_group(g));
     let mut all = Tracer {
         samples,
         out: ZeroSet::default(),

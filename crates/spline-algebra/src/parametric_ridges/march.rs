@@ -8,6 +8,7 @@ use crate::ridge_function::{
     Jet, Magnitude, NEAR_UMBILIC, RidgeValue, VANISHING, degenerate, degenerate_umbilic,
     ridge_value, snapped,
 };
+use crate::threads::map_in_order;
 use rustc_hash::FxHashMap as HashMap;
 
 /// A crossing is kept when the gradient of the curvature is within this cosine of orthogonal
@@ -540,27 +541,7 @@ pub(super) fn march_all<'a>(
         .map_or(1, std::num::NonZero::get)
         .min(pairs.len() / PATCHES_PER_THREAD)
         .max(1);
-    let found = if threads == 1 {
-        pairs.iter_mut().map(|p| march_patch(p, umbilics)).collect()
-    } else {
-        let chunk = pairs.len().div_ceil(threads);
-        std::thread::scope(|scope| {
-            let handles: Vec<_> = pairs
-                .chunks_mut(chunk)
-                .map(|part| {
-                    scope.spawn(move || {
-                        part.iter_mut()
-                            .map(|p| march_patch(p, umbilics))
-                            .collect::<Vec<_>>()
-                    })
-                })
-                .collect();
-            handles
-                .into_iter()
-                .flat_map(|h| h.join().unwrap_or_else(|e| std::panic::resume_unwind(e)))
-                .collect()
-        })
-    };
+    let found = map_in_order(&mut pairs, threads, |p| march_patch(p, umbilics));
     (pairs, found)
 }
 
