@@ -60,6 +60,10 @@ struct Segment<T> {
     d1: Vec<Vec<T>>,
     d2: Vec<Vec<T>>,
     d3: Vec<Vec<T>>,
+    /// The constant Hessians of the quadratic forms `h1 … h4` (row-major `N × N` each, in
+    /// the order `h1`, `h2`, `h3`, `h4`): they depend on the knots only, so they are built
+    /// once here and each weighted Hessian only combines them.
+    hessians: Vec<T>,
 }
 
 #[derive(Clone, Debug)]
@@ -86,13 +90,12 @@ fn product_weights<T: Scalar>(m: usize, n: usize) -> Vec<Vec<T>> {
         .collect()
 }
 
-/// A quadratic form in the local variables: value, gradient and (constant) Hessian.
+/// A quadratic form in the local variables: value and gradient (its Hessian is constant and
+/// kept with the segment).
 #[derive(Clone, Debug)]
 struct Quadratic<T> {
     value: T,
     gradient: Vec<T>,
-    /// Row-major `N × N`.
-    hessian: Vec<T>,
 }
 
 impl<T: Scalar> Quadratic<T> {
@@ -100,14 +103,12 @@ impl<T: Scalar> Quadratic<T> {
         Self {
             value: T::zero(),
             gradient: vec![T::zero(); n],
-            hessian: vec![T::zero(); n * n],
         }
     }
 
     fn clear(&mut self) {
         self.value = T::zero();
         self.gradient.iter_mut().for_each(|g| *g = T::zero());
-        self.hessian.iter_mut().for_each(|h| *h = T::zero());
     }
 }
 
@@ -118,55 +119,86 @@ enum Pairing {
     Wedge,
 }
 
-/// Adds `w · (a ∘ b)` to `out`, where `a` and `b` are the local coefficient vectors of two
-/// derivative coefficients (`a·X`, `a·Y` their coordinates) and `∘` is `·` or `∧`.
-/// `ax = a·X` etc. are their current coordinates. Variables are interleaved `[x_0, y_0, …]`.
-#[allow(clippy::too_many_arguments)]
+/// Adds `w · (a ∘ b)` to `out` (value and gradient), where `a` and `b` are the local
+/// coefficient vectors of two derivative coefficients (`a·X`, `a·Y` their coordinates) and
+/// `∘` is `·` or `∧`. `ax = a·X` etc. are their current coordinates. Variables are
+/// interleaved `[x_0, y_0, …]`. The gradient only `with_gradient`.
 fn add_pair<T: Scalar>(
     out: &mut Quadratic<T>,
     w: T,
-    a: &[T],
-    b: &[T],
+    (a, b): (&[T], &[T]),
     (ax, ay): (T, T),
     (bx, by): (T, T),
-    pairing: Pairing,
-    with_hessian: bool,
+    (pairing, with_gradient): (Pairing, bool),
 ) {
-    let n = out.gradient.len();
     match pairing {
         Pairing::Dot => {
             out.value += w * (ax * bx + ay * by);
-            for j in 0..a.len() {
+            for j in 0..if with_gradient { a.len() } else { 0 } {
                 out.gradient[2 * j] += w * (a[j] * bx + b[j] * ax);
                 out.gradient[2 * j + 1] += w * (a[j] * by + b[j] * ay);
-            }
-            if with_hessian {
-                for j in 0..a.len() {
-                    for l in 0..a.len() {
-                        let v = w * (a[j] * b[l] + b[j] * a[l]);
-                        out.hessian[(2 * j) * n + 2 * l] += v;
-                        out.hessian[(2 * j + 1) * n + 2 * l + 1] += v;
-                    }
-                }
             }
         }
         Pairing::Wedge => {
             // a ∧ b = (a·X)(b·Y) − (a·Y)(b·X)
             out.value += w * (ax * by - ay * bx);
-            for j in 0..a.len() {
+            for j in 0..if with_gradient { a.len() } else { 0 } {
                 out.gradient[2 * j] += w * (a[j] * by - b[j] * ay);
                 out.gradient[2 * j + 1] += w * (b[j] * ax - a[j] * bx);
             }
-            if with_hessian {
-                for j in 0..a.len() {
-                    for l in 0..a.len() {
-                        // ∂²/∂X_j∂Y_l = a_j b_l − b_j a_l
-                        let v = w * (a[j] * b[l] - b[j] * a[l]);
-                        out.hessian[(2 * j) * n + 2 * l + 1] += v;
-                        out.hessian[(2 * l + 1) * n + 2 * j] += v;
-                    }
+        }
+    }
+}
+
+/// Adds the (constant) Hessian of `w · (a ∘ b)` to `hessian` (row-major `n × n`).
+fn add_pair_hessian<T: Scalar>(
+    hessian: &mut [T],
+    n: usize,
+    w: T,
+    (a, b): (&[T], &[T]),
+    pairing: Pairing,
+) {
+    for j in 0..a.len() {
+        for l in 0..a.len() {
+            match pairing {
+                Pairing::Dot => {
+                    let v = w * (a[j] * b[l] + b[j] * a[l]);
+                    hessian[(2 * j) * n + 2 * l] += v;
+                    hessian[(2 * j + 1) * n + 2 * l + 1] += v;
+                }
+                Pairing::Wedge => {
+                    // ∂²/∂X_j∂Y_l = a_j b_l − b_j a_l
+                    let v = w * (a[j] * b[l] - b[j] * a[l]);
+                    hessian[(2 * j) * n + 2 * l + 1] += v;
+                    hessian[(2 * l + 1) * n + 2 * j] += v;
                 }
             }
+        }
+    }
+}
+
+/// The Hessians of the Bernstein product `d1 ∘ right` (coefficient after coefficient, each
+/// row-major `n × n`), appended to `out`.
+fn product_hessians<T: Scalar>(
+    out: &mut Vec<T>,
+    n: usize,
+    d1: &[Vec<T>],
+    right: &[Vec<T>],
+    weights: &[Vec<T>],
+    pairing: Pairing,
+) {
+    let start = out.len();
+    out.resize(start + (d1.len() + right.len() - 1) * n * n, T::zero());
+    for (i, a) in d1.iter().enumerate() {
+        for (j, b) in right.iter().enumerate() {
+            let k = i + j;
+            add_pair_hessian(
+                &mut out[start + k * n * n..start + (k + 1) * n * n],
+                n,
+                weights[i][j],
+                (a, b),
+                pairing,
+            );
         }
     }
 }
@@ -181,6 +213,11 @@ pub struct SegmentWorkspace<T> {
     d1: Vec<(T, T)>,
     d2: Vec<(T, T)>,
     d3: Vec<(T, T)>,
+    /// The weighted Hessian's sums: `Σ_i s_ij a_i` per right factor, `Σ_j s_ij b_j` per
+    /// left factor, and `Σ_j s_ij ∇b_j` per left factor (`N` entries each).
+    right_sums: Vec<T>,
+    left_sums: Vec<T>,
+    gradient_sums: Vec<T>,
 }
 
 impl<T: Scalar> SegmentCurvature<T> {
@@ -211,6 +248,14 @@ impl<T: Scalar> SegmentCurvature<T> {
                 ),
             ));
         }
+        let weights = ProductWeights {
+            d1d1: product_weights(p - 1, p - 1),
+            d1d2: product_weights(p - 1, p - 2),
+            d1d3: product_weights(p - 1, p - 3),
+            h1h2: product_weights(2 * p - 2, 2 * p - 4),
+            h3h4: product_weights(2 * p - 3, 2 * p - 3),
+        };
+        let nl = 2 * (p + 1);
         let extraction = SplineMap::bezier_extraction(knots);
         let matrix = extraction.matrix();
         let breaks = knots.domain_breaks();
@@ -244,21 +289,21 @@ impl<T: Scalar> SegmentCurvature<T> {
             let d1 = diff(&local, p);
             let d2 = diff(&d1, p - 1);
             let d3 = diff(&d2, p - 2);
+            // h1 … h4 have 2p − 1, 2p − 3, 2p − 2 and 2p − 2 coefficients.
+            let mut hessians = Vec::with_capacity((8 * p - 8) * nl * nl);
+            product_hessians(&mut hessians, nl, &d1, &d1, &weights.d1d1, Pairing::Dot);
+            product_hessians(&mut hessians, nl, &d1, &d3, &weights.d1d3, Pairing::Wedge);
+            product_hessians(&mut hessians, nl, &d1, &d2, &weights.d1d2, Pairing::Dot);
+            product_hessians(&mut hessians, nl, &d1, &d2, &weights.d1d2, Pairing::Wedge);
             segments.push(Segment {
                 first,
                 interval: (a, b),
                 d1,
                 d2,
                 d3,
+                hessians,
             });
         }
-        let weights = ProductWeights {
-            d1d1: product_weights(p - 1, p - 1),
-            d1d2: product_weights(p - 1, p - 2),
-            d1d3: product_weights(p - 1, p - 3),
-            h1h2: product_weights(2 * p - 2, 2 * p - 4),
-            h3h4: product_weights(2 * p - 3, 2 * p - 3),
-        };
         Ok(Self {
             degree: p,
             segments,
@@ -327,6 +372,9 @@ impl<T: Scalar> SegmentCurvature<T> {
             d1: vec![(T::zero(), T::zero()); p],
             d2: vec![(T::zero(), T::zero()); p - 1],
             d3: vec![(T::zero(), T::zero()); p - 2],
+            right_sums: vec![T::zero(); 2 * p - 1],
+            left_sums: vec![T::zero(); 2 * p - 1],
+            gradient_sums: vec![T::zero(); (2 * p - 1) * n],
         }
     }
 
@@ -380,7 +428,6 @@ impl<T: Scalar> SegmentCurvature<T> {
         coords(&seg.d2, &mut ws.d2);
         coords(&seg.d3, &mut ws.d3);
         let need_grad = jacobian.is_some() || hessian.is_some();
-        let need_hess = hessian.is_some();
         // h1 = c′·c′, h3 = c′·c″, h4 = c′ ∧ c″, h2 = c′ ∧ c‴ (Bernstein products).
         let w = &self.weights;
         let build = |out: &mut [Quadratic<T>],
@@ -394,12 +441,10 @@ impl<T: Scalar> SegmentCurvature<T> {
                     add_pair(
                         &mut out[i + j],
                         weights[i][j],
-                        a,
-                        b,
+                        (a, b),
                         *ac,
                         *bc,
-                        pairing,
-                        need_hess,
+                        (pairing, need_grad),
                     );
                 }
             }
@@ -426,7 +471,6 @@ impl<T: Scalar> SegmentCurvature<T> {
             jac.iter_mut().for_each(|v| *v = T::zero());
         }
         let three: T = from_count(3);
-        let mut hessian = hessian;
         // g = h1 h2 − 3 h3 h4: products of quadratic forms.
         for (left, right, weights, factor) in [
             (&ws.h1, &ws.h2, &w.h1h2, T::one()),
@@ -438,60 +482,129 @@ impl<T: Scalar> SegmentCurvature<T> {
                 weights,
                 factor,
                 n,
-                need_grad,
                 values,
                 jacobian.as_deref_mut(),
-                hessian.as_mut().map(|(hw, out)| (*hw, &mut **out)),
             );
+        }
+        if let Some((hw, out)) = hessian {
+            let nn = n * n;
+            let (q1, q2, q3) = (2 * p - 1, 2 * p - 3, 2 * p - 2);
+            let (h1, rest) = seg.hessians.split_at(q1 * nn);
+            let (h2, rest) = rest.split_at(q2 * nn);
+            let (h3, h4) = rest.split_at(q3 * nn);
+            let SegmentWorkspace {
+                h1: a1,
+                h2: a2,
+                h3: a3,
+                h4: a4,
+                right_sums,
+                left_sums,
+                gradient_sums,
+                ..
+            } = ws;
+            let mut sums = ProductSums {
+                right: right_sums,
+                left: left_sums,
+                gradients: gradient_sums,
+            };
+            sums.add_weighted_hessian((a1, h1), (a2, h2), &w.h1h2, T::one(), hw, out);
+            sums.add_weighted_hessian((a3, h3), (a4, h4), &w.h3h4, -three, hw, out);
+        }
+    }
+}
+
+/// Scratch sums of [`ProductSums::add_weighted_hessian`].
+struct ProductSums<'a, T> {
+    right: &'a mut [T],
+    left: &'a mut [T],
+    gradients: &'a mut [T],
+}
+
+impl<T: Scalar> ProductSums<'_, T> {
+    /// Adds $\sum_k \omega_k \nabla^2 \big(f \sum_{i+j=k} w_{ij} a_i b_j\big)$ to `out`
+    /// for quadratic forms `a_i`, `b_j` (values and gradients, and their constant Hessians
+    /// `ha`, `hb`). With $s_{ij} = f w_{ij} \omega_{i+j}$ the product rule gives
+    /// $\sum_j \alpha_j \nabla^2 b_j + \sum_i \beta_i \nabla^2 a_i + \sum_i (\nabla a_i
+    /// v_i^T + v_i \nabla a_i^T)$ with $\alpha_j = \sum_i s_{ij} a_i$,
+    /// $\beta_i = \sum_j s_{ij} b_j$ and $v_i = \sum_j s_{ij} \nabla b_j$: one pass over the
+    /// Hessians per factor instead of one per pair.
+    fn add_weighted_hessian(
+        &mut self,
+        (left, ha): (&[Quadratic<T>], &[T]),
+        (right, hb): (&[Quadratic<T>], &[T]),
+        weights: &[Vec<T>],
+        factor: T,
+        hw: &[T],
+        out: &mut [T],
+    ) {
+        let n = left[0].gradient.len();
+        let nn = n * n;
+        let alpha = &mut self.right[..right.len()];
+        let beta = &mut self.left[..left.len()];
+        let v = &mut self.gradients[..left.len() * n];
+        alpha.iter_mut().for_each(|x| *x = T::zero());
+        beta.iter_mut().for_each(|x| *x = T::zero());
+        v.iter_mut().for_each(|x| *x = T::zero());
+        for (i, a) in left.iter().enumerate() {
+            let vi = &mut v[i * n..(i + 1) * n];
+            for (j, b) in right.iter().enumerate() {
+                let s = weights[i][j] * factor * hw[i + j];
+                if s == T::zero() {
+                    continue;
+                }
+                alpha[j] += s * a.value;
+                beta[i] += s * b.value;
+                for (vr, gb) in vi.iter_mut().zip(&b.gradient) {
+                    *vr += s * *gb;
+                }
+            }
+        }
+        for (coefficient, h) in alpha.iter().zip(hb.chunks_exact(nn)) {
+            if *coefficient != T::zero() {
+                for (o, hv) in out.iter_mut().zip(h) {
+                    *o += *coefficient * *hv;
+                }
+            }
+        }
+        for (coefficient, h) in beta.iter().zip(ha.chunks_exact(nn)) {
+            if *coefficient != T::zero() {
+                for (o, hv) in out.iter_mut().zip(h) {
+                    *o += *coefficient * *hv;
+                }
+            }
+        }
+        for (a, vi) in left.iter().zip(v.chunks_exact(n)) {
+            for r in 0..n {
+                let (gar, vr) = (a.gradient[r], vi[r]);
+                let row = &mut out[r * n..(r + 1) * n];
+                for ((o, gc), vc) in row.iter_mut().zip(&a.gradient).zip(vi) {
+                    *o += gar * *vc + vr * *gc;
+                }
+            }
         }
     }
 }
 
 /// Adds `factor · Σ_{i+j=k} w_ij a_i b_j` to coefficient `k` of `values`, with gradients
-/// into `jacobian` and the `hw`-weighted Hessians into `hessian`.
-#[allow(clippy::too_many_arguments)]
+/// into `jacobian`.
 fn quartic_products<T: Scalar>(
     left: &[Quadratic<T>],
     right: &[Quadratic<T>],
     weights: &[Vec<T>],
     factor: T,
     n: usize,
-    need_grad: bool,
     values: &mut [T],
     mut jacobian: Option<&mut [T]>,
-    mut hessian: Option<(&[T], &mut [T])>,
 ) {
     for (i, a) in left.iter().enumerate() {
         for (j, b) in right.iter().enumerate() {
             let k = i + j;
             let c = weights[i][j] * factor;
             values[k] += c * a.value * b.value;
-            if !need_grad {
-                continue;
-            }
             if let Some(jac) = jacobian.as_deref_mut() {
                 let row = &mut jac[k * n..(k + 1) * n];
                 for ((r, ga), gb) in row.iter_mut().zip(&a.gradient).zip(&b.gradient) {
                     *r += c * (a.value * *gb + b.value * *ga);
-                }
-            }
-            if let Some((hw, out)) = hessian.as_mut() {
-                let scale = c * hw[k];
-                if scale == T::zero() {
-                    continue;
-                }
-                let (av, bv) = (a.value * scale, b.value * scale);
-                for r in 0..n {
-                    let (gar, gbr) = (a.gradient[r] * scale, b.gradient[r] * scale);
-                    let row = &mut out[r * n..(r + 1) * n];
-                    let har = &a.hessian[r * n..(r + 1) * n];
-                    let hbr = &b.hessian[r * n..(r + 1) * n];
-                    for col in 0..n {
-                        row[col] += av * hbr[col]
-                            + bv * har[col]
-                            + gar * b.gradient[col]
-                            + gbr * a.gradient[col];
-                    }
                 }
             }
         }
