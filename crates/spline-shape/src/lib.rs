@@ -51,7 +51,8 @@ pub use adaptive::{
     AdaptiveIteration, AdaptiveOptions, optimise_perimeter_over_area, perimeter_squared_over_area,
 };
 pub use barrier::{
-    BarrierOptions, BarrierProblem, BarrierReport, find_feasible, find_feasible_near, minimize,
+    BarrierOptions, BarrierProblem, BarrierReport, STALL_STEPS, find_feasible, find_feasible_near,
+    minimize,
 };
 pub use constrained::{
     ConstraintCheck, FunctionApproximation, FunctionConstraint, FunctionFit, MAX_SIGN_PATTERNS,

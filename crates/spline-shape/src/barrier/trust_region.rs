@@ -1,8 +1,8 @@
 //! The dense path: Newton's method with a trust region in the barrier's local metric.
 
 use super::{
-    BarrierOptions, BarrierProblem, StopRule, Workspace, barrier_gradient, barrier_value,
-    iterate_value,
+    BarrierOptions, BarrierProblem, StallWatch, StopRule, Workspace, barrier_gradient,
+    barrier_value, iterate_value,
 };
 use nalgebra::{Cholesky, DMatrix, DVector, Dyn};
 use spline_core::{Error, ErrorKind, Result};
@@ -14,7 +14,8 @@ use spline_core::{Error, ErrorKind, Result};
 /// Dikin ellipsoid of radius 1 is feasible for linear constraints), and the subproblem
 /// $\min_d g^T d + \tfrac12 d^T H d$, $\lVert d \rVert_M \le \Delta$ is solved exactly by an
 /// eigendecomposition of $L^{-1} H L^{-T}$ ($M = L L^T$). Steps that leave the domain or
-/// whose actual decrease is poor shrink the region. Returns the number of accepted steps.
+/// whose actual decrease is poor shrink the region; the centring ends early when the steps
+/// crawl ([`BarrierOptions::stall_tolerance`]). Returns the number of accepted steps.
 pub(super) fn centre_trust_region(
     problem: &impl BarrierProblem,
     x: &mut DVector<f64>,
@@ -26,6 +27,7 @@ pub(super) fn centre_trust_region(
     let mut radius = 1.0;
     let mut accepted = 0;
     let mut f = iterate_value(problem, x, t, &mut ws.c_trial)?;
+    let mut watch = StallWatch::new(options);
     for _ in 0..options.max_newton_iterations {
         barrier_gradient(problem, x, t, ws)?;
         let metric = &mut ws.metric;
@@ -82,9 +84,10 @@ pub(super) fn centre_trust_region(
                         radius = (2.0 * radius).min(1e6);
                     }
                     x.copy_from(&ws.candidate);
+                    let before = f;
                     f -= actual.unwrap_or(0.0);
                     accepted += 1;
-                    if stop.is_some_and(|stop| stop(x)) {
+                    if stop.is_some_and(|stop| stop(x)) || watch.crawled(before, f) {
                         return Ok(accepted);
                     }
                     continue;
@@ -115,6 +118,7 @@ pub(super) fn centre_trust_region(
         super::workspace::count_eigendecomposition();
         eigen.eigenvectors.transpose_to(&mut ws.qt);
         let mut improved = false;
+        let mut crawled = false;
         for _ in 0..60 {
             let predicted = trust_region_step(&eigen, radius, ws);
             if !(predicted > 0.0) {
@@ -137,9 +141,11 @@ pub(super) fn centre_trust_region(
             }
             if ratio > 1e-4 {
                 x.copy_from(&ws.candidate);
+                let before = f;
                 f -= actual.unwrap_or(0.0);
                 accepted += 1;
                 improved = true;
+                crawled = watch.crawled(before, f);
                 break;
             }
             if radius < 1e-14 {
@@ -149,7 +155,7 @@ pub(super) fn centre_trust_region(
             }
         }
         ws.eigen_storage = Some(eigen.eigenvectors);
-        if !improved {
+        if !improved || crawled {
             return Ok(accepted);
         }
         if stop.is_some_and(|stop| stop(x)) {

@@ -14,6 +14,13 @@ use spline_geom::Curve2;
 /// Newton steps per centring step in phase I, at most.
 const PHASE_ONE_NEWTON_STEPS: usize = 60;
 
+/// Phase I gives up once `τ` stays above this many times the barrier's gap bound `m / t`:
+/// were the centring exact and the pull on the fit gone, `τ − m/t` would bound the least
+/// `τ` from below, so a `τ` far above `m / t` creeps towards a positive or zero limit (no
+/// strictly feasible curve on this level) rather than through zero. The factor leaves room
+/// for inexact centring and the pull, which the bound ignores.
+const PHASE_ONE_GAP_FACTOR: f64 = 10.0;
+
 /// What one attempt found.
 pub(crate) struct Attempt {
     /// The curve on the final knots (normalised coordinates).
@@ -68,7 +75,8 @@ impl Solver<'_> {
     /// pull weakening as `t` grows (so that the fit keeps its hold while the conditions are
     /// driven to feasibility), each condition shifted by its own violation. `None` if
     /// no strictly feasible curve is found, or `τ` creeps towards zero from above (a
-    /// degenerate configuration, `g ≡ 0` on a piece, not a way to feasibility).
+    /// degenerate configuration, `g ≡ 0` on a piece, not a way to feasibility): `τ` that
+    /// stops halving, or stays far above the gap bound ([`PHASE_ONE_GAP_FACTOR`]).
     pub(super) fn phase_one(
         &mut self,
         problem: &mut EraserProblem,
@@ -99,6 +107,9 @@ impl Solver<'_> {
             }
             if y[index] < 0.0 {
                 found = true;
+                break;
+            }
+            if y[index] > PHASE_ONE_GAP_FACTOR * problem.num_constraints() as f64 / t {
                 break;
             }
             if y[index] > 0.5 * best_tau {

@@ -196,6 +196,11 @@ impl SmoothingOptions {
             barrier: BarrierOptions {
                 gap_tolerance: 1e-7,
                 max_newton_iterations: 60,
+                // The fit's valleys (control points sliding along the curve) make Newton
+                // crawl at large t; steps gaining under 1e-5 of the barrier value move the
+                // deviation by far less than its reported digits (measured on the 2,174
+                // UIUC airfoils: same median and p90 deviation, 1.5x faster).
+                stall_tolerance: 1e-5,
                 ..BarrierOptions::default()
             },
             closed: false,
