@@ -38,6 +38,67 @@ pub(super) struct Distances {
     /// A closed curve of period 1 on `[0, 1]`: no foot point is pinned and foot points cross
     /// the closing point.
     pub(super) closed: bool,
+    /// The curve of the last control points as one polynomial per knot span.
+    pub(super) form: RefCell<TaylorForm>,
+}
+
+/// The curve of one set of control points as one polynomial per knot span — its Taylor
+/// coefficients about the span's left knot — so that each step of the foot-point iteration
+/// evaluates `C`, `C′` and `C″` by Horner's scheme, `O(p)`, instead of the basis functions'
+/// triangular scheme and three sums over the control points, `O(p²)`. Built once per set of
+/// control points (one basis evaluation per span), used by every data point's iteration.
+#[derive(Clone, Debug, Default)]
+pub(super) struct TaylorForm {
+    /// `p + 1` coefficients per span, spans from the first (`span − p`); empty spans zero.
+    coefficients: Vec<Vector2<f64>>,
+    /// The basis functions and derivatives at a left knot (scratch).
+    basis: Vec<f64>,
+}
+
+impl TaylorForm {
+    /// The form of the curve with `knots` and `control`.
+    pub(super) fn fill(&mut self, knots: &KnotVector<f64>, control: &[Vector2<f64>]) {
+        let p = knots.degree();
+        let width = p + 1;
+        let n = knots.num_basis();
+        let k = knots.knots();
+        self.coefficients.clear();
+        self.coefficients.resize((n - p) * width, Vector2::zeros());
+        self.basis.resize(width * width, 0.0);
+        for span in p..n {
+            if !(k[span] < k[span + 1]) {
+                continue;
+            }
+            // Right derivatives at the span's left knot: this span's polynomial.
+            knots.basis_derivatives(span, k[span], p, &mut self.basis);
+            let mut factorial = 1.0;
+            for order in 0..=p {
+                if order > 1 {
+                    factorial *= order as f64;
+                }
+                let mut c = Vector2::zeros();
+                for (a, point) in control[span - p..=span].iter().enumerate() {
+                    c += point * self.basis[order * width + a];
+                }
+                self.coefficients[(span - p) * width + order] = c / factorial;
+            }
+        }
+    }
+
+    /// `C(u)`, `C′(u)` and `C″(u)` on `span` (of the knots the form was filled with).
+    fn eval(&self, knots: &KnotVector<f64>, span: usize, u: f64) -> [Vector2<f64>; 3] {
+        let width = knots.degree() + 1;
+        let first = (span - knots.degree()) * width;
+        let t = u - knots.knots()[span];
+        let (mut value, mut slope, mut half_curvature) =
+            (Vector2::zeros(), Vector2::zeros(), Vector2::zeros());
+        for c in self.coefficients[first..first + width].iter().rev() {
+            half_curvature = half_curvature * t + slope;
+            slope = slope * t + value;
+            value = value * t + c;
+        }
+        [value, slope, half_curvature * 2.0]
+    }
 }
 
 /// Data points at least this many have their foot points found on every core (each foot
@@ -60,11 +121,14 @@ impl Distances {
     ) {
         let anchors = self.params.borrow();
         let anchors: &[f64] = &anchors;
+        let mut form = self.form.borrow_mut();
+        form.fill(&self.knots, control);
         let solver = FootSolver {
             knots: &self.knots,
             points: &self.points,
             project: self.project,
             closed: self.closed,
+            form: &form,
         };
         let threads = if feet.len() < PARALLEL_POINTS {
             1
@@ -73,7 +137,7 @@ impl Distances {
         };
         if threads <= 1 {
             for (j, foot) in feet.iter_mut().enumerate() {
-                solver.foot_into(control, j, anchors[j], (derivatives, found), foot);
+                solver.foot_into(j, anchors[j], (derivatives, found), foot);
             }
             return;
         }
@@ -84,7 +148,7 @@ impl Distances {
                 scope.spawn(move || {
                     for (k, foot) in part.iter_mut().enumerate() {
                         let j = c * chunk + k;
-                        solver.foot_into(control, j, anchors[j], (derivatives, found), foot);
+                        solver.foot_into(j, anchors[j], (derivatives, found), foot);
                     }
                 });
             }
@@ -98,22 +162,18 @@ pub(super) struct FootSolver<'a> {
     points: &'a [Vector2<f64>],
     project: bool,
     closed: bool,
+    /// The curve of the control points passed to [`FootSolver::foot_into`].
+    form: &'a TaylorForm,
 }
 
 impl FootSolver<'_> {
-    /// The foot point of data point `j` near its cached parameter `anchor`, with the
+    /// The foot point of data point `j` (on the curve of the solver's form) near its cached
+    /// parameter `anchor`, with the
     /// derivatives of its squared distance when `derivatives`, written into `out` (its
     /// buffers reused: no allocation once they have their size). With `found`, the foot
     /// point is already known to be at `out.param` (found by an earlier call for the same
     /// control points): only the derivatives are computed there.
-    fn foot_into(
-        &self,
-        control: &[Vector2<f64>],
-        j: usize,
-        anchor: f64,
-        (derivatives, found): (bool, bool),
-        out: &mut Foot,
-    ) {
+    fn foot_into(&self, j: usize, anchor: f64, (derivatives, found): (bool, bool), out: &mut Foot) {
         let p = self.knots.degree();
         let width = p + 1;
         let q = self.points[j];
@@ -127,23 +187,11 @@ impl FootSolver<'_> {
         } else {
             anchor
         };
-        // The basis functions and their first two derivatives: `buffers[current]` at `u`,
-        // the other one at a candidate step (taking the step flips `current`: no copy).
-        let mut buffers = [[0.0; 3 * spline_core::MAX_ORDER]; 2];
-        let mut current = 0;
-        let eval = |u: f64, basis: &mut [f64]| -> (usize, [Vector2<f64>; 3]) {
+        let eval = |u: f64| -> (usize, [Vector2<f64>; 3]) {
             let span = self.knots.span_in_domain(u);
-            self.knots
-                .basis_derivatives(span, u, 2, &mut basis[..3 * width]);
-            let mut d = [Vector2::zeros(); 3];
-            for (k, dk) in d.iter_mut().enumerate() {
-                for a in 0..width {
-                    *dk += control[span - p + a] * basis[k * width + a];
-                }
-            }
-            (span, d)
+            (span, self.form.eval(self.knots, span, u))
         };
-        let (mut span, mut d) = eval(u, &mut buffers[current]);
+        let (mut span, mut d) = eval(u);
         if !fixed && !found {
             let mut dist2 = (d[0] - q).norm_squared();
             for _ in 0..30 {
@@ -167,11 +215,10 @@ impl FootSolver<'_> {
                     if (candidate - u).abs() <= FOOT_PARAMETER_RESOLUTION {
                         break;
                     }
-                    let (s2, d2) = eval(candidate, &mut buffers[1 - current]);
+                    let (s2, d2) = eval(candidate);
                     let c2 = (d2[0] - q).norm_squared();
                     if c2 <= dist2 {
                         moved = true;
-                        current = 1 - current;
                         u = candidate;
                         span = s2;
                         d = d2;
@@ -185,7 +232,6 @@ impl FootSolver<'_> {
                 }
             }
         }
-        let basis = &buffers[current];
         let r = d[0] - q;
         let squared = r.norm_squared();
         let first = span - p;
@@ -196,7 +242,10 @@ impl FootSolver<'_> {
         gradient.clear();
         hessian.clear();
         if derivatives {
-            // Basis values at u (the evaluation left them in `basis`).
+            // The basis functions and their slopes at u.
+            let mut basis = [0.0; 2 * spline_core::MAX_ORDER];
+            self.knots
+                .basis_derivatives(span, u, 1, &mut basis[..2 * width]);
             let value = &basis[..width];
             let slope = &basis[width..2 * width];
             gradient.resize(n, 0.0);
@@ -234,7 +283,7 @@ impl FootSolver<'_> {
 
 #[cfg(test)]
 mod tests {
-    use super::{Distances, Foot, FootSolver, PARALLEL_POINTS};
+    use super::{Distances, Foot, FootSolver, PARALLEL_POINTS, TaylorForm};
     use nalgebra::Vector2;
     use spline_core::KnotVector;
     use std::cell::RefCell;
@@ -265,24 +314,64 @@ mod tests {
                 params: RefCell::new(anchors.clone()),
                 project: true,
                 closed,
+                form: RefCell::default(),
             };
             for derivatives in [false, true] {
                 let mut together = vec![Foot::default(); m];
                 distances.feet_into(&control, derivatives, false, &mut together);
+                let mut form = TaylorForm::default();
+                form.fill(&knots, &control);
                 let solver = FootSolver {
                     knots: &knots,
                     points: &points,
                     project: true,
                     closed,
+                    form: &form,
                 };
                 for (j, foot) in together.iter().enumerate() {
                     let mut alone = Foot::default();
-                    solver.foot_into(&control, j, anchors[j], (derivatives, false), &mut alone);
+                    solver.foot_into(j, anchors[j], (derivatives, false), &mut alone);
                     assert_eq!(foot.squared.to_bits(), alone.squared.to_bits(), "{j}");
                     assert_eq!(foot.param.to_bits(), alone.param.to_bits(), "{j}");
                     assert_eq!(
                         (foot.first, &foot.gradient, &foot.hessian),
                         (alone.first, &alone.gradient, &alone.hessian)
+                    );
+                }
+            }
+        }
+    }
+
+    /// The Taylor form's `C`, `C′`, `C″` agree with the curve's derivatives (de Boor's
+    /// triangular scheme) at parameters across every span, on knots with a double knot.
+    #[test]
+    fn taylor_form_is_the_curve() {
+        use spline_geom::BSpline;
+        for degree in 3..=5 {
+            let mut knots = vec![0.0; degree + 1];
+            knots.extend([0.1, 0.25, 0.25, 0.5, 0.7, 0.9]);
+            knots.extend(vec![1.0; degree + 1]);
+            let knots = KnotVector::new(degree, knots).unwrap();
+            let control: Vec<Vector2<f64>> = (0..knots.num_basis())
+                .map(|i| {
+                    let t = i as f64;
+                    Vector2::new(t * 0.3 + (t * 1.7).sin(), (t * 2.3).cos())
+                })
+                .collect();
+            let curve = BSpline::new(knots.clone(), control.clone()).unwrap();
+            let mut form = TaylorForm::default();
+            form.fill(&knots, &control);
+            for step in 0..=400 {
+                let u = f64::from(step) / 400.0;
+                let span = knots.span_in_domain(u);
+                let ours = form.eval(&knots, span, u);
+                let mut theirs = [Vector2::zeros(); 3];
+                curve.derivatives_into(u, &mut theirs).unwrap();
+                for (order, (a, b)) in ours.iter().zip(&theirs).enumerate() {
+                    let scale = 1.0 + b.norm();
+                    assert!(
+                        (a - b).norm() <= 1e-12 * scale * 10f64.powi(order as i32),
+                        "degree {degree}, u = {u}, order {order}: {a} vs {b}"
                     );
                 }
             }

@@ -134,6 +134,7 @@ impl EraserProblem {
                 params: RefCell::new(params.to_vec()),
                 project: true,
                 closed,
+                form: RefCell::default(),
             },
             objective,
             // A closed curve's last p control points repeat its first p.
