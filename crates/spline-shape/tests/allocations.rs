@@ -129,8 +129,10 @@ fn trust_region_steps_allocate_a_bounded_amount() {
 /// The same trust-region solves, with nalgebra's eigendecompositions taken off (5 blocks
 /// each, counted by [`spline_shape::barrier::trust_region_eigendecompositions`]): a solve of
 /// twice the Newton steps allocates exactly as much — the rest of a trust-region step (the
-/// metric's and the Hessian's Cholesky factorisations, failed ones included, the scaled
-/// matrices, the secular equation) reuses the workspace.
+/// metric's and the Hessian's Cholesky factorisations, failed ones included, Moré–Sorensen's
+/// factorisations of `H + λM`, the scaled matrices, the secular equation) reuses the
+/// workspace. (On this problem Moré–Sorensen settles every boundary step: no
+/// eigendecomposition at all; the eraser's test below has them.)
 #[test]
 fn trust_region_steps_allocate_only_eigendecompositions() {
     let _guard = SERIAL
@@ -159,7 +161,7 @@ fn trust_region_steps_allocate_only_eigendecompositions() {
          {many_steps} ({many_eigen})"
     );
     assert!(many_steps >= 2 * few_steps, "{few_steps} / {many_steps}");
-    assert!(many_eigen > few_eigen);
+    assert!(many_eigen >= few_eigen);
     assert_eq!(few, many);
 }
 
