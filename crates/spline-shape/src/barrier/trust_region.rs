@@ -36,14 +36,7 @@ pub(super) fn centre_trust_region(
         let metric = &mut ws.metric;
         metric.fill(0.0);
         problem.add_objective_hessian(x, t, metric);
-        for ((cols, vals), &w) in ws.jac.rows().zip(ws.inv.iter()) {
-            for (&ca, &va) in cols.iter().zip(vals) {
-                let wa = w * w * va;
-                for (&cb, &vb) in cols.iter().zip(vals) {
-                    metric[(ca, cb)] += wa * vb;
-                }
-            }
-        }
+        add_weighted_outer_products(metric, &ws.jac, &ws.inv);
         ws.hessian.copy_from(&ws.metric);
         if !problem.add_weighted_constraint_hessian(x, &ws.inv, &mut ws.hessian)
             && problem.weighted_constraint_hessian_into(x, &ws.inv, &mut ws.curvature)
@@ -170,6 +163,42 @@ pub(super) fn centre_trust_region(
             options.max_newton_iterations
         ),
     ))
+}
+
+/// Adds $\sum_i w_i^2 \nabla f_i \nabla f_i^T$ to `metric` (the Jacobian's sparse rows and
+/// the weights `w_i = 1/f_i`), column by column: each row's scaled values `w² ∇f_i` once,
+/// then contiguous updates down the columns of the (column-major) matrix. Entry `(a, b)`
+/// gains `(w² ∂_a f_i) ∂_b f_i` row after row, the same sums as an entry-by-entry loop.
+fn add_weighted_outer_products(
+    metric: &mut DMatrix<f64>,
+    jacobian: &super::SparseRows,
+    weights: &DVector<f64>,
+) {
+    const SHORT_ROW: usize = 32;
+    let n = metric.nrows();
+    let data = metric.as_mut_slice();
+    let mut scaled = [0.0; SHORT_ROW];
+    for ((cols, vals), &w) in jacobian.rows().zip(weights.iter()) {
+        if cols.len() > SHORT_ROW {
+            for (&ca, &va) in cols.iter().zip(vals) {
+                let wa = w * w * va;
+                for (&cb, &vb) in cols.iter().zip(vals) {
+                    data[ca + cb * n] += wa * vb;
+                }
+            }
+            continue;
+        }
+        for (s, &v) in scaled.iter_mut().zip(vals) {
+            *s = w * w * v;
+        }
+        let scaled = &scaled[..cols.len()];
+        for (&cb, &vb) in cols.iter().zip(vals) {
+            let column = &mut data[cb * n..(cb + 1) * n];
+            for (&ca, &wa) in cols.iter().zip(scaled) {
+                column[ca] += wa * vb;
+            }
+        }
+    }
 }
 
 /// Factorisations of `H + λM` that Moré–Sorensen's iteration may take for one radius.
