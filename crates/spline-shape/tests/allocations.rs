@@ -169,8 +169,8 @@ fn trust_region_steps_allocate_only_eigendecompositions() {
 /// workspace and the problem's buffers; what is left is per centring step and per round
 /// (refinement of the conditions, the continuation's levels, the anchors of the foot points)
 /// and nalgebra's eigendecompositions. Before the workspace the same run allocated 188,899
-/// blocks, 99 per Newton step; now 32,809 for 1,316 steps (the setup of the levels and the
-/// eigendecompositions; the crawl rule of the centring steps took 660 steps off, not the
+/// blocks, 99 per Newton step; now 31,515 for 1,432 steps (the setup of the levels and the
+/// eigendecompositions; the crawl rule of the centring steps took 540 steps off, not the
 /// setup), so the bound here is 30 per step.
 #[test]
 fn eraser_allocates_a_bounded_amount_per_newton_step() {

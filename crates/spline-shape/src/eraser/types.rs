@@ -197,10 +197,10 @@ impl SmoothingOptions {
                 gap_tolerance: 1e-7,
                 max_newton_iterations: 60,
                 // The fit's valleys (control points sliding along the curve) make Newton
-                // crawl at large t; steps gaining under 1e-5 of the barrier value move the
-                // deviation by far less than its reported digits (measured on the 2,174
-                // UIUC airfoils: same median and p90 deviation, 1.5x faster).
-                stall_tolerance: 1e-5,
+                // crawl at large t. Measured on the 2,174 UIUC airfoils (20 control points):
+                // 1e-5 is 1.8x faster than no rule with the deviation's p90 0.9 % higher,
+                // 3e-6 1.7x faster with median and p90 no higher, 1e-6 1.5x.
+                stall_tolerance: 3e-6,
                 ..BarrierOptions::default()
             },
             closed: false,
