@@ -9,11 +9,13 @@
 //! Stages: `piece` (Bézier pieces, boxes, fat lines), `search` (the subdivision), `refine`
 //! (Newton's method), `overlap` (pieces of overlaps chained into maximal intervals).
 
+mod frame;
 mod overlap;
 mod piece;
 mod refine;
 mod search;
 
+use frame::Frame;
 use nalgebra::Vector2;
 use overlap::{Setting, within};
 use piece::pieces_of;
@@ -126,7 +128,10 @@ struct Candidate<T> {
 /// overlap: two curves that touch stay within the tolerance over about
 /// `√(8 tolerance / Δκ)`; it is refined as a point. Intersections inside an overlap (on both
 /// of its intervals) are not listed again. Parameters computed by affine maps are clamped
-/// to their intervals, so none is a rounding step outside the domain.
+/// to their intervals, so none is a rounding step outside the domain. The search runs on
+/// the curves divided by a power of four near their size (exact in binary floating
+/// point), so coordinates from 1e-300 to 1e300 give the parameters of their unscaled
+/// counterparts.
 ///
 /// ```
 /// use nalgebra::Vector2;
@@ -158,6 +163,39 @@ pub fn intersect_curves<T: Scalar, A: PlanarCurve<T>, B: PlanarCurve<T>>(
     tolerance: T,
 ) -> Result<CurveIntersections<T>> {
     check_tolerance(tolerance)?;
+    let size = planar_extent(a)?.max(planar_extent(b)?);
+    let frame = Frame::of_pair::<T, A, B>(size);
+    let found = search_pair(&frame.view(a), &frame.view(b), framed(&frame, tolerance))?;
+    Ok(back(&frame, found))
+}
+
+/// A tolerance of the caller's units in `frame` (the smallest normal `f64` where it
+/// underflows: far below the rounding of the coordinates there).
+fn framed<T: Scalar>(frame: &Frame, tolerance: T) -> T {
+    frame.to_frame(tolerance).max(cast(f64::MIN_POSITIVE))
+}
+
+/// The intersections found in `frame`, in the caller's units.
+fn back<T: Scalar>(frame: &Frame, mut found: CurveIntersections<T>) -> CurveIntersections<T> {
+    for p in &mut found.points {
+        p.point = p.point.map(|x| frame.to_caller(x));
+        p.gap = frame.to_caller(p.gap);
+    }
+    for o in &mut found.overlaps {
+        o.points = (
+            o.points.0.map(|x| frame.to_caller(x)),
+            o.points.1.map(|x| frame.to_caller(x)),
+        );
+    }
+    found
+}
+
+/// [`intersect_curves`] on curves in a frame where their size is near 1.
+fn search_pair<T: Scalar, A: PlanarCurve<T>, B: PlanarCurve<T>>(
+    a: &A,
+    b: &B,
+    tolerance: T,
+) -> Result<CurveIntersections<T>> {
     let pa = pieces_of(a)?;
     let pb = pieces_of(b)?;
     let mut pairs = 0;
@@ -229,9 +267,9 @@ fn scaled<T: Scalar>(relative: T, size: T) -> T {
 
 /// [`intersect_curves`] with a tolerance relative to the curves' size: `relative` times the
 /// larger [`planar_extent`] of the two (the absolute tolerance when both are points). The
-/// answer to a scaled pair is then the scaled answer: the same crossings at 1e-60 and 1e60
-/// as at 1 (tested). Sizes much beyond that range are not covered yet: the search squares
-/// and multiplies coordinates, which leave the normal range of `f64` there.
+/// answer to a scaled pair is then the scaled answer of the unscaled pair, at every scale
+/// from 1e-300 to 1e300 (tested): the search runs on the curves divided by a power of four
+/// near their size, exactly.
 ///
 /// # Errors
 /// As [`intersect_curves`].
@@ -242,7 +280,10 @@ pub fn intersect_curves_relative<T: Scalar, A: PlanarCurve<T>, B: PlanarCurve<T>
 ) -> Result<CurveIntersections<T>> {
     check_tolerance(relative)?;
     let size = planar_extent(a)?.max(planar_extent(b)?);
-    intersect_curves(a, b, scaled(relative, size))
+    let frame = Frame::of_pair::<T, A, B>(size);
+    let tolerance = scaled(relative, frame.to_frame(size));
+    let found = search_pair(&frame.view(a), &frame.view(b), tolerance)?;
+    Ok(back(&frame, found))
 }
 
 /// [`self_intersections`] with a tolerance relative to the curve's [`planar_extent`].
@@ -255,7 +296,9 @@ pub fn self_intersections_relative<T: Scalar, C: PlanarCurve<T>>(
 ) -> Result<CurveIntersections<T>> {
     check_tolerance(relative)?;
     let size = planar_extent(curve)?;
-    self_intersections(curve, scaled(relative, size))
+    let frame = Frame::of::<T, C>(size);
+    let tolerance = scaled(relative, frame.to_frame(size));
+    Ok(back(&frame, self_search(&frame.view(curve), tolerance)?))
 }
 
 /// The self-intersections of a planar curve of any kind: pairs `u < v` with
@@ -293,6 +336,19 @@ pub fn self_intersections<T: Scalar, C: PlanarCurve<T>>(
     tolerance: T,
 ) -> Result<CurveIntersections<T>> {
     check_tolerance(tolerance)?;
+    let size = planar_extent(curve)?;
+    let frame = Frame::of::<T, C>(size);
+    Ok(back(
+        &frame,
+        self_search(&frame.view(curve), framed(&frame, tolerance))?,
+    ))
+}
+
+/// [`self_intersections`] of a curve in a frame where its size is near 1.
+fn self_search<T: Scalar, C: PlanarCurve<T>>(
+    curve: &C,
+    tolerance: T,
+) -> Result<CurveIntersections<T>> {
     let size = planar_extent(curve)?;
     if !(size > T::zero()) {
         return Err(Error::new(

@@ -298,7 +298,9 @@ fn relative_tolerances_give_the_same_crossings_at_every_scale() {
     let (a, b) = make(1.0);
     let unit = intersect_curves_relative(&a, &b, 1e-9).unwrap().points;
     assert_eq!(unit.len(), 3);
-    for s in [1e-60, 1e-20, 1e20, 1e60] {
+    for s in [
+        1e-300, 1e-200, 1e-150, 1e-60, 1e-20, 1e20, 1e60, 1e150, 1e200, 1e300,
+    ] {
         let (a, b) = make(s);
         let hits = intersect_curves_relative(&a, &b, 1e-9).unwrap().points;
         assert_eq!(hits.len(), 3, "scale {s}");
@@ -309,6 +311,29 @@ fn relative_tolerances_give_the_same_crossings_at_every_scale() {
             );
             assert!(((h.point / s) - g.point).norm() < 1e-12, "scale {s}");
         }
+    }
+    // A rational circle against a secant y = 1/2 (x = ±√3/2) and a tangent y = 1 (at
+    // (0, 1), flagged), with absolute tolerances scaled along.
+    for s in [1.0, 1e-300, 1e-150, 1e150, 1e300] {
+        let circle = unit_circle().map_control_points(|p| p * s);
+        let secant = line(Vector2::new(-2.0, 0.5) * s, Vector2::new(2.0, 0.5) * s);
+        let hits = intersect_curves(&circle, &secant, 1e-9 * s).unwrap().points;
+        assert_eq!(hits.len(), 2, "scale {s}: {hits:?}");
+        for h in &hits {
+            let p = h.point / s;
+            assert!((p.x.abs() - 0.75f64.sqrt()).abs() < 1e-14, "scale {s}: {p}");
+            assert!((p.y - 0.5).abs() < 1e-14 && !h.tangential, "scale {s}: {p}");
+        }
+        let tangent = line(Vector2::new(-2.0, 1.0) * s, Vector2::new(2.0, 1.0) * s);
+        let hits = intersect_curves_relative(&circle, &tangent, 1e-9)
+            .unwrap()
+            .points;
+        assert_eq!(hits.len(), 1, "scale {s}: {hits:?}");
+        let p = hits[0].point / s;
+        assert!(
+            hits[0].tangential && (p - Vector2::new(0.0, 1.0)).norm() < 1e-7,
+            "{p}"
+        );
     }
     // A self-intersecting loop likewise.
     let looped = |s: f64| {
@@ -328,7 +353,9 @@ fn relative_tolerances_give_the_same_crossings_at_every_scale() {
         .unwrap()
         .points;
     assert_eq!(unit.len(), 1);
-    for s in [1e-60, 1e-20, 1e20, 1e60] {
+    for s in [
+        1e-300, 1e-200, 1e-150, 1e-60, 1e-20, 1e20, 1e60, 1e150, 1e200, 1e300,
+    ] {
         let hits = self_intersections_relative(&looped(s), 1e-9)
             .unwrap()
             .points;

@@ -47,10 +47,11 @@ fn scaled_curve(name: &str, s: f64) -> String {
 type Crossing = (f64, f64, [f64; 2]);
 
 /// `x1e20_*` (a pair of cubics × 1e20) keeps its 2 crossings and `x1e-20_*`
-/// (`unscaled0078_*` × 1e-20) has its 3, no false ones. scipy: polyline crossings of 2001
-/// samples each, polished by `fsolve` on the unscaled pairs.
+/// (`unscaled0078_*` × 1e-20) has its 3, no false ones; so do both pairs scaled further,
+/// to sizes near 1e300 and 1e-300. scipy: polyline crossings of 2001 samples each,
+/// polished by `fsolve` on the unscaled pairs.
 #[test]
-fn curve_intersections_scaled_by_1e20_and_1e_minus_20() {
+fn curve_intersections_scaled_by_1e20_and_1e_minus_20_and_to_1e300() {
     let cases: [(&str, f64, &[Crossing]); 2] = [
         (
             "x1e20",
@@ -90,22 +91,35 @@ fn curve_intersections_scaled_by_1e20_and_1e_minus_20() {
             ],
         ),
     ];
-    for (name, s, expected) in cases {
-        let hits = spline(&[
-            "intersect",
-            &data(&format!("{name}_a.json")),
-            &data(&format!("{name}_b.json")),
-        ])
-        .json();
+    // Each pair also scaled to sizes near 1e300 and 1e-300, and beyond 1e±100 the other way.
+    let further = |s: f64| {
+        if s > 1.0 {
+            [1.0, 1e280, 1e-150]
+        } else {
+            [1.0, 1e-280, 1e150]
+        }
+    };
+    for ((name, s, expected), more) in cases
+        .iter()
+        .flat_map(|case| further(case.1).map(move |m| (*case, m)))
+    {
+        let (a, b) = (format!("{name}_a.json"), format!("{name}_b.json"));
+        let (a, b) = if more == 1.0 {
+            (data(&a), data(&b))
+        } else {
+            (scaled_curve(&a, more), scaled_curve(&b, more))
+        };
+        let (s, name) = (s * more, format!("{name} × {more:e}"));
+        let hits = spline(&["intersect", &a, &b]).json();
         let hits = hits.as_array().unwrap();
         assert_eq!(hits.len(), expected.len(), "{name}: {hits:?}");
         for (h, (u, v, p)) in hits.iter().zip(expected) {
             assert!(!h["tangential"].as_bool().unwrap(), "{name}: {h}");
-            assert_near(num(&h["u"]), *u, 1e-9, 1.0, name);
-            assert_near(num(&h["v"]), *v, 1e-9, 1.0, name);
+            assert_near(num(&h["u"]), *u, 1e-9, 1.0, &name);
+            assert_near(num(&h["v"]), *v, 1e-9, 1.0, &name);
             let q = point(&h["point"]);
             for k in 0..2 {
-                assert_near(q[k], p[k] * s, 1e-9, s, name);
+                assert_near(q[k], p[k] * s, 1e-9, s, &name);
             }
         }
     }
