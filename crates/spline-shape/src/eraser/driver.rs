@@ -9,6 +9,7 @@ use super::{Objective, SmoothingOptions};
 use crate::barrier::{BarrierProblem, StopRule, centre};
 use nalgebra::{DVector, Vector2};
 use spline_core::{ErrorKind, KnotVector, Result};
+use spline_fit::project_ordered;
 use spline_geom::Curve2;
 
 /// Newton steps per centring step in phase I, at most.
@@ -184,7 +185,29 @@ pub(crate) fn attempt<T: Topology>(
     if levels.is_empty() {
         return Ok(None);
     }
-    continuation::<T>(&levels, points, params, extrema, first_sign, options)
+    continuation::<T>(&levels, points, params, extrema, first_sign, options, None)
+}
+
+/// [`attempt`] from the container `start` of an earlier attempt on the same knots (its
+/// curve solved for other data points): the continuation enters at the finest level from
+/// that curve, the data's parameters its closest points (`params` the guesses), after
+/// phase I where the curve is not strictly feasible for the fresh problem's conditions.
+/// `None` when phase I finds no strictly feasible curve from there.
+pub(crate) fn attempt_from<T: Topology>(
+    start: &Curve2<f64>,
+    points: &[Vector2<f64>],
+    params: &[f64],
+    knots: &KnotVector<f64>,
+    extrema: &[f64],
+    first_sign: f64,
+    options: &SmoothingOptions,
+) -> Result<Option<Attempt>> {
+    let levels = T::levels(knots, extrema)?;
+    if levels.is_empty() {
+        return Ok(None);
+    }
+    let warm = Some(start.control_points());
+    continuation::<T>(&levels, points, params, extrema, first_sign, options, warm)
 }
 
 /// The coarse-to-fine continuation of one attempt, for open and closed curves alike: entry at
@@ -199,6 +222,7 @@ fn continuation<T: Topology>(
     extrema: &[f64],
     first_sign: f64,
     options: &SmoothingOptions,
+    warm: Option<&[Vector2<f64>]>,
 ) -> Result<Option<Attempt>> {
     let levels = spaces.len();
     let mut solver = Solver {
@@ -248,7 +272,25 @@ fn continuation<T: Topology>(
         }
     };
     let mut entry = None;
-    for level in (0..levels).rev() {
+    if let Some(control) = warm {
+        let level = levels - 1;
+        let (curve, _) = T::solution(&spaces[level], control.to_vec())?;
+        let mut corrected = project_ordered(&curve, points, params)?;
+        T::hold_ends(&mut corrected);
+        let (mut problem, x, unit) = setup(level, control, &corrected, None)?;
+        if problem.constraints(&x).iter().all(|&c| c < 0.0) {
+            entry = Some((level, problem, x, unit));
+        } else {
+            let z = z_of(&x, &problem);
+            if let Some(found) = solver.phase_one(&mut problem, control, z) {
+                entry = Some((level, problem, found, unit));
+            }
+        }
+    }
+    // Without a warm start, the finest level whose least-squares fit leads to a strictly
+    // feasible curve.
+    let cold_levels = if warm.is_some() { 0 } else { levels };
+    for level in (0..cold_levels).rev() {
         let (fit, corrected) = match fit_with_correction::<T>(points, params, &spaces[level], 12) {
             Ok(found) => found,
             Err(e)

@@ -35,6 +35,7 @@ mod pieces;
 mod placement;
 mod problem;
 mod request;
+mod screening;
 mod smooth;
 mod tolerance;
 mod topology;

@@ -8,6 +8,7 @@ mod barrier;
 mod clarabel;
 mod eraser;
 mod eraser_closed;
+mod eraser_many_points;
 mod eraser_warnings;
 mod flecnodal;
 mod functions;

@@ -1,0 +1,69 @@
+//! Many data points (issue 25, item 6): the eraser with the max deviation objective solves
+//! on a working set that grows where the other points lie farther from the curve, so on
+//! 12,000 noisy points it ends closer to all of them than the same smoothing of a fixed
+//! subsample, measured on all points.
+
+use nalgebra::Vector2;
+use spline_fit::two_sided_deviation;
+use spline_shape::{SmoothingOptions, smooth};
+
+/// `count` points a side of the NACA 2412 section (cosine spacing, upper surface from the
+/// trailing edge round the nose to the lower one), moved by a deterministic noise uniform in
+/// `[−noise, noise]` in both coordinates.
+fn noisy_naca_2412(count: usize, noise: f64) -> Vec<Vector2<f64>> {
+    let (m, p, t) = (0.02, 0.4, 0.12);
+    let side = |i: usize, upper: bool| {
+        let x = 0.5 * (1.0 - (std::f64::consts::PI * i as f64 / (count - 1) as f64).cos());
+        let thickness = 5.0
+            * t
+            * (0.2969 * x.sqrt() - 0.1260 * x - 0.3516 * x * x + 0.2843 * x.powi(3)
+                - 0.1015 * x.powi(4));
+        let camber = if x < p {
+            m / (p * p) * (2.0 * p * x - x * x)
+        } else {
+            m / ((1.0 - p) * (1.0 - p)) * (1.0 - 2.0 * p + 2.0 * p * x - x * x)
+        };
+        Vector2::new(
+            x,
+            if upper {
+                camber + thickness
+            } else {
+                camber - thickness
+            },
+        )
+    };
+    let shape = (0..count)
+        .rev()
+        .map(|i| side(i, true))
+        .chain((1..count).map(|i| side(i, false)));
+    // A hash of the index in [−1, 1): fixed, no generator to seed.
+    let hash = |k: f64| 2.0 * ((k * 12.9898).sin() * 43_758.545_3).rem_euclid(1.0) - 1.0;
+    shape
+        .enumerate()
+        .map(|(k, q)| {
+            let k = k as f64;
+            q + Vector2::new(hash(k), hash(k + 0.5)) * noise
+        })
+        .collect()
+}
+
+#[test]
+fn many_noisy_points_end_closer_than_a_fixed_subsample() {
+    let points = noisy_naca_2412(6000, 1e-4);
+    assert_eq!(points.len(), 11_999);
+    let options = SmoothingOptions::new(20);
+    let all = smooth(&points, &options).unwrap();
+    assert_eq!(all.deviation.to_curve.distances.len(), points.len());
+    assert_eq!(all.extrema.len(), 1);
+    // Every 6th point (2,000: few enough to be solved on all of them).
+    let subsample: Vec<Vector2<f64>> = points.iter().step_by(6).copied().collect();
+    let fixed = smooth(&subsample, &options).unwrap();
+    let fixed_on_all = two_sided_deviation(&fixed.curve, &points)
+        .unwrap()
+        .to_curve
+        .max;
+    let max = all.deviation.to_curve.max;
+    // Measured: 2.20e-4 against 2.32e-4 (the subsample's own 1.84e-4 misses the points
+    // between).
+    assert!(max < fixed_on_all, "{max:e} against {fixed_on_all:e}");
+}
