@@ -67,8 +67,8 @@ pub use constrained_surface::{
 pub use eraser::{
     AUTO_EXTREMA_TOLERANCE, CurvatureExtremum, DEVIATION_WARNING_FACTOR, DEVIATION_WARNING_FLOOR,
     Extremum, ExtremumKind, MAX_CURVATURE_EXTREMA, Objective, SampledExtremum, SmoothedCurve,
-    SmoothingOptions, sampled_curvature_extrema, smooth, smooth_fewest_extrema,
-    smooth_to_tolerance,
+    SmoothingOptions, WarmStart, sampled_curvature_extrema, smooth, smooth_fewest_extrema,
+    smooth_from, smooth_to_tolerance,
 };
 pub use flecnodal::{FlecnodalCircles, control_flecnodal_circles};
 pub use offset::{

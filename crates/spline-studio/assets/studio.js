@@ -22,11 +22,14 @@ const S = {
   answer: null,        // the last answer drawn
   curve: null,         // the exchange-format record of the curve shown (for export)
   erased: null,        // curvature mode: the eraser's answer
+  eraser: false,       // whether the eraser follows the data
+  eraseStale: false,   // the data changed since its answer
   erasedFeatures: null,
   correction: null,
 };
 // For tests and curious users: the state, whether the page is idle, how many answers drawn.
-const studio = { state: S, renders: 0, busy: false, pending: false, errors: 0 };
+// eraseMs: the round trip of every eraser update (the browser test reads it).
+const studio = { state: S, renders: 0, busy: false, pending: false, errors: 0, eraseMs: [] };
 window.studio = studio;
 
 function el(name, attrs, parent) {
@@ -291,6 +294,8 @@ async function curvature() {
   for (const f of a.inflections) dot(f.point, 5, "inflection");
   for (const f of a.curvature_extrema) dot(f.point, 5, "extremum");
   const plots = [[a, "plot"]];
+  // The eraser follows the data: after a change it runs again from its last answer.
+  if (S.eraser && (S.eraseStale || !S.erased)) await runEraser();
   if (S.erased) {
     polyline(S.erased.samples, "erased", layers.curves, "curve-erased");
     for (const e of S.erased.extrema) dot(e.point, 6, "erased-extremum");
@@ -331,15 +336,23 @@ function drawCurvaturePlot(plots) {
   const label = el("text", { x: 450, y: 12, "text-anchor": "middle", class: "tick-label" }, strip);
   label.textContent = `signed curvature κ(u), ${k0.toPrecision(3)} … ${k1.toPrecision(3)}`;
 }
+// The eraser, from its previous answer where there is one (its `warm` record: a dragged
+// point is followed in a fraction of the time of a fresh start).
+async function runEraser() {
+  const request = {
+    points: S.points, control_points: num("curv-n", 4, 500), extrema: num("erase-k", 1, 9),
+  };
+  if (S.erased && S.erased.warm) request.warm = S.erased.warm;
+  const started = performance.now();
+  const e = await call("erase", request);
+  studio.eraseMs.push(performance.now() - started);
+  S.erased = e;
+  S.eraseStale = false;
+  S.erasedFeatures = await call("features", { curve: e.curve });
+}
 async function erase() {
   showError(null);
-  try {
-    const e = await call("erase", {
-      points: S.points, control_points: num("curv-n", 4, 500), extrema: num("erase-k", 1, 9),
-    });
-    S.erased = e;
-    S.erasedFeatures = await call("features", { curve: e.curve });
-  } catch (err) { showError(err); return; }
+  S.eraser = true; S.erased = null; S.erasedFeatures = null;
   refresh();
 }
 
@@ -354,10 +367,10 @@ function undo() {
   const last = S.history.pop();
   if (!last) return;
   const s = JSON.parse(last);
-  S.points = s.points; S.knots = s.knots; S.params = s.params;
+  S.points = s.points; S.knots = s.knots; S.params = s.params; S.eraseStale = true;
   refresh();
 }
-function pointsChanged() { S.knots = null; S.params = null; S.correction = null; S.erased = null; S.erasedFeatures = null; }
+function pointsChanged() { S.knots = null; S.params = null; S.correction = null; S.eraseStale = true; }
 function drawPoints() {
   clear(layers.points);
   const data = ["interpolate", "approximate", "curvature"].includes(S.mode);
@@ -387,7 +400,7 @@ canvas.addEventListener("pointerdown", (e) => {
 canvas.addEventListener("pointermove", (e) => {
   if (!drag) return;
   S.points[drag.index] = toWorld(e);
-  S.params = null; S.correction = null; S.erased = null; S.erasedFeatures = null;
+  S.params = null; S.correction = null; S.eraseStale = true;
   if (S.mode !== "bspline") S.knots = null;
   drawPoints();
   refresh();
@@ -443,7 +456,7 @@ $("correct-step").addEventListener("click", () => correct(1));
 $("correct-converge").addEventListener("click", () => correct(500));
 $("correct-reset").addEventListener("click", () => { S.params = null; S.knots = null; S.correction = null; refresh(); });
 $("erase").addEventListener("click", erase);
-$("erase-clear").addEventListener("click", () => { S.erased = null; S.erasedFeatures = null; refresh(); });
+$("erase-clear").addEventListener("click", () => { S.eraser = false; S.erased = null; S.erasedFeatures = null; refresh(); });
 
 // ---- files ----------------------------------------------------------------------------
 $("file").addEventListener("change", async (e) => {

@@ -17,7 +17,7 @@ use spline_fit::{
 };
 use spline_geom::{BSpline, Bezier, ParamCurve};
 use spline_io::exchange::CurveRecord;
-use spline_shape::{MAX_CURVATURE_EXTREMA, SmoothingOptions, smooth};
+use spline_shape::{MAX_CURVATURE_EXTREMA, SmoothingOptions, WarmStart, smooth, smooth_from};
 
 /// Samples per knot span of the drawn B-spline curves, unless the request says otherwise.
 const PER_SPAN: usize = 24;
@@ -401,7 +401,9 @@ pub(crate) fn features(request: &FeaturesRequest) -> Result<Value> {
 
 /// `POST /api/erase`: the selective eraser (thesis ch. 6): the closest cubic with
 /// `control_points` control points whose curvature has only `extrema` extrema
-/// (alternately maximum, minimum, … as `spline smooth --curvature-extrema`).
+/// (alternately maximum, minimum, … as `spline smooth --curvature-extrema`). With the
+/// previous answer's `warm` record (while a data point is dragged) the eraser starts from
+/// that answer ([`smooth_from`]): the update follows the drag.
 #[derive(Deserialize)]
 #[serde(deny_unknown_fields)]
 pub(crate) struct EraseRequest {
@@ -410,6 +412,19 @@ pub(crate) struct EraseRequest {
     extrema: usize,
     #[serde(default = "per_span")]
     per_span: usize,
+    /// The `warm` record of the previous answer (while a point is dragged).
+    #[serde(default)]
+    warm: Option<WarmRecord>,
+}
+
+/// Where the previous answer ended, as the page sends it back.
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(crate) struct WarmRecord {
+    curve: CurveRecord,
+    allowed_extrema: Vec<f64>,
+    first_sign: f64,
+    knot_exponent: f64,
 }
 
 pub(crate) fn erase(request: &EraseRequest) -> Result<Value> {
@@ -420,9 +435,28 @@ pub(crate) fn erase(request: &EraseRequest) -> Result<Value> {
     let mut options = SmoothingOptions::new(n);
     // Alternately maximum, minimum, … as the tool's --curvature-extrema: the library's rule.
     options.request_extrema(Some(k), Vec::new())?;
-    let result = smooth(&data, &options)?;
+    let result = match &request.warm {
+        Some(warm) => {
+            let start = WarmStart {
+                curve: planar(&warm.curve)?,
+                allowed_extrema: warm.allowed_extrema.clone(),
+                first_sign: warm.first_sign,
+                knot_exponent: warm.knot_exponent,
+                closed: false,
+            };
+            smooth_from(&data, &options, &start)?
+        }
+        None => smooth(&data, &options)?,
+    };
     let curve = &result.curve;
     Ok(json!({
+        "warm": {
+            "curve": record(curve),
+            "allowed_extrema": result.allowed_extrema,
+            "first_sign": result.first_sign,
+            "knot_exponent": result.knot_exponent,
+        },
+        "newton_steps": result.newton_steps,
         "curve": record(curve),
         "samples": samples(curve, per_span)?,
         "max_deviation": result.deviation.to_curve.max,

@@ -43,10 +43,10 @@ mod types;
 mod verify;
 
 pub use fewest_extrema::{AUTO_EXTREMA_TOLERANCE, smooth_fewest_extrema};
-pub use smooth::smooth;
+pub use smooth::{smooth, smooth_from};
 pub use tolerance::smooth_to_tolerance;
 pub use types::{
     CurvatureExtremum, DEVIATION_WARNING_FACTOR, DEVIATION_WARNING_FLOOR, Extremum, ExtremumKind,
-    MAX_CURVATURE_EXTREMA, Objective, SmoothedCurve, SmoothingOptions,
+    MAX_CURVATURE_EXTREMA, Objective, SmoothedCurve, SmoothingOptions, WarmStart,
 };
 pub use verify::{SampledExtremum, sampled_curvature_extrema};

@@ -70,6 +70,7 @@ pub(super) fn attempt_screened<T: Topology>(
         let warm = match &last {
             Some(start) => attempt_from::<T>(
                 start,
+                false,
                 &subset,
                 &subset_params,
                 knots,
@@ -118,7 +119,7 @@ pub(super) fn attempt_screened<T: Topology>(
 
 /// The failures of an attempt that leave the previous round's curve standing (those the
 /// caller treats as "no curve on these knots").
-fn recoverable(e: &Error) -> bool {
+pub(super) fn recoverable(e: &Error) -> bool {
     matches!(
         e.kind(),
         ErrorKind::SchoenbergWhitney

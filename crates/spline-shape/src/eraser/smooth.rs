@@ -1,11 +1,12 @@
 //! The eraser's pipeline: [`smooth`], the same stages for open and closed data.
 
+use super::driver::{Attempt, attempt_from};
 use super::input::{check_options, distinct, frame, polygon_area};
-use super::screening::attempt_screened;
+use super::screening::{attempt_screened, recoverable};
 use super::topology::{Closed, Open, Start, Topology};
 use super::types::{
     CurvatureExtremum, DEVIATION_WARNING_FACTOR, DEVIATION_WARNING_FLOOR, ExtremumKind,
-    SmoothedCurve, SmoothingOptions, extrema_words,
+    SmoothedCurve, SmoothingOptions, WarmStart, extrema_words,
 };
 use nalgebra::Vector2;
 use spline_algebra::planar_features;
@@ -54,15 +55,73 @@ use spline_geom::Curve2;
 pub fn smooth(points: &[Vector2<f64>], options: &SmoothingOptions) -> Result<SmoothedCurve> {
     check_options(options)?;
     if options.closed {
-        run::<Closed>(points, options)
+        run::<Closed>(points, options, None)
     } else {
-        run::<Open>(points, options)
+        run::<Open>(points, options, None)
+    }
+}
+
+/// [`smooth`] of data near those of an earlier result (a dragged point, a few points more
+/// or fewer), started from that result: its knots, its allowed extrema and its curve, with
+/// the interior-point method entering at the finest level where the curve already meets
+/// the conditions (they depend on the knots, not on the data). Where the earlier result does
+/// not fit the request (another number of control points, degree or extrema, closed data)
+/// or the warm start finds no curve, this is [`smooth`] itself; so the answer is always one
+/// [`smooth`] could give, found in a fraction of its Newton steps.
+///
+/// ```
+/// use nalgebra::Vector2;
+/// use spline_shape::{SmoothingOptions, smooth, smooth_from};
+/// let mut points: Vec<Vector2<f64>> = (0..80)
+///     .map(|k| {
+///         let t = f64::from(k) / 79.0 * std::f64::consts::FRAC_PI_2;
+///         Vector2::new(2.0 * t.sin(), t.cos() + 1e-3 * f64::from((k * 37) % 7) / 7.0)
+///     })
+///     .collect();
+/// let mut options = SmoothingOptions::new(10);
+/// options.extrema = vec!["max@0.999".parse()?];
+/// let first = smooth(&points, &options)?;
+/// points[40].y += 2e-3; // a dragged point
+/// let next = smooth_from(&points, &options, &first.warm_start())?;
+/// assert_eq!(next.levels, 1); // entered at the finest level
+/// assert_eq!(next.extrema.len(), 1);
+/// assert!(next.deviation.to_curve.max < 5e-3);
+/// # Ok::<(), spline_core::Error>(())
+/// ```
+///
+/// # Errors
+/// As [`smooth`].
+pub fn smooth_from(
+    points: &[Vector2<f64>],
+    options: &SmoothingOptions,
+    previous: &WarmStart,
+) -> Result<SmoothedCurve> {
+    check_options(options)?;
+    let fits = !options.closed
+        && !previous.closed
+        && previous.first_sign.abs() == 1.0
+        && previous.curve.domain() == (0.0, 1.0)
+        && previous.curve.degree() == options.degree
+        && previous.curve.control_points().len() == options.control_points
+        && previous.allowed_extrema.len() == options.extrema.len()
+        && previous.allowed_extrema.windows(2).all(|w| w[0] < w[1])
+        && previous.allowed_extrema.iter().all(|&u| {
+            u > 0.0 && u < 1.0 && previous.curve.knots().multiplicity(u) + 2 >= options.degree
+        });
+    if options.closed {
+        run::<Closed>(points, options, None)
+    } else {
+        run::<Open>(points, options, fits.then_some(previous))
     }
 }
 
 /// The eraser's stages, once for both topologies: the data in unit size, the start (shape and
 /// placed extrema), attempts on knots that follow the shape, the closest curve found.
-fn run<T: Topology>(points: &[Vector2<f64>], options: &SmoothingOptions) -> Result<SmoothedCurve> {
+fn run<T: Topology>(
+    points: &[Vector2<f64>],
+    options: &SmoothingOptions,
+    warm: Option<&WarmStart>,
+) -> Result<SmoothedCurve> {
     let p = options.degree;
     let n = options.control_points;
     let mut data = distinct(points)?;
@@ -120,7 +179,96 @@ fn run<T: Topology>(points: &[Vector2<f64>], options: &SmoothingOptions) -> Resu
     let mut best: Option<SmoothedCurve> = None;
     let mut newton_steps = 0;
     let mut left_the_data = false;
+    // What an attempt found, measured on the data in their units; `None` when the curve
+    // leaves the data between data points or has no curvature somewhere.
+    let mut measure = |found: Attempt,
+                       exponent: f64,
+                       placed: &[f64],
+                       first_sign: f64,
+                       best: &Option<SmoothedCurve>|
+     -> Result<Option<SmoothedCurve>> {
+        newton_steps += found.newton_steps;
+        let world = found.curve.map_control_points(|c| c * size + middle);
+        let (curve, periodic) = T::result(world)?;
+        let mut deviation = two_sided_deviation(&curve, &polyline)?;
+        T::in_data_order(&mut deviation, rotation, data.len());
+        // A curve that strays from the data between data points is no answer: the curve →
+        // data distance may exceed the data → curve one only by the sagitta of the data's
+        // own chords.
+        if deviation.to_data_excess > 3.0 * deviation.to_curve.max + 1e-3 * size {
+            left_the_data = true;
+            return Ok(None);
+        }
+        let better = best
+            .as_ref()
+            .is_none_or(|b| deviation.to_curve.max < b.deviation.to_curve.max);
+        if !better {
+            return Ok(None);
+        }
+        // A curve whose velocity vanishes somewhere has no curvature there: no answer.
+        let Ok(features) = T::features(&curve, periodic.as_ref()) else {
+            return Ok(None);
+        };
+        let extrema = features
+            .curvature_extrema
+            .iter()
+            .map(|&u| classify(&curve, u, orientation))
+            .collect::<Result<Vec<_>>>()?;
+        Ok(Some(SmoothedCurve {
+            curve,
+            periodic,
+            first_point: rotation,
+            deviation,
+            extrema,
+            inflections: features.inflections,
+            start_extrema,
+            least_squares_deviation,
+            warnings: Vec::new(),
+            orientation,
+            knot_exponent: exponent,
+            levels: found.levels,
+            refinements: found.refinements,
+            conditions: found.conditions,
+            newton_steps: 0,
+            allowed_extrema: placed.to_vec(),
+            first_sign,
+        }))
+    };
+
+    // A warm start: the earlier result's knots, extrema and curve, in this data's frame.
+    if let Some(previous) = warm {
+        let start = previous.curve.map_control_points(|c| (c - middle) / size);
+        let found = match attempt_from::<T>(
+            &start,
+            true,
+            &unit,
+            &params,
+            previous.curve.knots(),
+            &previous.allowed_extrema,
+            previous.first_sign,
+            options,
+        ) {
+            Ok(found) => found,
+            Err(e) if recoverable(&e) => None,
+            Err(e) => return Err(e),
+        };
+        if let Some(found) = found {
+            best = measure(
+                found,
+                previous.knot_exponent,
+                &previous.allowed_extrema,
+                previous.first_sign,
+                &best,
+            )?;
+        }
+    }
+
+    // 3. Attempts with knots that follow the shape, densities in turn (a closed curve's `N`
+    // periodic knots are the clamped vector's `0` and its interior knots).
     for &exponent in &options.knot_exponents {
+        if best.is_some() && (warm.is_some() || !options.thorough) {
+            break;
+        }
         let Ok(knots) = curvature_knots_with(
             &preliminary,
             p,
@@ -134,66 +282,12 @@ fn run<T: Topology>(points: &[Vector2<f64>], options: &SmoothingOptions) -> Resu
         let found =
             match attempt_screened::<T>(&unit, &params, &knots, &placed, first_sign, options) {
                 Ok(found) => found,
-                Err(e)
-                    if matches!(
-                        e.kind(),
-                        ErrorKind::SchoenbergWhitney
-                            | ErrorKind::SingularSystem
-                            | ErrorKind::NonFinite
-                            | ErrorKind::NoConvergence
-                    ) =>
-                {
-                    None
-                }
+                Err(e) if recoverable(&e) => None,
                 Err(e) => return Err(e),
             };
         let Some(found) = found else { continue };
-        newton_steps += found.newton_steps;
-        let world = found.curve.map_control_points(|c| c * size + middle);
-        let (curve, periodic) = T::result(world)?;
-        let mut deviation = two_sided_deviation(&curve, &polyline)?;
-        T::in_data_order(&mut deviation, rotation, data.len());
-        // A curve that strays from the data between data points is no answer: the curve →
-        // data distance may exceed the data → curve one only by the sagitta of the data's
-        // own chords.
-        if deviation.to_data_excess > 3.0 * deviation.to_curve.max + 1e-3 * size {
-            left_the_data = true;
-            continue;
-        }
-        let better = best
-            .as_ref()
-            .is_none_or(|b| deviation.to_curve.max < b.deviation.to_curve.max);
-        if better {
-            // A curve whose velocity vanishes somewhere has no curvature there: no answer.
-            let Ok(features) = T::features(&curve, periodic.as_ref()) else {
-                continue;
-            };
-            let extrema = features
-                .curvature_extrema
-                .iter()
-                .map(|&u| classify(&curve, u, orientation))
-                .collect::<Result<Vec<_>>>()?;
-            let inflections = features.inflections;
-            best = Some(SmoothedCurve {
-                curve,
-                periodic,
-                first_point: rotation,
-                deviation,
-                extrema,
-                inflections,
-                start_extrema,
-                least_squares_deviation,
-                warnings: Vec::new(),
-                orientation,
-                knot_exponent: exponent,
-                levels: found.levels,
-                refinements: found.refinements,
-                conditions: found.conditions,
-                newton_steps: 0,
-            });
-        }
-        if !options.thorough {
-            break;
+        if let Some(better) = measure(found, exponent, &placed, first_sign, &best)? {
+            best = Some(better);
         }
     }
     match best {

@@ -263,6 +263,42 @@ pub struct SmoothedCurve {
     pub conditions: usize,
     /// Newton steps of the interior-point method in all (phase I included, every attempt).
     pub newton_steps: usize,
+    /// The parameters of the knots where the curvature may have its extrema (knots of
+    /// [`SmoothedCurve::curve`], in `(0, 1)`).
+    pub allowed_extrema: Vec<f64>,
+    /// The sign of `g = h1 h2 − 3 h3 h4` on the first piece between allowed extrema.
+    pub first_sign: f64,
+}
+
+impl SmoothedCurve {
+    /// What [`smooth_from`](super::smooth_from) needs to start from this result.
+    #[must_use]
+    pub fn warm_start(&self) -> WarmStart {
+        WarmStart {
+            curve: self.curve.clone(),
+            allowed_extrema: self.allowed_extrema.clone(),
+            first_sign: self.first_sign,
+            knot_exponent: self.knot_exponent,
+            closed: self.periodic.is_some(),
+        }
+    }
+}
+
+/// Where an earlier [`smooth`](super::smooth) ended ([`SmoothedCurve::warm_start`]): the
+/// start of [`smooth_from`](super::smooth_from) on nearby data. A front end that keeps no
+/// state can send it to its page and back: every field is plain data.
+#[derive(Clone, Debug, PartialEq)]
+pub struct WarmStart {
+    /// The earlier curve (open, on `[0, 1]`, in the data's units).
+    pub curve: Curve2<f64>,
+    /// Its knots where the curvature may have its extrema.
+    pub allowed_extrema: Vec<f64>,
+    /// The sign of `g` on its first piece (`±1`).
+    pub first_sign: f64,
+    /// The exponent of the knot density its knots came from.
+    pub knot_exponent: f64,
+    /// Whether it was a closed curve (closed data start afresh).
+    pub closed: bool,
 }
 
 /// The number of extrema as words: "1 curvature extremum", "2 curvature extrema".
