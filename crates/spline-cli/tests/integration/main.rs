@@ -14,6 +14,7 @@ mod overlap_tools;
 mod readme;
 mod reliability;
 mod reliability_answers;
+mod reproducers;
 mod scale;
 mod shape;
 mod studio;
