@@ -1,6 +1,6 @@
 //! Adaptive arc length (the quadrature behind [`crate::ParamCurve::arc_length`]).
 
-use spline_core::{Error, ErrorKind, Result, Scalar, cast, gauss_legendre, to_f64};
+use spline_core::{ControlPoint, Error, ErrorKind, Result, Scalar, cast, gauss_legendre, to_f64};
 
 /// The default relative accuracy of [`crate::ParamCurve::arc_length`] (and of
 /// [`crate::ArcLengthTable`]): lengths to about nine digits at every scale.
@@ -174,4 +174,151 @@ impl<T: Scalar, F: Fn(T) -> T> Piece<'_, T, F> {
         Ok(self.adaptive((a, mid), left.value, half, depth + 1)?
             + self.adaptive((mid, b), right.value, half, depth + 1)?)
     }
+}
+
+/// A rational Bézier piece whose largest weight exceeds its smallest by more than this is
+/// measured by [`rational_piece_length`].
+const WEIGHT_RATIO: f64 = 16.0;
+
+/// The weight of a homogeneous coefficient (its last coordinate, the one beyond the
+/// point's `point_dim`); `None` for a polynomial coefficient.
+fn weight_of<T: Scalar, Q: ControlPoint<T>>(q: &Q, point_dim: usize) -> Option<T> {
+    (Q::DIM == point_dim + 1).then(|| q.coord(point_dim))
+}
+
+/// Whether the coefficients of a rational piece have weights (all positive and finite)
+/// more than [`WEIGHT_RATIO`] apart: the curve then rushes through parts of the piece in
+/// parameter intervals as narrow as their ratio (weights `[1, 1e300, 1]` run from `P0` to
+/// `P1` in the first 1e-300 of the domain, and from `P1` to `P2` in an interval no
+/// parameter near 1 resolves), which quadrature nodes spread over the piece miss.
+pub(crate) fn far_apart<T: Scalar, Q: ControlPoint<T>>(
+    coefficients: &[Q],
+    point_dim: usize,
+) -> bool {
+    let mut range: Option<(T, T)> = None;
+    for q in coefficients {
+        let Some(w) = weight_of(q, point_dim) else {
+            return false;
+        };
+        if !(w > T::zero() && w.is_finite()) {
+            return false;
+        }
+        range = Some(range.map_or((w, w), |(lo, hi)| (lo.min(w), hi.max(w))));
+    }
+    range.is_some_and(|(lo, hi)| hi > lo * cast(WEIGHT_RATIO))
+}
+
+/// The length of a rational Bézier piece given by its homogeneous `coefficients` (weights
+/// positive, in the last coordinate beyond the point's `point_dim`), whatever its weights:
+/// halved by de Casteljau in its own parameter (not the curve's, whose floating-point
+/// numbers cannot resolve a part 1e-300 wide near 1) until the weights of every part come
+/// within [`WEIGHT_RATIO`], each part scaled to largest weight 1 and measured by the
+/// adaptive quadrature of its own speed $\lVert (A' − C w') / w \rVert$ on `[0, 1]`.
+///
+/// # Errors
+/// As [`adaptive_length`].
+pub(crate) fn rational_piece_length<T: Scalar, Q: ControlPoint<T>>(
+    coefficients: &[Q],
+    point_dim: usize,
+    accuracy: T,
+) -> Result<T> {
+    let mut total = T::zero();
+    let mut todo = vec![(coefficients.to_vec(), 0usize)];
+    while let Some((part, depth)) = todo.pop() {
+        // 2100 halvings take a weight ratio of 1e600 to 1 (each halves it at least at an
+        // end); a part that does not come within the ratio is measured as it is.
+        if far_apart(&part, point_dim) && depth < 2100 {
+            let (left, right) = halves(&part);
+            todo.push((right, depth + 1));
+            todo.push((left, depth + 1));
+            continue;
+        }
+        let largest = part
+            .iter()
+            .filter_map(|q| weight_of(q, point_dim))
+            .fold(T::zero(), nalgebra::RealField::max);
+        let part: Vec<Q> = part.iter().map(|q| *q * (T::one() / largest)).collect();
+        let speed = |t: T| part_speed(&part, point_dim, t);
+        total += adaptive_length(&[T::zero(), T::one()], accuracy, speed)?;
+    }
+    Ok(total)
+}
+
+/// The two halves of a Bézier control polygon on `[0, 1]` (de Casteljau at `1/2`).
+fn halves<T: Scalar, Q: ControlPoint<T>>(points: &[Q]) -> (Vec<Q>, Vec<Q>) {
+    let n = points.len() - 1;
+    let half: T = cast(0.5);
+    let mut work = points.to_vec();
+    let mut left = Vec::with_capacity(n + 1);
+    let mut right = Vec::with_capacity(n + 1);
+    left.push(work[0]);
+    right.push(work[n]);
+    for level in 1..=n {
+        for i in 0..=n - level {
+            work[i] = (work[i] + work[i + 1]) * half;
+        }
+        left.push(work[0]);
+        right.push(work[n - level]);
+    }
+    right.reverse();
+    (left, right)
+}
+
+/// The speed at `t ∈ [0, 1]` of the rational Bézier curve of the homogeneous `points`.
+fn part_speed<T: Scalar, Q: ControlPoint<T>>(points: &[Q], point_dim: usize, t: T) -> T {
+    let n = points.len() - 1;
+    if n == 0 {
+        return T::zero();
+    }
+    let s = T::one() - t;
+    let mut work = points.to_vec();
+    for level in 1..n {
+        for i in 0..=n - level {
+            work[i] = work[i] * s + work[i + 1] * t;
+        }
+    }
+    let value = work[0] * s + work[1] * t;
+    let derivative = (work[1] - work[0]) * spline_core::from_count::<T>(n);
+    let (w, dw) = (value.coord(point_dim), derivative.coord(point_dim));
+    let mut sum = T::zero();
+    for i in 0..point_dim {
+        let d = (derivative.coord(i) - value.coord(i) / w * dw) / w;
+        sum += d * d;
+    }
+    sum.sqrt()
+}
+
+/// The length between `a` and `b` of a curve with the Bézier `pieces`, those with weights
+/// far apart ([`far_apart`]) clipped to `[a, b]` and measured by [`rational_piece_length`],
+/// the others by [`adaptive_length`] of the curve's `speed`.
+///
+/// # Errors
+/// As [`adaptive_length`]; the subdivision's errors for non-finite coefficients.
+pub(crate) fn length_by_pieces<T: Scalar, Q: ControlPoint<T>>(
+    pieces: &[(T, T, Vec<Q>)],
+    point_dim: usize,
+    (a, b): (T, T),
+    accuracy: T,
+    speed: impl Fn(T) -> T,
+) -> Result<T> {
+    let mut total = T::zero();
+    for (lo, hi, coefficients) in pieces {
+        let (x, y) = (lo.max(a), hi.min(b));
+        if !(x < y) {
+            continue;
+        }
+        if !far_apart(coefficients, point_dim) {
+            total += adaptive_length(&[x, y], accuracy, &speed)?;
+            continue;
+        }
+        let mut part = crate::Bezier::with_interval(coefficients.clone(), *lo, *hi)?;
+        if x > *lo {
+            part = part.subdivide(x)?.1;
+        }
+        if y < *hi {
+            part = part.subdivide(y)?.0;
+        }
+        total += rational_piece_length(part.control_points(), point_dim, accuracy)?;
+    }
+    Ok(total)
 }

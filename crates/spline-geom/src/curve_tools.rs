@@ -257,9 +257,32 @@ impl<'a, T: Scalar, C: ParamCurve<T> + ?Sized> ArcLengthTable<'a, T, C> {
                 .derivatives_into(u, &mut d)
                 .map_or(T::zero(), |()| d[1].length())
         };
-        for w in breaks.windows(2) {
+        // A rational piece whose weights are far apart is measured in its own parameter
+        // (the pieces are the intervals between the breaks).
+        let point_dim = <C::Point as ControlPoint<T>>::DIM;
+        let pieces = if <C::Coefficient as ControlPoint<T>>::DIM == point_dim + 1 {
+            curve.bezier_pieces()
+        } else {
+            Vec::new()
+        };
+        let spiky = pieces.len() + 1 == breaks.len()
+            && pieces
+                .iter()
+                .any(|(_, _, q)| crate::arclength::far_apart(q, point_dim));
+        for (k, w) in breaks.windows(2).enumerate() {
             let last = cumulative[cumulative.len() - 1];
-            cumulative.push(last + adaptive_length(w, quadrature, speed)?);
+            let length = if spiky {
+                crate::arclength::length_by_pieces(
+                    &pieces[k..=k],
+                    point_dim,
+                    (w[0], w[1]),
+                    quadrature,
+                    speed,
+                )?
+            } else {
+                adaptive_length(w, quadrature, speed)?
+            };
+            cumulative.push(last + length);
         }
         let absolute = accuracy * cumulative[cumulative.len() - 1];
         Ok(Self {

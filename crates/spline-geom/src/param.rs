@@ -162,7 +162,12 @@ pub trait ParamCurve<T: Scalar> {
     /// of the length: the same digits at every scale of the coordinates):
     /// $\int_a^b \lVert C'(u) \rVert\\,du$ by adaptive Gauss–Legendre quadrature on each
     /// piece (the speed is smooth inside a piece), bisecting where two estimates differ by
-    /// more than `accuracy` times the piece's length.
+    /// more than `accuracy` times the piece's length. A rational piece whose weights lie
+    /// more than 16 apart (the curve then rushes through parts of it in parameter intervals
+    /// as narrow as their ratio, down to widths no parameter resolves) is halved by de
+    /// Casteljau in its own parameter until every part's weights come within that ratio,
+    /// and each part measured in its own parameter: weights `[1, 1e300, 1]` give the length
+    /// of the two legs.
     ///
     /// # Errors
     /// [`ErrorKind::NonFinite`]/[`ErrorKind::OutOfDomain`] for the bounds;
@@ -191,16 +196,34 @@ pub trait ParamCurve<T: Scalar> {
                 to_f64(accuracy),
             ));
         }
-        let mut breaks = vec![a];
-        breaks.extend(self.breaks().into_iter().filter(|&k| k > a && k < b));
-        breaks.push(b);
-        breaks.dedup();
-        adaptive_length(&breaks, accuracy, |u| {
+        let speed = |u: T| {
             let mut d = [Self::Point::origin(); 2];
             // The quadrature nodes lie inside the domain.
             self.derivatives_into(u, &mut d)
                 .map_or(T::zero(), |()| d[1].length())
-        })
+        };
+        // A rational piece whose weights are far apart is measured in its own parameter.
+        let point_dim = <Self::Point as ControlPoint<T>>::DIM;
+        if <Self::Coefficient as ControlPoint<T>>::DIM == point_dim + 1 {
+            let pieces = self.bezier_pieces();
+            if pieces
+                .iter()
+                .any(|(_, _, q)| crate::arclength::far_apart(q, point_dim))
+            {
+                return crate::arclength::length_by_pieces(
+                    &pieces,
+                    point_dim,
+                    (a, b),
+                    accuracy,
+                    speed,
+                );
+            }
+        }
+        let mut breaks = vec![a];
+        breaks.extend(self.breaks().into_iter().filter(|&k| k > a && k < b));
+        breaks.push(b);
+        breaks.dedup();
+        adaptive_length(&breaks, accuracy, speed)
     }
 }
 

@@ -81,3 +81,31 @@ fn closest_point_on_a_segment_of_length_1e_minus_300() {
     let d = num(&out[0]["distance"]);
     assert!((d - 1e-295).abs() <= 1e-309, "{d:e}");
 }
+
+/// `spline arclength` of the quadratic `[[0,0],[1,1],[2,0]]` with weights `[1,1e300,1]`
+/// gave 0: the curve runs to `(1, 1)` within the first 1e-300 of its domain and back down
+/// within an interval no parameter near 1 resolves; its length is that of the two legs,
+/// `2√2` (less by `O(1/w)` for a finite middle weight `w`). Weights `[1e300, 1, 1e300]`
+/// give the chord, 2.
+#[test]
+fn arc_length_with_weights_1e300_apart() {
+    let length = |weights: &str| {
+        let file = crate::common::temp_file(
+            "weights.json",
+            &format!(
+                r#"{{"degree":2,"knots":[0,0,0,1,1,1],"control_points":[[0,0],[1,1],[2,0]],"weights":{weights}}}"#
+            ),
+        );
+        num(&spline(&["arclength", &file]).json()["length"])
+    };
+    let legs = 2.0 * 2f64.sqrt();
+    for middle in ["1e50", "1e100", "1e200", "1e300"] {
+        let l = length(&format!("[1,{middle},1]"));
+        assert!(
+            (l - legs).abs() < 1e-12 * legs,
+            "middle weight {middle}: {l}"
+        );
+    }
+    let l = length("[1e300,1,1e300]");
+    assert!((l - 2.0).abs() < 1e-12, "{l}");
+}

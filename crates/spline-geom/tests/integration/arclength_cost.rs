@@ -288,3 +288,28 @@ fn accuracies_below_the_rounding_of_the_speed_give_what_rounding_allows() {
         assert!((radius * angle - 0.5 * exact).abs() <= (accuracy + rounding) * exact);
     }
 }
+
+/// Weights far apart (issue 25: `[1, 1e300, 1]` gave length 0): the quadratic over
+/// `(0, 0), (1, 1), (2, 0)` is, to rounding, its two legs; by symmetry each half of the
+/// domain is one leg, and the table agrees with `arc_length`.
+#[test]
+fn weights_1e300_apart_give_the_legs() {
+    let curve = NurbsCurve::from_knots(
+        2,
+        vec![0.0, 0.0, 0.0, 1.0, 1.0, 1.0],
+        vec![
+            Vector2::new(0.0, 0.0),
+            Vector2::new(1.0, 1.0),
+            Vector2::new(2.0, 0.0),
+        ],
+        vec![1.0, 1e300, 1.0],
+    )
+    .unwrap();
+    let leg = 2f64.sqrt();
+    let whole = curve.arc_length(1e-12).unwrap();
+    assert!((whole - 2.0 * leg).abs() < 1e-12, "{whole}");
+    let half = curve.arc_length_between(0.0, 0.5, 1e-12).unwrap();
+    assert!((half - leg).abs() < 1e-12, "{half}");
+    let table = ArcLengthTable::new(&curve, 1e-12).unwrap();
+    assert!((table.total() - whole).abs() < 1e-12, "{}", table.total());
+}
