@@ -1,5 +1,6 @@
 //! Adaptive arc length (the quadrature behind [`crate::ParamCurve::arc_length`]).
 
+use crate::Bezier;
 use spline_core::{ControlPoint, Error, ErrorKind, Result, Scalar, cast, gauss_legendre, to_f64};
 
 /// The default relative accuracy of [`crate::ParamCurve::arc_length`] (and of
@@ -223,69 +224,46 @@ pub(crate) fn rational_piece_length<T: Scalar, Q: ControlPoint<T>>(
     accuracy: T,
 ) -> Result<T> {
     let mut total = T::zero();
-    let mut todo = vec![(coefficients.to_vec(), 0usize)];
+    let mut todo = vec![(Bezier::new(coefficients.to_vec())?, 0usize)];
     while let Some((part, depth)) = todo.pop() {
         // 2100 halvings take a weight ratio of 1e600 to 1 (each halves it at least at an
-        // end); a part that does not come within the ratio is measured as it is.
-        if far_apart(&part, point_dim) && depth < 2100 {
-            let (left, right) = halves(&part);
-            todo.push((right, depth + 1));
-            todo.push((left, depth + 1));
+        // end); a part that does not come within the ratio is measured as it is. Each half
+        // is taken on [0, 1] again: its own parameter, resolved however narrow it is.
+        if far_apart(part.control_points(), point_dim) && depth < 2100 {
+            let (left, right) = part.subdivide(cast(0.5))?;
+            todo.push((Bezier::new(right.control_points().to_vec())?, depth + 1));
+            todo.push((Bezier::new(left.control_points().to_vec())?, depth + 1));
             continue;
         }
         let largest = part
+            .control_points()
             .iter()
             .filter_map(|q| weight_of(q, point_dim))
             .fold(T::zero(), nalgebra::RealField::max);
-        let part: Vec<Q> = part.iter().map(|q| *q * (T::one() / largest)).collect();
-        let speed = |t: T| part_speed(&part, point_dim, t);
+        let part = Bezier::new(
+            part.control_points()
+                .iter()
+                .map(|q| *q * (T::one() / largest))
+                .collect(),
+        )?;
+        let hodograph = part.derivative();
+        // The speed ‖(A′ − C w′) / w‖ of the projection C = A / w.
+        let speed = |t: T| {
+            let (Ok(value), Ok(derivative)) = (part.eval(t), hodograph.eval(t)) else {
+                return T::zero();
+            };
+            let (w, dw) = (value.coord(point_dim), derivative.coord(point_dim));
+            (0..point_dim)
+                .map(|i| {
+                    let d = (derivative.coord(i) - value.coord(i) / w * dw) / w;
+                    d * d
+                })
+                .fold(T::zero(), |sum, d| sum + d)
+                .sqrt()
+        };
         total += adaptive_length(&[T::zero(), T::one()], accuracy, speed)?;
     }
     Ok(total)
-}
-
-/// The two halves of a Bézier control polygon on `[0, 1]` (de Casteljau at `1/2`).
-fn halves<T: Scalar, Q: ControlPoint<T>>(points: &[Q]) -> (Vec<Q>, Vec<Q>) {
-    let n = points.len() - 1;
-    let half: T = cast(0.5);
-    let mut work = points.to_vec();
-    let mut left = Vec::with_capacity(n + 1);
-    let mut right = Vec::with_capacity(n + 1);
-    left.push(work[0]);
-    right.push(work[n]);
-    for level in 1..=n {
-        for i in 0..=n - level {
-            work[i] = (work[i] + work[i + 1]) * half;
-        }
-        left.push(work[0]);
-        right.push(work[n - level]);
-    }
-    right.reverse();
-    (left, right)
-}
-
-/// The speed at `t ∈ [0, 1]` of the rational Bézier curve of the homogeneous `points`.
-fn part_speed<T: Scalar, Q: ControlPoint<T>>(points: &[Q], point_dim: usize, t: T) -> T {
-    let n = points.len() - 1;
-    if n == 0 {
-        return T::zero();
-    }
-    let s = T::one() - t;
-    let mut work = points.to_vec();
-    for level in 1..n {
-        for i in 0..=n - level {
-            work[i] = work[i] * s + work[i + 1] * t;
-        }
-    }
-    let value = work[0] * s + work[1] * t;
-    let derivative = (work[1] - work[0]) * spline_core::from_count::<T>(n);
-    let (w, dw) = (value.coord(point_dim), derivative.coord(point_dim));
-    let mut sum = T::zero();
-    for i in 0..point_dim {
-        let d = (derivative.coord(i) - value.coord(i) / w * dw) / w;
-        sum += d * d;
-    }
-    sum.sqrt()
 }
 
 /// The length between `a` and `b` of a curve with the Bézier `pieces`, those with weights
@@ -311,7 +289,7 @@ pub(crate) fn length_by_pieces<T: Scalar, Q: ControlPoint<T>>(
             total += adaptive_length(&[x, y], accuracy, &speed)?;
             continue;
         }
-        let mut part = crate::Bezier::with_interval(coefficients.clone(), *lo, *hi)?;
+        let mut part = Bezier::with_interval(coefficients.clone(), *lo, *hi)?;
         if x > *lo {
             part = part.subdivide(x)?.1;
         }
