@@ -2,19 +2,7 @@
 //! (`tests/data/reproducers/README.md`); the expected answers are independent: dense
 //! sampling, Open CASCADE, closed forms.
 
-use crate::common::spline;
-use serde_json::Value;
-
-fn data(name: &str) -> String {
-    format!(
-        "{}/tests/data/reproducers/{name}",
-        env!("CARGO_MANIFEST_DIR")
-    )
-}
-
-fn num(v: &Value) -> f64 {
-    v.as_f64().unwrap_or_else(|| panic!("not a number: {v}"))
-}
+use crate::common::{num, reproducer as data, spline};
 
 /// `spline remove nurbs_removal.json --knot 0.5 --tolerance 1e-5` refused ("would move the
 /// shape by up to 1.392e-5"); the knot goes within the tolerance (the shape moves by 1.7e-6

@@ -3,20 +3,8 @@
 //! The expected values are independent: closed forms, or scipy (`BSpline`, `fsolve`,
 //! `brentq`, `minimize`) on the unscaled data, times the scale.
 
-use crate::common::{spline, temp_file};
+use crate::common::{num, reproducer as data, spline, temp_file};
 use serde_json::{Value, json};
-
-/// The path of a reproducer file.
-fn data(name: &str) -> String {
-    format!(
-        "{}/tests/data/reproducers/{name}",
-        env!("CARGO_MANIFEST_DIR")
-    )
-}
-
-fn num(v: &Value) -> f64 {
-    v.as_f64().unwrap_or_else(|| panic!("not a number: {v}"))
-}
 
 fn point(v: &Value) -> Vec<f64> {
     v.as_array().unwrap().iter().map(num).collect()

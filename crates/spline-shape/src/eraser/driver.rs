@@ -180,25 +180,24 @@ impl Solver<'_> {
     }
 }
 
-/// The constrained fit of `points` (normalised, at `params`) on the clamped `knots` (a
+/// What one attempt fits: `points` (normalised) at `params`, on the clamped `knots` (a
 /// closed curve's periodic knots are its `0` and its interior knots) with the allowed
-/// extrema at the knots `extrema` and the sign of the first piece `first_sign`: the
-/// continuation over the topology's nested spaces. The attempt's curve is the container
-/// (the wrapped one of a closed curve). `None` when no strictly feasible curve was found on
-/// any level.
-pub(crate) fn attempt<T: Topology>(
-    points: &[Vector2<f64>],
-    params: &[f64],
-    knots: &KnotVector<f64>,
-    extrema: &[f64],
-    first_sign: f64,
-    options: &SmoothingOptions,
-) -> Result<Option<Attempt>> {
-    let levels = T::levels(knots, extrema)?;
-    if levels.is_empty() {
-        return Ok(None);
-    }
-    continuation::<T>(&levels, points, params, extrema, first_sign, options, None)
+/// extrema at the knots `extrema` and the sign of the first piece `first_sign`.
+#[derive(Clone, Copy)]
+pub(crate) struct Task<'a> {
+    pub(crate) points: &'a [Vector2<f64>],
+    pub(crate) params: &'a [f64],
+    pub(crate) knots: &'a KnotVector<f64>,
+    pub(crate) extrema: &'a [f64],
+    pub(crate) first_sign: f64,
+    pub(crate) options: &'a SmoothingOptions,
+}
+
+/// The constrained fit of a [`Task`]: the continuation over the topology's nested spaces.
+/// The attempt's curve is the container (the wrapped one of a closed curve). `None` when
+/// no strictly feasible curve was found on any level.
+pub(crate) fn attempt<T: Topology>(task: Task<'_>) -> Result<Option<Attempt>> {
+    attempt_entering::<T>(task, None)
 }
 
 /// [`attempt`] from the container `start` of an earlier attempt on the same knots (its
@@ -208,24 +207,33 @@ pub(crate) fn attempt<T: Topology>(
 /// the path is entered late ([`WARM_START_T`]) when the data moved little (`near`: a
 /// dragged point), where a cold start would be otherwise (a working set that grew by its
 /// farthest points). `None` when phase I finds no strictly feasible curve from there.
-#[allow(clippy::too_many_arguments)]
 pub(crate) fn attempt_from<T: Topology>(
+    task: Task<'_>,
     start: &Curve2<f64>,
     near: bool,
-    points: &[Vector2<f64>],
-    params: &[f64],
-    knots: &KnotVector<f64>,
-    extrema: &[f64],
-    first_sign: f64,
-    options: &SmoothingOptions,
 ) -> Result<Option<Attempt>> {
-    let levels = T::levels(knots, extrema)?;
+    let entry_t = if near { WARM_START_T } else { 10.0 };
+    attempt_entering::<T>(task, Some((start.control_points(), entry_t)))
+}
+
+/// [`attempt`] or [`attempt_from`]: the levels of the task's knots, then the continuation.
+fn attempt_entering<T: Topology>(
+    task: Task<'_>,
+    warm: Option<(&[Vector2<f64>], f64)>,
+) -> Result<Option<Attempt>> {
+    let levels = T::levels(task.knots, task.extrema)?;
     if levels.is_empty() {
         return Ok(None);
     }
-    let entry_t = if near { WARM_START_T } else { 10.0 };
-    let warm = Some((start.control_points(), entry_t));
-    continuation::<T>(&levels, points, params, extrema, first_sign, options, warm)
+    continuation::<T>(
+        &levels,
+        task.points,
+        task.params,
+        task.extrema,
+        task.first_sign,
+        task.options,
+        warm,
+    )
 }
 
 /// The coarse-to-fine continuation of one attempt, for open and closed curves alike: entry at

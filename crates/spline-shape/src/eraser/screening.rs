@@ -22,11 +22,11 @@
 //! [`Objective::LeastSquares`] has no such few points: every point counts in the sum, and
 //! the problem is solved on all of them.
 
-use super::driver::{Attempt, attempt, attempt_from};
+use super::driver::{Attempt, Task, attempt, attempt_from};
 use super::topology::Topology;
-use super::types::{Objective, SmoothingOptions};
+use super::types::Objective;
 use nalgebra::Vector2;
-use spline_core::{Error, ErrorKind, KnotVector, Result};
+use spline_core::{Error, ErrorKind, Result};
 use spline_fit::two_sided_deviation;
 use spline_geom::Curve2;
 
@@ -42,17 +42,11 @@ const JOINING_PER_ROUND: usize = 512;
 /// [`attempt`] on the normalised data `points` with their parameters, on a working set of
 /// the points when they are many (module documentation); the Newton steps of every round
 /// are counted.
-pub(super) fn attempt_screened<T: Topology>(
-    points: &[Vector2<f64>],
-    params: &[f64],
-    knots: &KnotVector<f64>,
-    extrema: &[f64],
-    first_sign: f64,
-    options: &SmoothingOptions,
-) -> Result<Option<Attempt>> {
+pub(super) fn attempt_screened<T: Topology>(task: Task<'_>) -> Result<Option<Attempt>> {
+    let Task { points, params, .. } = task;
     let m = points.len();
-    if m <= SCREENING_POINTS || options.objective != Objective::MaxDeviation {
-        return attempt::<T>(points, params, knots, extrema, first_sign, options);
+    if m <= SCREENING_POINTS || task.options.objective != Objective::MaxDeviation {
+        return attempt::<T>(task);
     }
     let stride = m.div_ceil(SCREENING_POINTS / 2);
     let mut working: Vec<usize> = (0..m).step_by(stride).collect();
@@ -67,17 +61,13 @@ pub(super) fn attempt_screened<T: Topology>(
         let subset_params: Vec<f64> = working.iter().map(|&i| params[i]).collect();
         // From the last round's curve (entering at the finest level, its sign conditions
         // unchanged, only the distance bounds new), or afresh where that fails.
+        let round = Task {
+            points: &subset,
+            params: &subset_params,
+            ..task
+        };
         let warm = match &last {
-            Some(start) => attempt_from::<T>(
-                start,
-                false,
-                &subset,
-                &subset_params,
-                knots,
-                extrema,
-                first_sign,
-                options,
-            ),
+            Some(start) => attempt_from::<T>(round, start, false),
             None => Ok(None),
         };
         let warm = match warm {
@@ -85,7 +75,7 @@ pub(super) fn attempt_screened<T: Topology>(
             Err(e) if recoverable(&e) => None,
             Err(e) => return Err(e),
         };
-        let cold = || attempt::<T>(&subset, &subset_params, knots, extrema, first_sign, options);
+        let cold = || attempt::<T>(round);
         let found = match warm.map_or_else(cold, |found| Ok(Some(found))) {
             Ok(Some(found)) => found,
             // A grown working set that the continuation cannot solve (its path moves with

@@ -1,6 +1,6 @@
 //! The eraser's pipeline: [`smooth`], the same stages for open and closed data.
 
-use super::driver::{Attempt, attempt_from};
+use super::driver::{Attempt, Task, attempt_from};
 use super::input::{check_options, distinct, frame, polygon_area};
 use super::screening::{attempt_screened, recoverable};
 use super::topology::{Closed, Open, Start, Topology};
@@ -238,16 +238,15 @@ fn run<T: Topology>(
     // A warm start: the earlier result's knots, extrema and curve, in this data's frame.
     if let Some(previous) = warm {
         let start = previous.curve.map_control_points(|c| (c - middle) / size);
-        let found = match attempt_from::<T>(
-            &start,
-            true,
-            &unit,
-            &params,
-            previous.curve.knots(),
-            &previous.allowed_extrema,
-            previous.first_sign,
+        let task = Task {
+            points: &unit,
+            params: &params,
+            knots: previous.curve.knots(),
+            extrema: &previous.allowed_extrema,
+            first_sign: previous.first_sign,
             options,
-        ) {
+        };
+        let found = match attempt_from::<T>(task, &start, true) {
             Ok(found) => found,
             Err(e) if recoverable(&e) => None,
             Err(e) => return Err(e),
@@ -279,12 +278,19 @@ fn run<T: Topology>(
         ) else {
             continue;
         };
-        let found =
-            match attempt_screened::<T>(&unit, &params, &knots, &placed, first_sign, options) {
-                Ok(found) => found,
-                Err(e) if recoverable(&e) => None,
-                Err(e) => return Err(e),
-            };
+        let task = Task {
+            points: &unit,
+            params: &params,
+            knots: &knots,
+            extrema: &placed,
+            first_sign,
+            options,
+        };
+        let found = match attempt_screened::<T>(task) {
+            Ok(found) => found,
+            Err(e) if recoverable(&e) => None,
+            Err(e) => return Err(e),
+        };
         let Some(found) = found else { continue };
         if let Some(better) = measure(found, exponent, &placed, first_sign, &best)? {
             best = Some(better);

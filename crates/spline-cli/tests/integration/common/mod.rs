@@ -69,3 +69,19 @@ pub fn temp_file(name: &str, contents: &str) -> String {
     std::fs::write(&path, contents).expect("write temp file");
     path.to_string_lossy().into_owned()
 }
+
+/// The path of a file of issue 25's reproducers (`tests/data/reproducers/`).
+pub fn reproducer(name: &str) -> String {
+    format!(
+        "{}/tests/data/reproducers/{name}",
+        env!("CARGO_MANIFEST_DIR")
+    )
+}
+
+/// A JSON number of the tool's output.
+///
+/// # Panics
+/// If `v` is not a number.
+pub fn num(v: &serde_json::Value) -> f64 {
+    v.as_f64().unwrap_or_else(|| panic!("not a number: {v}"))
+}
