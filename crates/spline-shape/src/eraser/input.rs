@@ -13,13 +13,16 @@ pub(crate) fn check_options(options: &SmoothingOptions) -> Result<()> {
             format!(
                 "smoothing needs degree 3 or more (the curvature's derivative involves c‴), got {p}"
             ),
-        ));
+        )
+        .with_value(p as f64)
+        .with_interval(3.0, f64::INFINITY));
     }
     if options.extrema.is_empty() {
         return Err(Error::new(
             ErrorKind::InvalidArgument,
             "allow at least one curvature extremum",
-        ));
+        )
+        .with_counts(1, 0));
     }
     if options.extrema.len() > MAX_CURVATURE_EXTREMA {
         return Err(Error::new(
@@ -31,18 +34,28 @@ pub(crate) fn check_options(options: &SmoothingOptions) -> Result<()> {
         )
         .with_counts(MAX_CURVATURE_EXTREMA, options.extrema.len()));
     }
-    if options.knot_exponents.is_empty()
-        || options
-            .knot_exponents
-            .iter()
-            .any(|e| !(*e >= 0.0 && e.is_finite()))
-    {
+    if options.knot_exponents.is_empty() {
         return Err(Error::new(
             ErrorKind::InvalidArgument,
             "knot density exponents must be given, finite and not negative",
-        ));
+        )
+        .with_counts(1, 0));
     }
-    for w in options.extrema.windows(2) {
+    if let Some((i, &e)) = options
+        .knot_exponents
+        .iter()
+        .enumerate()
+        .find(|(_, e)| !(**e >= 0.0 && e.is_finite()))
+    {
+        return Err(Error::new(
+            ErrorKind::InvalidArgument,
+            format!("knot density exponent {i} must be finite and not negative, got {e}"),
+        )
+        .with_index(i)
+        .with_value(e)
+        .with_interval(0.0, f64::INFINITY));
+    }
+    for (i, w) in options.extrema.windows(2).enumerate() {
         if w[0].kind == w[1].kind {
             return Err(Error::new(
                 ErrorKind::InvalidArgument,
@@ -54,7 +67,8 @@ pub(crate) fn check_options(options: &SmoothingOptions) -> Result<()> {
                         ExtremumKind::Minimum => ExtremumKind::Maximum,
                     }
                 ),
-            ));
+            )
+            .with_index(i + 1));
         }
     }
     if options.closed && options.extrema.len() % 2 != 0 {
@@ -64,16 +78,20 @@ pub(crate) fn check_options(options: &SmoothingOptions) -> Result<()> {
                 "the curvature of a closed curve has as many maxima as minima: allow an even number of extrema, got {}",
                 options.extrema.len()
             ),
-        ));
+        )
+        .with_value(options.extrema.len() as f64));
     }
     let mut last = 0.0;
-    for e in &options.extrema {
+    for (i, e) in options.extrema.iter().enumerate() {
         if let Some(u) = e.at {
             if !(u > last && u < 1.0) {
                 return Err(Error::new(
                     ErrorKind::InvalidArgument,
                     format!("extremum parameter {u} must lie in (0, 1), after the previous one"),
-                ));
+                )
+                .with_index(i)
+                .with_value(u)
+                .with_interval(last, 1.0));
             }
             last = u;
         }
@@ -89,7 +107,8 @@ pub(crate) fn check_options(options: &SmoothingOptions) -> Result<()> {
                 "{} need at least {needed} control points of degree {p}, got {n}",
                 extrema_words(k)
             ),
-        ));
+        )
+        .with_counts(needed, n));
     }
     Ok(())
 }

@@ -166,9 +166,27 @@ fn bad_requests_are_errors() {
         smooth(&points, &options).unwrap_err().kind(),
         ErrorKind::InvalidArgument
     );
+    let err = smooth(&points, &options).unwrap_err();
+    // Issue 26: what failed, in fields a program can read.
+    assert_eq!((err.index(), err.value()), (Some(0), Some(1.5)), "{err}");
+    assert_eq!(err.interval(), Some((0.0, 1.0)));
     options.extrema = vec![Extremum::maximum(), Extremum::maximum()];
     let err = smooth(&points, &options).unwrap_err();
     assert!(err.to_string().contains("alternate"), "{err}");
+    assert_eq!(err.index(), Some(1));
+    let mut options = SmoothingOptions::new(20);
+    options.degree = 2;
+    let err = smooth(&points, &options).unwrap_err();
+    assert_eq!(err.value(), Some(2.0));
+    assert_eq!(err.interval(), Some((3.0, f64::INFINITY)));
+    let mut options = SmoothingOptions::new(20);
+    options.knot_exponents = vec![0.5, -1.0];
+    let err = smooth(&points, &options).unwrap_err();
+    assert_eq!((err.index(), err.value()), (Some(1), Some(-1.0)), "{err}");
+    let mut options = SmoothingOptions::new(4);
+    options.extrema = vec![Extremum::maximum(), Extremum::minimum()];
+    let err = smooth(&points, &options).unwrap_err();
+    assert_eq!(err.counts(), Some((6, 4)), "{err}");
     assert_eq!(
         smooth(&points[..3], &SmoothingOptions::new(20))
             .unwrap_err()
