@@ -106,3 +106,26 @@ fn a_dragged_point_is_followed_from_the_previous_curve() {
         "{warm_steps} Newton steps against {fresh_steps}"
     );
 }
+
+/// A warm start from a result whose extrema were of other kinds (a minimum first where a
+/// maximum is asked now) is not used: the answer is that of a fresh start.
+#[test]
+fn a_warm_start_of_other_kinds_is_a_fresh_start() {
+    let points: Vec<Vector2<f64>> = (0..80)
+        .map(|k| {
+            let t = f64::from(k) / 79.0 * std::f64::consts::FRAC_PI_2;
+            Vector2::new(
+                2.0 * t.sin(),
+                t.cos() + 1e-3 * f64::from((k * 37) % 7) / 7.0,
+            )
+        })
+        .collect();
+    let mut options = SmoothingOptions::new(10);
+    options.extrema = vec!["min@0.3".parse().unwrap()];
+    let earlier = smooth(&points, &options).unwrap();
+    options.extrema = vec!["max@0.999".parse().unwrap()];
+    let fresh = smooth(&points, &options).unwrap();
+    let warm = smooth_from(&points, &options, &earlier.warm_start()).unwrap();
+    assert_eq!(warm.curve, fresh.curve);
+    assert_eq!(warm.newton_steps, fresh.newton_steps);
+}
