@@ -221,6 +221,8 @@ pub struct ArcLengthTable<'a, T, C: ?Sized> {
     curve: &'a C,
     breaks: Vec<T>,
     cumulative: Vec<T>,
+    /// Where pieces are cut around near-stops of the speed (sorted).
+    stops: Vec<T>,
     /// The relative accuracy given.
     accuracy: T,
     /// The absolute accuracy in length it means for this curve (`accuracy` times the
@@ -257,30 +259,39 @@ impl<'a, T: Scalar, C: ParamCurve<T> + ?Sized> ArcLengthTable<'a, T, C> {
                 .derivatives_into(u, &mut d)
                 .map_or(T::zero(), |()| d[1].length())
         };
-        // A rational piece whose weights are far apart is measured in its own parameter
-        // (the pieces are the intervals between the breaks).
+        // Each piece cut around its near-stops (the cuts kept for the lengths inside pieces
+        // that `param_at` measures); a rational piece whose weights are far apart measured in
+        // its own parameter. (The pieces are the intervals between the breaks.)
         let point_dim = <C::Point as ControlPoint<T>>::DIM;
-        let pieces = if <C::Coefficient as ControlPoint<T>>::DIM == point_dim + 1 {
-            curve.bezier_pieces()
-        } else {
-            Vec::new()
-        };
-        let spiky = pieces.len() + 1 == breaks.len()
-            && pieces
-                .iter()
-                .any(|(_, _, q)| crate::arclength::far_apart(q, point_dim));
+        let pieces = curve.bezier_pieces();
+        let aligned = pieces.len() + 1 == breaks.len();
+        let mut stops = Vec::new();
         for (k, w) in breaks.windows(2).enumerate() {
             let last = cumulative[cumulative.len() - 1];
-            let length = if spiky {
-                crate::arclength::length_by_pieces(
-                    &pieces[k..=k],
-                    point_dim,
-                    (w[0], w[1]),
-                    quadrature,
-                    speed,
-                )?
-            } else {
-                adaptive_length(w, quadrature, speed)?
+            let length = match aligned.then(|| &pieces[k]) {
+                Some((_, _, q)) if crate::arclength::far_apart(q, point_dim) => {
+                    crate::arclength::length_by_pieces(
+                        &pieces[k..=k],
+                        point_dim,
+                        (w[0], w[1]),
+                        quadrature,
+                        speed,
+                    )?
+                }
+                Some((lo, hi, q)) => {
+                    let first = stops.len();
+                    crate::arclength::stop_cuts(q, point_dim, (*lo, *hi), &mut stops);
+                    let mut ends = vec![w[0]];
+                    ends.extend(
+                        stops[first..]
+                            .iter()
+                            .copied()
+                            .filter(|&u| u > w[0] && u < w[1]),
+                    );
+                    ends.push(w[1]);
+                    adaptive_length(&ends, quadrature, speed)?
+                }
+                None => adaptive_length(w, quadrature, speed)?,
             };
             cumulative.push(last + length);
         }
@@ -289,6 +300,7 @@ impl<'a, T: Scalar, C: ParamCurve<T> + ?Sized> ArcLengthTable<'a, T, C> {
             curve,
             breaks,
             cumulative,
+            stops,
             accuracy,
             absolute,
         })
@@ -366,7 +378,12 @@ impl<'a, T: Scalar, C: ParamCurve<T> + ?Sized> ArcLengthTable<'a, T, C> {
 
     /// $\int_x^y \lVert C' \rVert$ for `x ≤ y` inside one piece (no break between them).
     fn length_inside(&self, x: T, y: T) -> Result<T> {
-        adaptive_length(&[x, y], self.accuracy * cast(0.1), |u| {
+        let from = self.stops.partition_point(|&u| u <= x);
+        let to = self.stops.partition_point(|&u| u < y);
+        let mut ends = vec![x];
+        ends.extend_from_slice(&self.stops[from..to.max(from)]);
+        ends.push(y);
+        adaptive_length(&ends, self.accuracy * cast(0.1), |u| {
             let mut d = [C::Point::origin(); 2];
             self.curve
                 .derivatives_into(u, &mut d)

@@ -3,7 +3,6 @@
 //! surfaces), so that closest points, curvature, curvature combs, features, arc length,
 //! plotting and meshing are written once and take any kind.
 
-use crate::arclength::adaptive_length;
 use crate::planar::{magnitude_formula, scaled_curvature, signed_formula, unit, zero_velocity};
 use crate::surface::Surface;
 use crate::surface_geometry::LocalProperties;
@@ -162,7 +161,10 @@ pub trait ParamCurve<T: Scalar> {
     /// of the length: the same digits at every scale of the coordinates):
     /// $\int_a^b \lVert C'(u) \rVert\\,du$ by adaptive Gauss–Legendre quadrature on each
     /// piece (the speed is smooth inside a piece), bisecting where two estimates differ by
-    /// more than `accuracy` times the piece's length. A rational piece whose weights lie
+    /// more than `accuracy` times the piece's length. A piece is first cut around its
+    /// near-stops (where the speed dips far below its size, narrower than the nodes'
+    /// spacing: the velocity's Bézier coefficients are halved until they lie on one side
+    /// of the origin). A rational piece whose weights lie
     /// more than 16 apart (the curve then rushes through parts of it in parameter intervals
     /// as narrow as their ratio, down to widths no parameter resolves) is halved by de
     /// Casteljau in its own parameter until every part's weights come within that ratio,
@@ -202,28 +204,15 @@ pub trait ParamCurve<T: Scalar> {
             self.derivatives_into(u, &mut d)
                 .map_or(T::zero(), |()| d[1].length())
         };
-        // A rational piece whose weights are far apart is measured in its own parameter.
-        let point_dim = <Self::Point as ControlPoint<T>>::DIM;
-        if <Self::Coefficient as ControlPoint<T>>::DIM == point_dim + 1 {
-            let pieces = self.bezier_pieces();
-            if pieces
-                .iter()
-                .any(|(_, _, q)| crate::arclength::far_apart(q, point_dim))
-            {
-                return crate::arclength::length_by_pieces(
-                    &pieces,
-                    point_dim,
-                    (a, b),
-                    accuracy,
-                    speed,
-                );
-            }
-        }
-        let mut breaks = vec![a];
-        breaks.extend(self.breaks().into_iter().filter(|&k| k > a && k < b));
-        breaks.push(b);
-        breaks.dedup();
-        adaptive_length(&breaks, accuracy, speed)
+        // Piece by piece: near-stops cut out, a rational piece whose weights are far apart
+        // measured in its own parameter.
+        crate::arclength::length_by_pieces(
+            &self.bezier_pieces(),
+            <Self::Point as ControlPoint<T>>::DIM,
+            (a, b),
+            accuracy,
+            speed,
+        )
     }
 }
 

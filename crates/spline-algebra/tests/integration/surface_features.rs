@@ -408,3 +408,146 @@ fn ridges_of_a_closed_form() {
         assert!((p[0] - p[1] - 0.2).abs() < 1e-7, "red {p:?}");
     }
 }
+
+/// A clamped uniform cubic knot vector for `n` coefficients over [0, 1].
+fn uniform_cubic(n: usize) -> KnotVector<f64> {
+    let spans = n - 3;
+    let mut knots = vec![0.0; 4];
+    knots.extend((1..spans).map(|i| i as f64 / spans as f64));
+    knots.extend([1.0; 4]);
+    KnotVector::new(3, knots).unwrap()
+}
+
+/// The reproducers' first size (issue 25: "over 60 s", now seconds): a 60 × 60 random
+/// bicubic height field over the unit square. Its 57² patches hold hundreds of parabolic
+/// lines, umbilics and ridges; along lines `v = c` and `u = c` every sign change of the
+/// pointwise K (40,000 samples a line) is a crossing of a reported parabolic line and none
+/// is invented, every umbilic has equal principal curvatures, and both colours of ridge
+/// are found.
+#[test]
+fn surface_features_at_the_reproducers_size() {
+    let n = 60;
+    let knots = uniform_cubic(n);
+    let mut next = rng(60);
+    let mut points = Vec::new();
+    for i in 0..n {
+        for j in 0..n {
+            let (u, v) = (i as f64 / (n - 1) as f64, j as f64 / (n - 1) as f64);
+            points.push(Vector3::new(u, v, next()));
+        }
+    }
+    let s = NurbsSurface::new(knots.clone(), knots, points, vec![1.0; n * n]).unwrap();
+    let features = spline_algebra::surface_features(&s, 8).unwrap();
+    let lines = &features.parabolic_lines;
+    assert!(lines.regions.is_empty());
+    assert!(lines.curves.len() > 100, "{}", lines.curves.len());
+    let m = 40_000;
+    let mut crossings = 0;
+    for axis in 0..2 {
+        for c in [0.1234, 0.5077, 0.8813] {
+            let at = |t: f64| if axis == 0 { (t, c) } else { (c, t) };
+            let k: Vec<f64> = (0..=m)
+                .map(|j| {
+                    let (u, v) = at(j as f64 / m as f64);
+                    s.local_properties(u, v).unwrap().gaussian_curvature
+                })
+                .collect();
+            let sampled: Vec<f64> = (1..=m)
+                .filter(|&j| k[j - 1] * k[j] < 0.0)
+                .map(|j| (j as f64 - 0.5) / m as f64)
+                .collect();
+            let o = 1 - axis;
+            let mut found: Vec<f64> = Vec::new();
+            for curve in &lines.curves {
+                for w in curve.windows(2) {
+                    let (a, b) = (w[0][o] - c, w[1][o] - c);
+                    if a * b < 0.0 || (a == 0.0 && b != 0.0) {
+                        let t = a / (a - b);
+                        found.push(w[0][axis] + t * (w[1][axis] - w[0][axis]));
+                    }
+                }
+            }
+            found.sort_by(f64::total_cmp);
+            assert_eq!(
+                found.len(),
+                sampled.len(),
+                "axis {axis} c {c}: {found:?} vs {sampled:?}"
+            );
+            for (f, e) in found.iter().zip(&sampled) {
+                // A sample step plus the chord's sagitta, on patches 1/57 wide.
+                assert!((f - e).abs() < 3e-4, "axis {axis} c {c}: {f} vs {e}");
+            }
+            crossings += sampled.len();
+        }
+    }
+    assert!(crossings > 100, "the check is not vacuous: {crossings}");
+    let umbilics = &features.umbilics.points;
+    assert!(umbilics.len() > 100, "{}", umbilics.len());
+    for p in umbilics {
+        let lp = s.local_properties(p[0], p[1]).unwrap();
+        let scale = lp.max_curvature.abs().max(lp.min_curvature.abs()).max(1e-3);
+        assert!(
+            (lp.max_curvature - lp.min_curvature).abs() < 1e-6 * scale,
+            "{p:?} {lp:?}"
+        );
+    }
+    let ridges = &features.ridges;
+    assert!(ridges.red.len() > 100 && ridges.blue.len() > 100);
+}
+
+/// The reproducers' second size: a 40 × 40 random bicubic function `s(u, v)`. Every vertex
+/// of its parabolic lines has a vanishing Hessian determinant, and at every vertex of a
+/// ridge (away from the Hessian's umbilics) the derivative of its eigenvalue along its own
+/// eigendirection, `Σ s_ijk e_i e_j e_k`, vanishes — computed here from the third
+/// derivatives and nalgebra's eigenvectors, not from the ridge polynomials.
+#[test]
+fn function_ridges_at_the_reproducers_size() {
+    use spline_algebra::{hessian_determinant, ridges};
+    let n = 40;
+    let knots = uniform_cubic(n);
+    let mut next = rng(40);
+    let values: Vec<f64> = (0..n * n).map(|_| next()).collect();
+    let s = Surface::new(knots.clone(), knots, values).unwrap();
+    let det = hessian_determinant(&s).unwrap();
+    let parabolic = zero_set(&det.value, 8).unwrap();
+    assert!(parabolic.curves.len() > 100, "{}", parabolic.curves.len());
+    for p in parabolic.curves.iter().flatten() {
+        let d = s.derivatives(p[0], p[1], 2).unwrap();
+        let (suu, svv, suv) = (d[2][0], d[0][2], d[1][1]);
+        // The scale of the determinant's rounding: the Hessian's size, squared.
+        let size = (suu.abs() + svv.abs() + suv.abs()).powi(2);
+        assert!(
+            (suu * svv - suv * suv).abs() <= 1e-8 * size,
+            "{p:?}: {suu} {svv} {suv}"
+        );
+    }
+    let found = ridges(&s, 8).unwrap();
+    assert!(found.red.len() > 100 && found.blue.len() > 100);
+    let mut checked = 0;
+    for (larger, lines) in [(false, &found.red), (true, &found.blue)] {
+        for p in lines.iter().flatten() {
+            let d = s.derivatives(p[0], p[1], 3).unwrap();
+            let hessian = nalgebra::Matrix2::new(d[2][0], d[1][1], d[1][1], d[0][2]);
+            let eigen = nalgebra::SymmetricEigen::new(hessian);
+            let (l0, l1) = (eigen.eigenvalues[0], eigen.eigenvalues[1]);
+            if (l0 - l1).abs() < 1e-3 * l0.abs().max(l1.abs()) {
+                continue;
+            }
+            let k = if (l0 > l1) == larger { 0 } else { 1 };
+            let e = eigen.eigenvectors.column(k);
+            let (a, b) = (e[0], e[1]);
+            let third = [d[3][0], d[2][1], d[1][2], d[0][3]];
+            let along = third[0] * a.powi(3)
+                + 3.0 * third[1] * a * a * b
+                + 3.0 * third[2] * a * b * b
+                + third[3] * b.powi(3);
+            let size = third.iter().map(|t| t.abs()).fold(0.0, f64::max);
+            assert!(
+                along.abs() <= 1e-5 * size,
+                "{p:?} ({larger}): {along} of {size}"
+            );
+            checked += 1;
+        }
+    }
+    assert!(checked > 1000, "the check is not vacuous: {checked}");
+}
