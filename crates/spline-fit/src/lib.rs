@@ -75,6 +75,7 @@ mod intersect;
 mod lsq;
 mod natural;
 mod nd_interp;
+mod noise;
 mod offset;
 mod params;
 mod periodic;
@@ -122,6 +123,7 @@ pub use lsq::{
 };
 pub use natural::{natural_cubic, natural_spline};
 pub use nd_interp::make_ndbspl;
+pub use noise::{noise_stride, parametrize_above_noise};
 pub use offset::{offset_curve, offset_point};
 pub use params::{
     KnotChoice, Parametrization, nurbs_book_knots, parametrize, parametrize_closed, parametrize_in,

@@ -9,15 +9,16 @@ use super::placement::{
 use super::topology::{Closed, ClosedCurve2};
 use nalgebra::Vector2;
 use spline_core::{Error, ErrorKind, Result};
-use spline_fit::{Parametrization, closest_point, parametrize};
+use spline_fit::{Parametrization, closest_point, parametrize_above_noise};
 use spline_geom::{Curve2, PeriodicBSpline};
 
-/// Centripetal parameters of closed data in `[0, 1)`: the closing chord (last point back to
-/// the first) counts as one more chord.
+/// Centripetal parameters of closed data in `[0, 1)`, measured above the data's noise
+/// ([`parametrize_above_noise`]): the closing chord (last point back to the first) counts as
+/// one more chord.
 pub(crate) fn closed_parameters(points: &[Vector2<f64>]) -> Result<Vec<f64>> {
     let mut loop_points = points.to_vec();
     loop_points.push(points[0]);
-    let mut params = parametrize(&loop_points, &Parametrization::Centripetal)?;
+    let mut params = parametrize_above_noise(&loop_points, &Parametrization::Centripetal)?;
     params.pop();
     Ok(params)
 }

@@ -8,7 +8,7 @@ use nalgebra::Vector2;
 use spline_algebra::{CurveFeatures, PlanarFeatures};
 use spline_core::{KnotVector, Result};
 use spline_fit::{
-    LeastSquares, Parametrization, TwoSidedDeviation, nurbs_book_knots, parametrize,
+    LeastSquares, Parametrization, TwoSidedDeviation, nurbs_book_knots, parametrize_above_noise,
     project_ordered,
 };
 use spline_geom::{BSpline, Curve2};
@@ -21,7 +21,8 @@ impl Topology for Open {
     fn count_once(_: &mut Vec<Vector2<f64>>) {}
 
     fn start(unit: &[Vector2<f64>], options: &SmoothingOptions, orientation: f64) -> Result<Start> {
-        let params = parametrize(unit, &Parametrization::Centripetal)?;
+        // Centripetal, measured above the data's noise (dense scans).
+        let params = parametrize_above_noise(unit, &Parametrization::Centripetal)?;
         let base = nurbs_book_knots(options.degree, options.control_points, &params)?;
         let (shape, params) = fit_with_correction::<Self>(unit, &params, &base, 8)?;
         let placed = place_extrema(&shape, &options.extrema, orientation)?;
