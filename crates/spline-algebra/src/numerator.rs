@@ -53,12 +53,9 @@ impl<T: Scalar> Function<T> for BSpline<T, T> {
             return Ok((product(a, b)?, None));
         };
         let map = ProductMap::new(a.knots(), b.knots())?;
-        let jacobian = add_scaled(
-            T::one(),
-            &matmul(&map.jacobian_left(b.control_points())?, ja),
-            T::one(),
-            &matmul(&map.jacobian_right(a.control_points())?, jb),
-        );
+        let left = map.jacobian_left(b.control_points())?;
+        let right = map.jacobian_right(a.control_points())?;
+        let jacobian = chained_sum(T::one(), &left, ja, T::one(), &right, jb);
         Ok((map.product(a, b)?, Some(jacobian)))
     }
 
@@ -80,17 +77,25 @@ impl<T: Scalar> Function<T> for BSpline<T, T> {
             .zip(&xb)
             .map(|(&x, &y)| alpha * x + beta * y)
             .collect();
-        let jacobian = add_scaled(
-            alpha,
-            &matmul(ma.matrix(), ja),
-            beta,
-            &matmul(mb.matrix(), jb),
-        );
+        let jacobian = chained_sum(alpha, ma.matrix(), ja, beta, mb.matrix(), jb);
         Ok((
             BSpline::new_unchecked(ma.target().clone(), points),
             Some(jacobian),
         ))
     }
+}
+
+/// `α A·J_a + β B·J_b`: the Jacobian of `α A a + β B b` (a product's rule, a combination on
+/// a common space) from those of `a` and `b`.
+fn chained_sum<T: Scalar>(
+    alpha: T,
+    a: &CsrMatrix<T>,
+    ja: &CsrMatrix<T>,
+    beta: T,
+    b: &CsrMatrix<T>,
+    jb: &CsrMatrix<T>,
+) -> CsrMatrix<T> {
+    add_scaled(alpha, &matmul(a, ja), beta, &matmul(b, jb))
 }
 
 /// Bivariate functions: products through the Kronecker product of the univariate bilinear
@@ -115,12 +120,9 @@ impl<T: Scalar> Function<T> for Surface<T, T> {
             return Ok((value, None));
         };
         let bilinear = map.bilinear();
-        let jacobian = add_scaled(
-            T::one(),
-            &matmul(&bilinear.jacobian_left(b.control_points())?, ja),
-            T::one(),
-            &matmul(&bilinear.jacobian_right(a.control_points())?, jb),
-        );
+        let left = bilinear.jacobian_left(b.control_points())?;
+        let right = bilinear.jacobian_right(a.control_points())?;
+        let jacobian = chained_sum(T::one(), &left, ja, T::one(), &right, jb);
         Ok((value, Some(jacobian)))
     }
 
@@ -137,11 +139,13 @@ impl<T: Scalar> Function<T> for Surface<T, T> {
         };
         let (au, bu) = common_space(a.knots_u(), b.knots_u())?;
         let (av, bv) = common_space(a.knots_v(), b.knots_v())?;
-        let jacobian = add_scaled(
+        let jacobian = chained_sum(
             alpha,
-            &matmul(&TensorMap::new(au, av).matrix(), ja),
+            &TensorMap::new(au, av).matrix(),
+            ja,
             beta,
-            &matmul(&TensorMap::new(bu, bv).matrix(), jb),
+            &TensorMap::new(bu, bv).matrix(),
+            jb,
         );
         Ok((value, Some(jacobian)))
     }

@@ -17,9 +17,9 @@ use crate::polylines::{UvPolyline, chain};
 use crate::ridge_function::{best_form, degenerate, snapped};
 use crate::surface_numerators::{CurvatureNumerators, curvature_numerators};
 use crate::umbilics::CommonZeros;
-use crate::zero_set::bezier_patches;
+use crate::zero_set::{bezier_patches, check_samples};
 use march::{Marcher, march_all};
-use spline_core::{Error, ErrorKind, Result};
+use spline_core::Result;
 use spline_geom::NurbsSurface;
 
 /// Finest subdivision of a patch: `2^MAX_LEVEL` boxes per patch width.
@@ -114,19 +114,6 @@ pub fn surface_ridges_with_umbilics(
 ) -> Result<SurfaceRidges> {
     check_samples(samples)?;
     ridges_from(surface, &curvature_numerators(surface)?, samples, umbilics)
-}
-
-/// The samples per patch of the ridges: 1 to 10 000.
-fn check_samples(samples: usize) -> Result<()> {
-    if samples == 0 || samples > 10_000 {
-        return Err(Error::new(
-            ErrorKind::InvalidArgument,
-            format!("the samples per patch must be between 1 and 10000, got {samples}"),
-        )
-        .with_value(samples as f64)
-        .with_interval(1.0, 10_000.0));
-    }
-    Ok(())
 }
 
 /// [`surface_ridges_with_umbilics`] from the surface's curvature numerators, already

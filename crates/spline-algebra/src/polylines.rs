@@ -4,6 +4,30 @@
 /// Points of a polyline in the parameter domain.
 pub type UvPolyline = Vec<[f64; 2]>;
 
+/// Joins `next` to `line` at the end where they meet (the end of `line` first, then its
+/// start), turned round where needed; the shared point kept once.
+fn attach(
+    line: &mut UvPolyline,
+    mut next: UvPolyline,
+    near: impl Fn(&[f64; 2], &[f64; 2]) -> bool,
+) {
+    let (start, end) = (line[0], line[line.len() - 1]);
+    let last = next[next.len() - 1];
+    if near(&next[0], &end) {
+        line.extend(next.drain(1..));
+    } else if near(&last, &end) {
+        next.reverse();
+        line.extend(next.drain(1..));
+    } else {
+        if !near(&last, &start) {
+            next.reverse();
+        }
+        next.pop();
+        next.append(line);
+        *line = next;
+    }
+}
+
 /// Joins pieces whose ends meet (within `tol`) into polylines; a polyline whose ends meet is
 /// closed (its first point repeated at the end). Each line grows by the first remaining
 /// piece (in list order) with an end near one of its ends, found through [`Ends`], so
@@ -46,22 +70,7 @@ pub(crate) fn chain(mut pieces: Vec<UvPolyline>, tol: f64) -> Vec<UvPolyline> {
                 ends.remove(&pieces[last], last);
                 ends.add(&pieces[last], k);
             }
-            let mut next = pieces.swap_remove(k);
-            if near(&next[0], &end) {
-                line.extend(next.drain(1..));
-            } else if near(next.last().expect("non-empty"), &end) {
-                next.reverse();
-                line.extend(next.drain(1..));
-            } else if near(next.last().expect("non-empty"), &start) {
-                next.pop();
-                next.extend(line);
-                line = next;
-            } else {
-                next.reverse();
-                next.pop();
-                next.extend(line);
-                line = next;
-            }
+            attach(&mut line, pieces.swap_remove(k), near);
         }
         out.push(line);
     }
@@ -133,7 +142,7 @@ impl Ends {
 
 #[cfg(test)]
 mod tests {
-    use super::{UvPolyline, chain};
+    use super::{UvPolyline, attach, chain};
 
     /// The joining by linear search over every remaining piece (the definition [`chain`]'s
     /// index must reproduce, piece for piece and in the same order).
@@ -157,22 +166,7 @@ mod tests {
                 }) else {
                     break;
                 };
-                let mut next = pieces.swap_remove(k);
-                if near(&next[0], &end) {
-                    line.extend(next.drain(1..));
-                } else if near(&next[next.len() - 1], &end) {
-                    next.reverse();
-                    line.extend(next.drain(1..));
-                } else if near(&next[next.len() - 1], &start) {
-                    next.pop();
-                    next.extend(line);
-                    line = next;
-                } else {
-                    next.reverse();
-                    next.pop();
-                    next.extend(line);
-                    line = next;
-                }
+                attach(&mut line, pieces.swap_remove(k), near);
             }
             out.push(line);
         }

@@ -59,14 +59,7 @@ pub struct ZeroSet {
 /// [`ErrorKind::InvalidArgument`] if `samples` is 0 or above 10 000, or a coefficient is
 /// not finite.
 pub fn zero_set(f: &Surface<f64, f64>, samples: usize) -> Result<ZeroSet> {
-    if samples == 0 || samples > 10_000 {
-        return Err(Error::new(
-            ErrorKind::InvalidArgument,
-            format!("the samples per patch must be between 1 and 10000, got {samples}"),
-        )
-        .with_value(samples as f64)
-        .with_interval(1.0, 10_000.0));
-    }
+    check_samples(samples)?;
     if let Some(i) = f.control_points().iter().position(|c| !c.is_finite()) {
         return Err(Error::new(
             ErrorKind::NonFinite,
@@ -419,4 +412,17 @@ fn merge_lines(pieces: Vec<UvPolyline>, width: [f64; 2], samples: usize) -> Vec<
         );
     }
     out
+}
+
+/// The samples per patch of a zero set or of ridges: 1 to 10 000.
+pub(crate) fn check_samples(samples: usize) -> Result<()> {
+    if samples == 0 || samples > 10_000 {
+        return Err(Error::new(
+            ErrorKind::InvalidArgument,
+            format!("the samples per patch must be between 1 and 10000, got {samples}"),
+        )
+        .with_value(samples as f64)
+        .with_interval(1.0, 10_000.0));
+    }
+    Ok(())
 }

@@ -24,6 +24,7 @@ mod batch;
 mod error;
 mod golden;
 mod knots;
+mod march;
 mod point;
 mod quadrature;
 mod scalar;
@@ -38,6 +39,7 @@ pub use knots::{
     KnotVector, MAX_DEGREE, MAX_DERIVATIVE_ORDER, MAX_ORDER, check_derivative_order,
     check_elevated_degree, check_params,
 };
+pub use march::march_to_boundary;
 pub use point::{ControlPoint, SymbolicPoint, VectorSpace, lerp};
 pub use quadrature::gauss_legendre;
 pub use scalar::{Scalar, cast, from_count, power_of_two_scale, to_f64};

@@ -162,11 +162,52 @@ pub fn intersect_curves<T: Scalar, A: PlanarCurve<T>, B: PlanarCurve<T>>(
     b: &B,
     tolerance: T,
 ) -> Result<CurveIntersections<T>> {
-    check_tolerance(tolerance)?;
+    pair_in_frame(a, b, Given::Absolute(tolerance))
+}
+
+/// A tolerance as the caller gave it: in the curves' units, or relative to their size.
+#[derive(Clone, Copy)]
+enum Given<T> {
+    Absolute(T),
+    Relative(T),
+}
+
+impl<T: Scalar> Given<T> {
+    /// The tolerance in `frame`, for curves of `size` (the caller's units).
+    fn in_frame(self, frame: &Frame, size: T) -> T {
+        match self {
+            Self::Absolute(tolerance) => framed(frame, tolerance),
+            Self::Relative(relative) => scaled(relative, frame.to_frame(size)),
+        }
+    }
+}
+
+/// The intersections of two curves, searched in the frame of their size.
+fn pair_in_frame<T: Scalar, A: PlanarCurve<T>, B: PlanarCurve<T>>(
+    a: &A,
+    b: &B,
+    given: Given<T>,
+) -> Result<CurveIntersections<T>> {
+    let (Given::Absolute(t) | Given::Relative(t)) = given;
+    check_tolerance(t)?;
     let size = planar_extent(a)?.max(planar_extent(b)?);
     let frame = Frame::of_pair::<T, A, B>(size);
-    let found = search_pair(&frame.view(a), &frame.view(b), framed(&frame, tolerance))?;
+    let tolerance = given.in_frame(&frame, size);
+    let found = search_pair(&frame.view(a), &frame.view(b), tolerance)?;
     Ok(back(&frame, found))
+}
+
+/// The self-intersections of a curve, searched in the frame of its size.
+fn self_in_frame<T: Scalar, C: PlanarCurve<T>>(
+    curve: &C,
+    given: Given<T>,
+) -> Result<CurveIntersections<T>> {
+    let (Given::Absolute(t) | Given::Relative(t)) = given;
+    check_tolerance(t)?;
+    let size = planar_extent(curve)?;
+    let frame = Frame::of::<T, C>(size);
+    let tolerance = given.in_frame(&frame, size);
+    Ok(back(&frame, self_search(&frame.view(curve), tolerance)?))
 }
 
 /// A tolerance of the caller's units in `frame` (the smallest normal `f64` where it
@@ -278,12 +319,7 @@ pub fn intersect_curves_relative<T: Scalar, A: PlanarCurve<T>, B: PlanarCurve<T>
     b: &B,
     relative: T,
 ) -> Result<CurveIntersections<T>> {
-    check_tolerance(relative)?;
-    let size = planar_extent(a)?.max(planar_extent(b)?);
-    let frame = Frame::of_pair::<T, A, B>(size);
-    let tolerance = scaled(relative, frame.to_frame(size));
-    let found = search_pair(&frame.view(a), &frame.view(b), tolerance)?;
-    Ok(back(&frame, found))
+    pair_in_frame(a, b, Given::Relative(relative))
 }
 
 /// [`self_intersections`] with a tolerance relative to the curve's [`planar_extent`].
@@ -294,11 +330,7 @@ pub fn self_intersections_relative<T: Scalar, C: PlanarCurve<T>>(
     curve: &C,
     relative: T,
 ) -> Result<CurveIntersections<T>> {
-    check_tolerance(relative)?;
-    let size = planar_extent(curve)?;
-    let frame = Frame::of::<T, C>(size);
-    let tolerance = scaled(relative, frame.to_frame(size));
-    Ok(back(&frame, self_search(&frame.view(curve), tolerance)?))
+    self_in_frame(curve, Given::Relative(relative))
 }
 
 /// The self-intersections of a planar curve of any kind: pairs `u < v` with
@@ -335,13 +367,7 @@ pub fn self_intersections<T: Scalar, C: PlanarCurve<T>>(
     curve: &C,
     tolerance: T,
 ) -> Result<CurveIntersections<T>> {
-    check_tolerance(tolerance)?;
-    let size = planar_extent(curve)?;
-    let frame = Frame::of::<T, C>(size);
-    Ok(back(
-        &frame,
-        self_search(&frame.view(curve), framed(&frame, tolerance))?,
-    ))
+    self_in_frame(curve, Given::Absolute(tolerance))
 }
 
 /// [`self_intersections`] of a curve in a frame where its size is near 1.

@@ -8,7 +8,7 @@ use super::piece::along;
 use super::refine::jet;
 use super::{Candidate, CurveOverlap};
 use nalgebra::Vector2;
-use spline_core::{Result, Scalar, cast};
+use spline_core::{Result, Scalar, cast, march_to_boundary};
 use spline_geom::PlanarCurve;
 
 /// A piece of an overlap: `[s.0, s.1]` on the first curve (`s.0 < s.1`), its image on the
@@ -211,40 +211,8 @@ fn reach_end<T: Scalar, A: PlanarCurve<T>, B: PlanarCurve<T>>(
     limit: T,
     setting: &Setting<T>,
 ) -> Result<(T, T)> {
-    let eps = T::default_epsilon();
-    let mut good = (s, t);
-    let mut bad = None;
-    let mut step = (limit - s) * cast(1e-6);
-    while good.0 != limit {
-        let next = if (step.abs()) >= (limit - good.0).abs() {
-            limit
-        } else {
-            good.0 + step
-        };
-        match on_b(a, b, next, good, setting)? {
-            Some(t) => good = (next, t),
-            None => {
-                bad = Some(next);
-                break;
-            }
-        }
-        step *= cast(2.0);
-    }
-    let far = bad.unwrap_or(limit);
-    if let Some(mut bad) = bad {
-        for _ in 0..80 {
-            let m = (good.0 + bad) * cast(0.5);
-            if !((m - good.0).abs() > eps * (T::one() + m.abs()))
-                || !((bad - m).abs() > eps * (T::one() + m.abs()))
-            {
-                break;
-            }
-            match on_b(a, b, m, good, setting)? {
-                Some(t) => good = (m, t),
-                None => bad = m,
-            }
-        }
-    }
+    let (mut good, off) = march_to_boundary((s, t), limit, |m, good| on_b(a, b, m, good, setting))?;
+    let far = off.unwrap_or(limit);
     let (db0, db1) = b.domain();
     if good.0 != limit && (good.1 == db0 || good.1 == db1) {
         // The end lies between the start and the first point off `b`.

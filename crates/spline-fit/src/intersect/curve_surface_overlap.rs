@@ -6,7 +6,7 @@ use super::curve_surface::{CurveSurfaceHit, intersect_curve_surface};
 use super::{Tolerances, check_tolerance, scale_of_boxes};
 use crate::surface_project::{BoxTree, SurfaceProjector, bounding_box};
 use nalgebra::Vector3;
-use spline_core::{Result, Scalar, cast};
+use spline_core::{Result, Scalar, cast, march_to_boundary};
 use spline_geom::{ParamCurve, ParamSurface};
 
 /// An arc of a curve that lies in a surface within the distance tolerance.
@@ -140,38 +140,6 @@ fn push_out<T: Scalar>(
     limit: T,
     on: &impl Fn(T, (T, T)) -> Result<Option<(T, T)>>,
 ) -> Result<OnBoth<T>> {
-    let eps = T::default_epsilon();
-    let mut good = (t, uv);
-    let mut bad = None;
-    let mut step = (limit - t) * cast(1e-6);
-    while good.0 != limit {
-        let next = if step.abs() >= (limit - good.0).abs() {
-            limit
-        } else {
-            good.0 + step
-        };
-        match on(next, good.1)? {
-            Some(uv) => good = (next, uv),
-            None => {
-                bad = Some(next);
-                break;
-            }
-        }
-        step *= cast(2.0);
-    }
-    if let Some(mut bad) = bad {
-        for _ in 0..80 {
-            let m = (good.0 + bad) * cast(0.5);
-            if !((m - good.0).abs() > eps * (T::one() + m.abs()))
-                || !((bad - m).abs() > eps * (T::one() + m.abs()))
-            {
-                break;
-            }
-            match on(m, good.1)? {
-                Some(uv) => good = (m, uv),
-                None => bad = m,
-            }
-        }
-    }
+    let (good, _) = march_to_boundary((t, uv), limit, |m, good| on(m, good.1))?;
     Ok(good)
 }
