@@ -51,7 +51,8 @@ impl<T: Scalar> SparseBilinear<T> {
     /// summed).
     ///
     /// # Errors
-    /// [`ErrorKind::InvalidArgument`] if an index is out of range.
+    /// [`ErrorKind::IndexOutOfRange`] if an index is out of range (the first offending
+    /// index as [`spline_core::Error::index`]).
     pub fn from_rows(
         left_dim: usize,
         right_dim: usize,
@@ -63,11 +64,12 @@ impl<T: Scalar> SparseBilinear<T> {
                 .find(|&&(j, l, _)| j >= left_dim || l >= right_dim)
             {
                 return Err(Error::new(
-                    ErrorKind::InvalidArgument,
+                    ErrorKind::IndexOutOfRange,
                     format!(
                         "row {k}: entry ({j}, {l}) outside the {left_dim}×{right_dim} argument range"
                     ),
-                ));
+                )
+                .with_index(if j >= left_dim { j } else { l }));
             }
         }
         Ok(Self::from_rows_unchecked(left_dim, right_dim, rows))

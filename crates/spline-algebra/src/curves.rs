@@ -125,7 +125,9 @@ impl<T: Scalar> PlanarInvariants<T> {
                 format!(
                     "curvature invariants need degree 2 or more, got {d} (a polyline has zero curvature wherever it is defined)"
                 ),
-            ));
+            )
+            .with_value(d as f64)
+            .with_interval(2.0, f64::INFINITY));
         }
         if 4 * d - 6 > spline_core::MAX_DEGREE {
             return Err(Error::new(

@@ -65,7 +65,8 @@ pub trait CurveFeatures<T: Scalar> {
 /// ```
 ///
 /// # Errors
-/// [`ErrorKind::InvalidArgument`] for degree below 2 or a bad accuracy;
+/// [`ErrorKind::InvalidArgument`] for degree below 2; [`ErrorKind::InvalidTolerance`] for
+/// an accuracy that is not positive and finite;
 /// [`ErrorKind::DegreeTooHigh`] when the numerator of `κ'` is above
 /// [`spline_core::MAX_DEGREE`] (`4p − 6` for polynomial curves, `8p − 6` for rational ones);
 /// [`ErrorKind::DegenerateGeometry`] if the velocity vanishes somewhere (the curve is not
@@ -335,7 +336,9 @@ pub(crate) fn check_feature_degree(
             format!(
                 "curvature features need degree 2 or more, got {p} (a polyline has zero curvature wherever it is defined)"
             ),
-        ));
+        )
+        .with_value(p as f64)
+        .with_interval(2.0, f64::INFINITY));
     }
     let degree = factor * p - offset;
     if degree > spline_core::MAX_DEGREE {

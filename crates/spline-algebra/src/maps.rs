@@ -182,7 +182,7 @@ impl<T: Scalar> SplineMap<T> {
     /// knots.
     ///
     /// # Errors
-    /// [`ErrorKind::InvalidArgument`] if the spline's knots are not the source knots.
+    /// [`ErrorKind::SpaceMismatch`] if the spline's knots are not the source knots.
     pub fn apply_to<P: ControlPoint<T>>(&self, spline: &BSpline<T, P>) -> Result<BSpline<T, P>> {
         if spline.knots() != &self.source {
             return Err(Error::new(

@@ -63,7 +63,7 @@ pub struct OffsetCusp<T> {
 ///
 /// # Errors
 /// [`spline_core::ErrorKind::NonFinite`] for a non-finite distance;
-/// [`spline_core::ErrorKind::InvalidArgument`] unless `accuracy` is positive and finite;
+/// [`spline_core::ErrorKind::InvalidTolerance`] unless `accuracy` is positive and finite;
 /// [`spline_core::ErrorKind::DegreeTooHigh`] when $h_1^3$ exceeds the supported degree (degree
 /// above 5); the evaluation errors of the curve.
 pub fn offset_cusps<T: Scalar>(

@@ -94,7 +94,7 @@ pub struct SurfaceRidges {
 /// ```
 ///
 /// # Errors
-/// [`ErrorKind::InvalidArgument`] if `samples` is 0 or above 10 000; as
+/// [`spline_core::ErrorKind::InvalidArgument`] if `samples` is 0 or above 10 000; as
 /// [`crate::curvature_numerators`] and [`crate::umbilics`].
 pub fn surface_ridges(surface: &NurbsSurface<f64, 3>, samples: usize) -> Result<SurfaceRidges> {
     let umbilics = crate::umbilics(surface)?;
@@ -105,7 +105,7 @@ pub fn surface_ridges(surface: &NurbsSurface<f64, 3>, samples: usize) -> Result<
 /// caller that reports them too need not search twice).
 ///
 /// # Errors
-/// [`ErrorKind::InvalidArgument`] if `samples` is 0 or above 10 000; as
+/// [`spline_core::ErrorKind::InvalidArgument`] if `samples` is 0 or above 10 000; as
 /// [`crate::curvature_numerators`].
 pub fn surface_ridges_with_umbilics(
     surface: &NurbsSurface<f64, 3>,

@@ -247,12 +247,12 @@ impl<T: Scalar> ProductMap<T> {
     /// The product of two splines on the prepared spaces.
     ///
     /// # Errors
-    /// [`ErrorKind::InvalidArgument`] if the knot vectors are not the prepared ones;
+    /// [`ErrorKind::SpaceMismatch`] if the knot vectors are not the prepared ones;
     /// [`ErrorKind::NonFinite`] when a coefficient is too large for the scalar type.
     pub fn product(&self, a: &BSpline<T, T>, b: &BSpline<T, T>) -> Result<BSpline<T, T>> {
         if a.knots() != self.left() || b.knots() != self.right() {
             return Err(Error::new(
-                ErrorKind::InvalidArgument,
+                ErrorKind::SpaceMismatch,
                 "the factors are not on the knot vectors this product was prepared for",
             ));
         }

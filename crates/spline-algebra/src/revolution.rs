@@ -70,7 +70,9 @@ pub fn revolution_numerators<T: Scalar>(
                 "the features of a surface of revolution need a meridian of degree 3 or more (f''' enters), got {}",
                 meridian.degree()
             ),
-        ));
+        )
+        .with_value(meridian.degree() as f64)
+        .with_interval(3.0, f64::INFINITY));
     }
     let n = meridian.control_points().len();
     let identity = CsrMatrix::identity(n);
@@ -134,7 +136,8 @@ pub fn revolution_features<T: Scalar>(
                 "the meridian radius reaches zero at z = {} (the surface meets its axis there)",
                 spline_core::to_f64(zero.at())
             ),
-        ));
+        )
+        .with_value(spline_core::to_f64(zero.at())));
     }
     let positive = meridian.eval(a)? > T::zero();
     if !positive {

@@ -216,7 +216,7 @@ impl<T: Scalar> Isolator<T> {
 /// ```
 ///
 /// # Errors
-/// [`ErrorKind::InvalidArgument`] unless `accuracy` is positive and finite.
+/// [`ErrorKind::InvalidTolerance`] unless `accuracy` is positive and finite.
 pub fn zeros<T: Scalar>(f: &BSpline<T, T>, accuracy: T) -> Result<Vec<Zero<T>>> {
     Ok(analyse(f, accuracy)?.zeros)
 }
@@ -224,7 +224,7 @@ pub fn zeros<T: Scalar>(f: &BSpline<T, T>, accuracy: T) -> Result<Vec<Zero<T>>> 
 fn analyse<T: Scalar>(f: &BSpline<T, T>, accuracy: T) -> Result<Analysis<T>> {
     if !(accuracy > T::zero() && accuracy.is_finite()) {
         return Err(Error::new(
-            ErrorKind::InvalidArgument,
+            ErrorKind::InvalidTolerance,
             format!(
                 "the accuracy must be positive and finite, got {}",
                 to_f64(accuracy)

@@ -237,7 +237,9 @@ impl<T: Scalar> SegmentCurvature<T> {
             return Err(Error::new(
                 ErrorKind::InvalidArgument,
                 format!("the segment kernel of g needs degree 3 or more, got {p}"),
-            ));
+            )
+            .with_value(p as f64)
+            .with_interval(3.0, f64::INFINITY));
         }
         if 4 * p - 6 > MAX_DEGREE {
             return Err(Error::new(

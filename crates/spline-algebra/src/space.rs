@@ -31,7 +31,8 @@ pub trait SpaceCurveFeatures<T: Scalar> {
     /// zeros at the ends of the domain are not reported.
     ///
     /// # Errors
-    /// [`ErrorKind::InvalidArgument`] for degree below 2 or a bad accuracy;
+    /// [`ErrorKind::InvalidArgument`] for degree below 2; [`ErrorKind::InvalidTolerance`]
+    /// for an accuracy that is not positive and finite;
     /// [`ErrorKind::DegreeTooHigh`] if the numerator of `κ′` is above
     /// [`spline_core::MAX_DEGREE`] (`6p − 9` polynomial, `11p − 7` rational);
     /// [`ErrorKind::DegenerateGeometry`] if the velocity vanishes somewhere.

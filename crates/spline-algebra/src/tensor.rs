@@ -84,7 +84,7 @@ impl<T: Scalar> TensorMap<T> {
     /// The partial derivative $\partial^{k+l} / \partial u^k \partial v^l$.
     ///
     /// # Errors
-    /// [`ErrorKind::InvalidArgument`] if an order exceeds the degree in its direction.
+    /// [`ErrorKind::OrderTooHigh`] if an order exceeds the degree in its direction.
     pub fn partial_derivative(
         knots_u: &KnotVector<T>,
         knots_v: &KnotVector<T>,
@@ -140,11 +140,11 @@ impl<T: Scalar> TensorMap<T> {
     /// Applies the map to a tensor-product spline on its source spaces.
     ///
     /// # Errors
-    /// [`ErrorKind::InvalidArgument`] if the spline is not on the source knot vectors.
+    /// [`ErrorKind::SpaceMismatch`] if the spline is not on the source knot vectors.
     pub fn apply<P: ControlPoint<T>>(&self, s: &Surface<T, P>) -> Result<Surface<T, P>> {
         if s.knots_u() != self.u.source() || s.knots_v() != self.v.source() {
             return Err(Error::new(
-                ErrorKind::InvalidArgument,
+                ErrorKind::SpaceMismatch,
                 "the spline's knot vectors are not the source spaces of the map",
             ));
         }
@@ -160,7 +160,7 @@ impl<T: Scalar> TensorMap<T> {
 /// spline of degree `(p − k, q − l)`.
 ///
 /// # Errors
-/// [`ErrorKind::InvalidArgument`] if an order exceeds the degree in its direction.
+/// [`ErrorKind::OrderTooHigh`] if an order exceeds the degree in its direction.
 pub fn partial<T: Scalar, P: ControlPoint<T>>(
     s: &Surface<T, P>,
     k: usize,
@@ -234,7 +234,7 @@ impl<T: Scalar> TensorProductMap<T> {
     /// exact conversion to B-spline form in both directions.
     ///
     /// # Errors
-    /// [`ErrorKind::InvalidArgument`] if the factors are not on the prepared spaces.
+    /// [`ErrorKind::SpaceMismatch`] if the factors are not on the prepared spaces.
     pub fn product(&self, a: &Surface<T, T>, b: &Surface<T, T>) -> Result<Surface<T, T>> {
         if a.knots_u() != self.u.left()
             || a.knots_v() != self.v.left()
@@ -242,7 +242,7 @@ impl<T: Scalar> TensorProductMap<T> {
             || b.knots_v() != self.v.right()
         {
             return Err(Error::new(
-                ErrorKind::InvalidArgument,
+                ErrorKind::SpaceMismatch,
                 "the factors are not on the knot vectors this product was prepared for",
             ));
         }
@@ -398,7 +398,8 @@ fn fed_product<T: Scalar>(
 /// is constant.
 ///
 /// # Errors
-/// [`ErrorKind::InvalidArgument`] unless both degrees are at least 2.
+/// [`ErrorKind::OrderTooHigh`] unless both degrees are at least 2 (a second derivative is
+/// taken in each direction).
 pub fn hessian_determinant<T: Scalar>(s: &Surface<T, T>) -> Result<QuadraticFunction<T>> {
     let (ku, kv) = (s.knots_u(), s.knots_v());
     let duu = TensorMap::partial_derivative(ku, kv, 2, 0)?;
@@ -469,11 +470,14 @@ fn partial_or_zero<T: Scalar>(s: &Surface<T, T>, k: usize, l: usize) -> Result<S
 /// [`ErrorKind::InvalidArgument`] unless both degrees are at least 2;
 /// [`ErrorKind::DegreeTooHigh`] if a product exceeds [`spline_core::MAX_DEGREE`].
 pub fn ridge_polynomials<T: Scalar>(s: &Surface<T, T>) -> Result<(Surface<T, T>, Surface<T, T>)> {
-    if s.knots_u().degree() < 2 || s.knots_v().degree() < 2 {
+    let low = s.knots_u().degree().min(s.knots_v().degree());
+    if low < 2 {
         return Err(Error::new(
             ErrorKind::InvalidArgument,
             "ridge polynomials need degree 2 or more in both directions",
-        ));
+        )
+        .with_value(low as f64)
+        .with_interval(2.0, f64::INFINITY));
     }
     let d = |k, l| partial_or_zero(s, k, l);
     let (suu, svv, suv) = (d(2, 0)?, d(0, 2)?, d(1, 1)?);

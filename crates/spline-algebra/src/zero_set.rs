@@ -56,8 +56,8 @@ pub struct ZeroSet {
 /// ```
 ///
 /// # Errors
-/// [`ErrorKind::InvalidArgument`] if `samples` is 0 or above 10 000, or a coefficient is
-/// not finite.
+/// [`ErrorKind::InvalidArgument`] if `samples` is 0 or above 10 000;
+/// [`ErrorKind::NonFinite`] if a coefficient is not finite.
 pub fn zero_set(f: &Surface<f64, f64>, samples: usize) -> Result<ZeroSet> {
     check_samples(samples)?;
     if let Some(i) = f.control_points().iter().position(|c| !c.is_finite()) {

@@ -36,11 +36,13 @@ fn read_function(path: &str) -> Result<BSpline<f64, f64>> {
         Object::Nurbs(_) => Err(Error::new(
             ErrorKind::InvalidArgument,
             format!("{path}: product needs non-rational B-spline functions, got a NURBS curve"),
-        )),
+        )
+        .with_file(path)),
         Object::Surface(_) | Object::NurbsSurface(_) => Err(Error::new(
             ErrorKind::InvalidArgument,
             format!("{path}: product needs B-spline functions, got a surface"),
-        )),
+        )
+        .with_file(path)),
     }
 }
 

@@ -245,14 +245,16 @@ pub fn offset(args: &OffsetArgs) -> Result<()> {
                 "{}: the offset of a 3-D curve needs --direction X,Y,Z (the point moves along T × V)",
                 args.curve
             ),
-        )),
+        )
+        .with_file(&args.curve)),
         (2, Some(_)) => Err(Error::new(
             ErrorKind::InvalidArgument,
             format!(
                 "{}: --direction is for 3-D curves; a planar curve is offset in its plane",
                 args.curve
             ),
-        )),
+        )
+        .with_file(&args.curve)),
         (other, _) => Err(Error::new(
             ErrorKind::DimensionMismatch,
             format!(
@@ -296,7 +298,8 @@ fn offset_of_surface(
                 "{}: --direction is for 3-D curves; a surface is offset along its normal",
                 args.curve
             ),
-        ));
+        )
+        .with_file(&args.curve));
     }
     let result = offset(&|p: &Pt| Vector3::new(p[0], p[1], p[2]))?;
     let pad = |q: &Vector3<f64>| Pt::from_fn(|i, _| if i < 3 { q[i] } else { 0.0 });
@@ -387,7 +390,9 @@ pub fn reduce(args: &ReduceArgs) -> Result<()> {
                 args.times,
                 p.saturating_sub(1)
             ),
-        ));
+        )
+        .with_value(args.times as f64)
+        .with_interval(1.0, p.saturating_sub(1) as f64));
     }
     let fit = reduce_degree(
         &any.curve.value,

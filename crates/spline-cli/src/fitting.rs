@@ -258,7 +258,8 @@ fn fixes(text: &str, dim: usize) -> Result<Vec<(usize, usize, f64)>> {
                     format!(
                         "--fix: entry {k} must be [index, coordinate < {dim}, value] with non-negative integer index and coordinate"
                     ),
-                )),
+                )
+                .with_index(k)),
             }
         })
         .collect()

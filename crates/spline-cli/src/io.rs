@@ -28,7 +28,8 @@ pub fn read_text(path: &str) -> Result<String> {
             .map_err(|e| Error::io("read standard input", e))?;
         Ok(text)
     } else {
-        std::fs::read_to_string(path).map_err(|e| Error::io(format_args!("read {path}"), e))
+        std::fs::read_to_string(path)
+            .map_err(|e| Error::io(format_args!("read {path}"), e).with_file(path))
     }
 }
 
@@ -182,7 +183,7 @@ pub fn write_stdout_stream(
 pub fn write_file(mut file: std::fs::File, path: &str, bytes: &[u8]) -> Result<()> {
     file.write_all(bytes)
         .and_then(|()| file.flush())
-        .map_err(|e| Error::io(format_args!("write {path}"), e))
+        .map_err(|e| Error::io(format_args!("write {path}"), e).with_file(path))
 }
 
 /// Creates an output file before the work that fills it, so that a bad path fails at once.
@@ -190,7 +191,8 @@ pub fn write_file(mut file: std::fs::File, path: &str, bytes: &[u8]) -> Result<(
 /// # Errors
 /// [`ErrorKind::Io`] when the file cannot be created.
 pub fn create_file(path: &str) -> Result<std::fs::File> {
-    std::fs::File::create(path).map_err(|e| Error::io(format_args!("write {path}"), e))
+    std::fs::File::create(path)
+        .map_err(|e| Error::io(format_args!("write {path}"), e).with_file(path))
 }
 
 /// A JSON formatter that refuses to write `null`: the exchange format has no nulls, and
@@ -260,20 +262,28 @@ pub const MAX_OUTPUT_NUMBERS: usize = 10_000_000;
 /// Checks the size of an output chosen by counts before anything is computed.
 ///
 /// # Errors
-/// [`ErrorKind::InvalidArgument`] above [`MAX_OUTPUT_NUMBERS`] (or on overflow).
+/// [`ErrorKind::InvalidArgument`] above [`MAX_OUTPUT_NUMBERS`] (or on overflow), with
+/// `(MAX_OUTPUT_NUMBERS, count)` as [`Error::counts`] when the count fits a `usize`.
 pub fn check_output_size(what: &str, factors: &[usize]) -> Result<()> {
     let total = factors
         .iter()
         .try_fold(1usize, |acc, &f| acc.checked_mul(f));
     match total {
         Some(n) if n <= MAX_OUTPUT_NUMBERS => Ok(()),
-        _ => Err(Error::new(
-            ErrorKind::InvalidArgument,
-            format!(
-                "{what} would print {} numbers, more than the limit {MAX_OUTPUT_NUMBERS}",
-                total.map_or_else(|| "too many".to_string(), |n| n.to_string())
-            ),
-        )),
+        _ => {
+            let e = Error::new(
+                ErrorKind::InvalidArgument,
+                format!(
+                    "{what} would print {} numbers, more than the limit {MAX_OUTPUT_NUMBERS}",
+                    total.map_or_else(|| "too many".to_string(), |n| n.to_string())
+                ),
+            );
+            // The count, when it does not overflow.
+            Err(match total {
+                Some(n) => e.with_counts(MAX_OUTPUT_NUMBERS, n),
+                None => e,
+            })
+        }
     }
 }
 

@@ -372,7 +372,8 @@ fn make_json(shape: &Shape) -> Result<Json> {
                     spline_core::Short(pieces),
                     spline_core::Short(a.max_piece),
                     spline_geom::MAX_ARC_PIECES
-                )));
+                ))
+                .with_value(a.max_piece));
             }
             let arc = NurbsCurve::arc_with_max_piece(
                 &frame,

@@ -52,9 +52,9 @@ fn mesh_format(path: &str) -> Result<MeshFormat> {
         Some("obj") => Ok(MeshFormat::Obj),
         Some("off") => Ok(MeshFormat::Off),
         Some("svg") => Ok(MeshFormat::Svg),
-        _ => Err(invalid(format!(
-            "{path}: the output must end in .obj, .off or .svg"
-        ))),
+        _ => Err(
+            invalid(format!("{path}: the output must end in .obj, .off or .svg")).with_file(path),
+        ),
     }
 }
 
@@ -75,7 +75,8 @@ pub fn mesh(args: &MeshArgs) -> Result<()> {
             return Err(invalid(format!(
                 "{}: mesh needs a surface (degree [p, q])",
                 args.surface
-            )));
+            ))
+            .with_file(&args.surface));
         }
     };
     if dim > 3 {

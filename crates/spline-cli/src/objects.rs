@@ -210,7 +210,8 @@ pub fn read_curve(path: &str) -> Result<AnyCurve> {
         Object::Surface(_) | Object::NurbsSurface(_) => Err(Error::new(
             ErrorKind::InvalidArgument,
             format!("{path}: expected a curve, got a surface"),
-        )),
+        )
+        .with_file(path)),
     }
 }
 
@@ -246,7 +247,8 @@ pub fn surface3(object: &Object, path: &str, what: &str) -> Result<spline_geom::
                 format!(
                     "{path}: {what} needs a surface (degree [p, q]); use `spline features` for curves"
                 ),
-            ));
+            )
+            .with_file(path));
         }
     };
     if dim != 3 {

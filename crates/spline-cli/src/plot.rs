@@ -72,7 +72,8 @@ pub fn planar_of(object: Object, path: &str, what: &str) -> Result<Planar> {
             format!(
                 "{path}: {what} needs a planar curve, got a surface; use `spline mesh` for surfaces"
             ),
-        )),
+        )
+        .with_file(path)),
     }
 }
 
@@ -145,7 +146,8 @@ pub fn features(args: &ObjectArgs) -> Result<()> {
                 format!(
                     "{path}: features needs a planar or 3-D curve, got a surface; use `spline surface-features` for surfaces"
                 ),
-            ));
+            )
+            .with_file(path));
         }
     };
     if dim == 3 {

@@ -418,7 +418,9 @@ pub fn optimize(args: &OptimizeArgs) -> Result<()> {
                 "--iterations must be 1 to {MAX_OPTIMIZE_ITERATIONS}, got {}",
                 args.iterations
             ),
-        ));
+        )
+        .with_value(args.iterations as f64)
+        .with_interval(1.0, MAX_OPTIMIZE_ITERATIONS as f64));
     }
     if args.samples > 100_000 || args.control_points > 1000 || args.simplex_iterations > 10_000_000
     {

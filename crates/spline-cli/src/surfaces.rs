@@ -330,10 +330,14 @@ pub fn make_skin(paths: &[String], degree: usize) -> Result<Json> {
 /// different dimensions.
 pub fn make_coons(paths: &[String]) -> Result<Json> {
     if paths.len() != 4 {
-        return Err(invalid(format!(
-            "--curves: a Coons patch needs four curves (bottom, top, left, right), got {}",
-            paths.len()
-        )));
+        return Err(Error::new(
+            ErrorKind::InvalidLength,
+            format!(
+                "--curves: a Coons patch needs four curves (bottom, top, left, right), got {}",
+                paths.len()
+            ),
+        )
+        .with_counts(4, paths.len()));
     }
     let curves: Vec<AnyCurve> = paths.iter().map(|p| read_curve(p)).collect::<Result<_>>()?;
     if !curves.iter().any(|c| c.rational) {
@@ -484,7 +488,9 @@ pub fn approximate_surface(args: &ApproximateSurfaceArgs) -> Result<()> {
         return Err(invalid(format!(
             "--smoothing must be finite and non-negative, got {}",
             args.smoothing
-        )));
+        ))
+        .with_value(args.smoothing)
+        .with_interval(0.0, f64::INFINITY));
     }
     let none: Option<&Surface<f64, Vector3<f64>>> = None;
     let fit = fit_scattered(&points, triangles.as_deref(), none, &options)?;

@@ -280,7 +280,7 @@ impl<T: Scalar> KnotVector<T> {
     /// ```
     ///
     /// # Errors
-    /// [`ErrorKind::InvalidArgument`] if `order` is above [`crate::MAX_DERIVATIVE_ORDER`];
+    /// [`ErrorKind::OrderTooHigh`] if `order` is above [`crate::MAX_DERIVATIVE_ORDER`];
     /// [`ErrorKind::NonFinite`] or [`ErrorKind::OutOfDomain`].
     pub fn dense_basis_derivatives(&self, u: T, order: usize) -> Result<Vec<Vec<T>>> {
         crate::check_derivative_order(order)?;
@@ -304,16 +304,18 @@ impl<T: Scalar> KnotVector<T> {
     /// The single basis function $N_{i,p}(u)$ (zero outside its support).
     ///
     /// # Errors
-    /// [`ErrorKind::InvalidArgument`] if `i ≥ n`; the errors of [`KnotVector::find_span`].
+    /// [`ErrorKind::IndexOutOfRange`] if `i ≥ n` (with `i` as [`Error::index`]); the errors
+    /// of [`KnotVector::find_span`].
     pub fn basis_function(&self, i: usize, u: T) -> Result<T> {
         if i >= self.num_basis() {
             return Err(Error::new(
-                ErrorKind::InvalidArgument,
+                ErrorKind::IndexOutOfRange,
                 format!(
                     "basis function {i} does not exist (n = {})",
                     self.num_basis()
                 ),
-            ));
+            )
+            .with_index(i));
         }
         let basis = self.eval_basis(u)?;
         Ok(if i >= basis.first() && i <= basis.span() {

@@ -185,7 +185,8 @@ fn check_inputs<T: Scalar, P: ControlPoint<T>>(
                 "{} correction sweeps are more than the supported maximum {MAX_CORRECTION_ITERATIONS}",
                 options.max_iterations
             ),
-        ));
+        )
+        .with_counts(MAX_CORRECTION_ITERATIONS, options.max_iterations));
     }
     if options.max_halvings > MAX_CORRECTION_ITERATIONS {
         return Err(Error::new(
@@ -194,11 +195,12 @@ fn check_inputs<T: Scalar, P: ControlPoint<T>>(
                 "{} halvings are more than the supported maximum {MAX_CORRECTION_ITERATIONS}",
                 options.max_halvings
             ),
-        ));
+        )
+        .with_counts(MAX_CORRECTION_ITERATIONS, options.max_halvings));
     }
     if !(options.angle_tolerance > T::zero()) {
         return Err(Error::new(
-            ErrorKind::InvalidArgument,
+            ErrorKind::InvalidTolerance,
             format!(
                 "the angle tolerance must be positive, got {}",
                 to_f64(options.angle_tolerance)
@@ -245,9 +247,10 @@ fn check_inputs<T: Scalar, P: ControlPoint<T>>(
 /// ```
 ///
 /// # Errors
-/// [`ErrorKind::InvalidLength`] with fewer than two points; [`ErrorKind::InvalidArgument`]
-/// for a non-positive tolerance or more than [`MAX_CORRECTION_ITERATIONS`] sweeps or
-/// halvings; [`ErrorKind::DegenerateGeometry`] when all points
+/// [`ErrorKind::InvalidLength`] with fewer than two points; [`ErrorKind::InvalidTolerance`]
+/// for a non-positive angle tolerance; [`ErrorKind::InvalidArgument`] for more than
+/// [`MAX_CORRECTION_ITERATIONS`] sweeps or halvings (with `(maximum, asked)` as
+/// [`spline_core::Error::counts`]); [`ErrorKind::DegenerateGeometry`] when all points
 /// coincide; the errors of [`LeastSquares::solve`] at any refit.
 pub fn correct_parameters<T: Scalar, P: ControlPoint<T>>(
     problem: &LeastSquares<'_, T, P>,

@@ -84,7 +84,10 @@ pub fn curvature_knots_with<T: Scalar, P: ControlPoint<T>>(
                     "prescribed knot {i} ({}, multiplicity {m}) must lie inside the domain with multiplicity 1 to {degree}",
                     spline_core::to_f64(u)
                 ),
-            ));
+            )
+            .with_index(i)
+            .with_value(spline_core::to_f64(u))
+            .with_interval(spline_core::to_f64(a), spline_core::to_f64(b)));
         }
         if i > 0 && !(u > fixed[i - 1].0) {
             return Err(Error::new(
@@ -115,7 +118,9 @@ pub fn curvature_knots_with<T: Scalar, P: ControlPoint<T>>(
         return Err(Error::new(
             ErrorKind::InvalidArgument,
             "knots that follow the curvature need a preliminary curve of degree 2 or more",
-        ));
+        )
+        .with_value(from_count(curve.degree()))
+        .with_interval(2.0, f64::INFINITY));
     }
     let breaks = curve.knots().domain_breaks();
     let steps: T = from_count(SAMPLES_PER_SPAN);

@@ -127,7 +127,8 @@ pub fn interpolate<T: Scalar, P: ControlPoint<T>>(
                 "the knot vector is of degree {}, the interpolant of degree {degree}",
                 knots.degree()
             ),
-        ));
+        )
+        .with_counts(degree, knots.degree()));
     }
     let curve = if extra == 0 {
         interpolate_with_knots(&knots, &params, points)?

@@ -3,7 +3,9 @@
 use crate::interpolate::{Condition, hermite};
 use crate::params::check_degree;
 use crate::params::{check_points, check_strict};
-use spline_core::{ControlPoint, Error, ErrorKind, KnotVector, MAX_DEGREE, Result, Scalar};
+use spline_core::{
+    ControlPoint, Error, ErrorKind, KnotVector, MAX_DEGREE, Result, Scalar, from_count,
+};
 use spline_geom::BSpline;
 
 /// The natural cubic spline through $(x_j, y_j)$: $\sigma(x_j) = y_j$ and
@@ -52,7 +54,8 @@ pub fn natural_spline<T: Scalar, P: ControlPoint<T>>(
         return Err(Error::new(
             ErrorKind::InvalidArgument,
             format!("natural splines have an even order m = 2q ≥ 2, got {order}"),
-        ));
+        )
+        .with_value(from_count(order)));
     }
     if order > MAX_DEGREE + 1 {
         return Err(Error::new(

@@ -42,9 +42,10 @@ use spline_geom::NdSpline;
 /// ```
 ///
 /// # Errors
-/// [`ErrorKind::InvalidArgument`] without dimensions, for `columns == 0`, a number of
-/// degrees other than `d` or a degree 0 (scipy's not-a-knot knots of degree 0 do not
-/// interpolate); [`ErrorKind::TooFewPoints`] with `k[e]` abscissae or fewer in some
+/// [`ErrorKind::InvalidArgument`] without dimensions, for `columns == 0` or a degree 0
+/// (scipy's not-a-knot knots of degree 0 do not interpolate); [`ErrorKind::InvalidLength`]
+/// for a number of degrees other than `d` (with `(d, len(k))` as
+/// [`spline_core::Error::counts`]); [`ErrorKind::TooFewPoints`] with `k[e]` abscissae or fewer in some
 /// dimension; [`ErrorKind::NonFinite`] for non-finite abscissae or values;
 /// [`ErrorKind::UnsortedKnots`] unless the abscissae of each dimension increase strictly
 /// (scipy's docstring allows decreasing ones, which its `NdBSpline` then refuses);
@@ -62,19 +63,22 @@ pub fn make_ndbspl(
         return Err(Error::new(
             ErrorKind::InvalidArgument,
             "grid interpolation needs at least one dimension",
-        ));
+        )
+        .with_counts(1, 0));
     }
     if k.len() != d {
         return Err(Error::new(
-            ErrorKind::InvalidArgument,
+            ErrorKind::InvalidLength,
             format!("len(points) = {d} != len(k) = {}", k.len()),
-        ));
+        )
+        .with_counts(d, k.len()));
     }
     if columns == 0 {
         return Err(Error::new(
             ErrorKind::InvalidArgument,
             "grid interpolation needs at least one value column",
-        ));
+        )
+        .with_counts(1, 0));
     }
     let mut knots = Vec::with_capacity(d);
     for (e, (&x, &ke)) in points.iter().zip(k).enumerate() {
@@ -84,7 +88,10 @@ pub fn make_ndbspl(
                 format!(
                     "degree 0 in dimension {e}: grid interpolation needs degrees of at least 1"
                 ),
-            ));
+            )
+            .with_index(e)
+            .with_value(0.0)
+            .with_interval(1.0, f64::INFINITY));
         }
         if x.len() <= ke {
             return Err(Error::new(

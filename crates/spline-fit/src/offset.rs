@@ -112,7 +112,8 @@ pub fn offset_curve<T: Scalar, C: PlanarCurve<T> + ?Sized>(
                     to_f64(k),
                     to_f64(spline_geom::wedge(&l, &r).abs().asin())
                 ),
-            ));
+            )
+            .with_value(to_f64(k)));
         }
     }
     let corners: Vec<T> = cusps

@@ -119,7 +119,8 @@ pub fn interpolate_periodic<T: Scalar, P: ControlPoint<T>>(
                 "periodic interpolation needs the last value equal to the first (they differ by {:.3e})",
                 to_f64(gap)
             ),
-        ));
+        )
+        .with_value(to_f64(gap)));
     }
     let period = x[n - 1] - x[0];
     let knots = scipy_periodic_knots(x, degree);

@@ -164,6 +164,10 @@ pub fn fit_scattered<T: Scalar, S: ParamSurface<T, Point = Vector3<T>>>(
                 p + 1,
                 q + 1
             ),
+        )
+        .with_counts(
+            if nu <= p { p + 1 } else { q + 1 },
+            if nu <= p { nu } else { nv },
         ));
     }
     let system = nu

@@ -68,7 +68,9 @@ pub fn skin<T: Scalar, P: ControlPoint<T>>(
         return Err(Error::new(
             ErrorKind::InvalidArgument,
             "skinning needs a degree of at least 1 across the sections",
-        ));
+        )
+        .with_value(0.0)
+        .with_interval(1.0, f64::INFINITY));
     }
     let same = compatible_curves(sections)?;
     let v = section_params(&same, params)?;
@@ -203,7 +205,9 @@ pub fn gordon<T: Scalar, P: ControlPoint<T>>(
         return Err(Error::new(
             ErrorKind::InvalidArgument,
             "a Gordon surface needs degrees of at least 1",
-        ));
+        )
+        .with_value(0.0)
+        .with_interval(1.0, f64::INFINITY));
     }
     let us = compatible_curves(u_curves)?;
     let vs = compatible_curves(v_curves)?;

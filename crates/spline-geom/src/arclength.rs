@@ -310,6 +310,9 @@ pub(crate) fn length_by_pieces<T: Scalar, Q: ControlPoint<T>>(
 /// then varies by at most this factor over the part).
 const STOP_MARGIN: f64 = 0.25;
 
+/// The most cuts of one piece ([`stop_cuts`]): four stops at the deepest halving.
+const MAX_STOP_CUTS: usize = 4 * MAX_STOP_DEPTH;
+
 /// The deepest halving of a piece around a stop (a true cusp, `C' = 0`, is never free):
 /// what is left unseparated is `2⁻⁴⁰` of the piece, around a speed that vanishes there.
 const MAX_STOP_DEPTH: usize = 40;
@@ -335,7 +338,10 @@ pub(crate) fn stop_cuts<T: Scalar, Q: ControlPoint<T>>(
     let mut todo = vec![(velocity, T::zero(), T::one(), 0usize)];
     let mut cuts = Vec::new();
     while let Some((part, s0, s1, depth)) = todo.pop() {
-        if depth >= MAX_STOP_DEPTH || free_of_stops(&part) {
+        // Near-stops are isolated: a few halvings each. The bound keeps the work finite
+        // whatever the piece (a part that is never free would otherwise fill a whole
+        // binary tree).
+        if depth >= MAX_STOP_DEPTH || cuts.len() >= MAX_STOP_CUTS || free_of_stops(&part) {
             continue;
         }
         let (left, right) = halve(&part);
@@ -361,7 +367,20 @@ fn velocity_numerator<T: Scalar, Q: ControlPoint<T>>(
     point_dim: usize,
 ) -> Option<Vec<Vec<T>>> {
     let p = coefficients.len().checked_sub(1).filter(|&p| p > 0)?;
-    let coordinate = |q: &Q, i: usize| q.coord(i);
+    // A rational piece divided by its largest weight (the same curve): products of
+    // weights and coordinates then stay finite for points up to the largest float.
+    let largest_weight = if Q::DIM == point_dim {
+        T::one()
+    } else {
+        coefficients
+            .iter()
+            .map(|q| q.coord(point_dim).abs())
+            .fold(T::zero(), nalgebra::RealField::max)
+    };
+    if !(largest_weight > T::zero() && largest_weight.is_finite()) {
+        return None;
+    }
+    let coordinate = |q: &Q, i: usize| q.coord(i) / largest_weight;
     let rows: Vec<Vec<T>> = if Q::DIM == point_dim {
         coefficients
             .windows(2)
@@ -398,10 +417,23 @@ fn velocity_numerator<T: Scalar, Q: ControlPoint<T>>(
             })
             .collect()
     };
-    rows.iter()
+    // Divided by their largest coordinate: lengths and products of the rows neither
+    // overflow nor underflow at any scale of the points (only their directions matter).
+    if rows.iter().flatten().any(|v: &T| !v.is_finite()) {
+        return None;
+    }
+    let largest = rows
+        .iter()
         .flatten()
-        .all(|v: &T| v.is_finite())
-        .then_some(rows)
+        .fold(T::zero(), |m, v| if v.abs() > m { v.abs() } else { m });
+    if largest == T::zero() {
+        return Some(rows);
+    }
+    Some(
+        rows.into_iter()
+            .map(|row| row.into_iter().map(|v| v / largest).collect())
+            .collect(),
+    )
 }
 
 /// Whether the rows lie on one side of the origin by [`STOP_MARGIN`] of the largest: along
@@ -472,7 +504,8 @@ mod tests {
     }
 
     /// A rational quadratic (weights 1, 0.3, 2): `p N(t) / w(t)²` is the velocity of the
-    /// projected curve, against central differences.
+    /// projected curve (up to the rows' normalisation, one factor), against central
+    /// differences.
     #[test]
     fn the_rational_numerator_is_the_velocity_times_the_squared_weight() {
         let (points, weights) = (
@@ -495,6 +528,8 @@ mod tests {
             let h: Vector3<f64> = (0..3).map(|i| homogeneous[i] * b[i]).sum();
             (Vector2::new(h.x / h.z, h.y / h.z), h.z)
         };
+        // The rows are normalised: `p N / w²` is the velocity times one constant factor.
+        let mut factors = Vec::new();
         for t in [0.0f64, 0.17, 0.5, 0.83, 1.0] {
             let h = 1e-6f64;
             let (lo, hi) = ((t - h).max(0.0), (t + h).min(1.0));
@@ -502,11 +537,17 @@ mod tests {
             let n = bernstein(&rows, t);
             let w = curve(t).1;
             let predicted = Vector2::new(n[0], n[1]) * (2.0 / (w * w));
+            let factor = predicted.norm() / velocity.norm();
             assert!(
-                (predicted - velocity).norm() < 1e-5 * velocity.norm(),
+                (predicted / factor - velocity).norm() < 1e-5 * velocity.norm(),
                 "t = {t}: {predicted} vs {velocity}"
             );
+            factors.push(factor);
         }
+        assert!(
+            factors.iter().all(|f| (f / factors[0] - 1.0).abs() < 1e-5),
+            "{factors:?}"
+        );
     }
 
     /// A cubic that nearly turns back twice (y' vanishes at t ≈ 0.26 and 0.74 while x moves
@@ -523,6 +564,14 @@ mod tests {
         let mut cuts = Vec::new();
         stop_cuts(&dip, 2, (2.0, 3.0), &mut cuts);
         assert!(!cuts.is_empty());
+        // The same cuts at every scale of the points (the rows are normalised: at 1e300 their
+        // squares overflowed, every part failed the test and the halvings filled a tree).
+        for scale in [1e300, 1e-300] {
+            let scaled: Vec<Vector2<f64>> = dip.iter().map(|p| p * scale).collect();
+            let mut at_scale = Vec::new();
+            stop_cuts(&scaled, 2, (2.0, 3.0), &mut at_scale);
+            assert_eq!(at_scale, cuts, "at {scale:e}");
+        }
         assert!(cuts.windows(2).all(|w| w[0] < w[1]));
         assert!(cuts.iter().all(|&u| u > 2.0 && u < 3.0));
         // The speed's minimum is between two cuts that are close together.

@@ -394,7 +394,7 @@ impl<T: Scalar, P: ControlPoint<T>> BSpline<T, P> {
     /// ```
     ///
     /// # Errors
-    /// [`ErrorKind::InvalidArgument`] above [`spline_core::MAX_DERIVATIVE_ORDER`];
+    /// [`ErrorKind::OrderTooHigh`] above [`spline_core::MAX_DERIVATIVE_ORDER`];
     /// [`ErrorKind::NonFinite`] or [`ErrorKind::OutOfDomain`].
     pub fn derivatives(&self, u: T, order: usize) -> Result<Vec<P>> {
         spline_core::check_derivative_order(order)?;

@@ -152,7 +152,8 @@ pub fn tessellate<T: Scalar, C: ParamCurve<T> + ?Sized>(curve: &C, tolerance: T)
                             "tessellation to {:.3e} needs more than {MAX_TESSELLATION_SEGMENTS} segments",
                             to_f64(tolerance)
                         ),
-                    ));
+                    )
+                    .with_value(to_f64(tolerance)));
                 }
             } else {
                 let (left, right) = piece.subdivide((lo + hi) * cast(0.5))?;

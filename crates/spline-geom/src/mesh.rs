@@ -221,7 +221,8 @@ fn mesh_params<T: Scalar>(breaks: &[T], segments: usize) -> Result<Vec<T>> {
         return Err(Error::new(
             ErrorKind::InvalidArgument,
             "a tessellation needs at least one segment in each direction",
-        ));
+        )
+        .with_counts(1, 0));
     }
     if segments > MAX_MESH_SEGMENTS {
         return Err(Error::new(
@@ -229,7 +230,8 @@ fn mesh_params<T: Scalar>(breaks: &[T], segments: usize) -> Result<Vec<T>> {
             format!(
                 "{segments} segments in one direction are more than the supported maximum {MAX_MESH_SEGMENTS}"
             ),
-        ));
+        )
+        .with_counts(MAX_MESH_SEGMENTS, segments));
     }
     let (a, b) = (breaks[0], breaks[breaks.len() - 1]);
     let mut params: Vec<T> = (0..=segments)

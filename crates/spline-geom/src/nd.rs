@@ -62,10 +62,10 @@ impl NdSpline {
     /// `extrapolate` (scipy's attribute; every evaluation takes the mode explicitly).
     ///
     /// # Errors
-    /// [`ErrorKind::InvalidArgument`] without dimensions, for `columns == 0` or a different
-    /// number of degrees and knot vectors; per dimension (the message names it) the knot
-    /// errors of [`crate::ColumnSpline::new`]; [`ErrorKind::InvalidLength`] unless
-    /// `c.len()` $= m \prod_e n_e$; [`ErrorKind::NonFinite`] for a non-finite coefficient.
+    /// [`ErrorKind::InvalidArgument`] without dimensions or for `columns == 0`;
+    /// [`ErrorKind::InvalidLength`] for a different number of degrees and knot vectors;
+    /// per dimension (the message names it) the knot errors of [`crate::ColumnSpline::new`];
+    /// [`ErrorKind::InvalidLength`] unless `c.len()` $= m \prod_e n_e$; [`ErrorKind::NonFinite`] for a non-finite coefficient.
     pub fn new(
         t: Vec<Vec<f64>>,
         c: Vec<f64>,
@@ -142,7 +142,8 @@ impl NdSpline {
             return Err(Error::new(
                 ErrorKind::InvalidArgument,
                 "a spline needs at least one column of coefficients",
-            ));
+            )
+            .with_counts(1, 0));
         }
         let dims = Dims::new(knots)?;
         let expected = dims.rows.checked_mul(columns);
@@ -457,20 +458,23 @@ impl NdSpline {
 /// error names the dimension.
 ///
 /// # Errors
-/// [`ErrorKind::InvalidArgument`] unless there are as many degrees as knot vectors (and at
-/// least one); the knot errors of [`crate::ColumnSpline::new`].
+/// [`ErrorKind::InvalidLength`] unless there are as many degrees as knot vectors (with
+/// `(len(t), len(k))` as [`Error::counts`]); [`ErrorKind::InvalidArgument`] without knot
+/// vectors; the knot errors of [`crate::ColumnSpline::new`].
 pub fn knot_vectors(t: Vec<Vec<f64>>, k: &[usize]) -> Result<Vec<KnotVector<f64>>> {
     if t.len() != k.len() {
         return Err(Error::new(
-            ErrorKind::InvalidArgument,
+            ErrorKind::InvalidLength,
             format!("len(t) = {} != len(k) = {}", t.len(), k.len()),
-        ));
+        )
+        .with_counts(t.len(), k.len()));
     }
     if t.is_empty() {
         return Err(Error::new(
             ErrorKind::InvalidArgument,
             "a tensor-product spline needs at least one dimension",
-        ));
+        )
+        .with_counts(1, 0));
     }
     t.into_iter()
         .zip(k)

@@ -189,7 +189,8 @@ pub trait ParamCurve<T: Scalar> {
                     to_f64(a),
                     to_f64(b)
                 ),
-            ));
+            )
+            .with_interval(to_f64(a), to_f64(b)));
         }
         if !(accuracy > T::zero()) {
             return Err(Error::invalid_tolerance(

@@ -130,7 +130,8 @@ impl<T: Scalar, P: ControlPoint<T>> PeriodicBSpline<T, P> {
                         k + n,
                         to_f64(period)
                     ),
-                ));
+                )
+                .with_index(k + n));
             }
         }
         let points = curve.control_points();
@@ -141,7 +142,8 @@ impl<T: Scalar, P: ControlPoint<T>> PeriodicBSpline<T, P> {
                     "control point {} does not repeat control point {i}: the curve is not wrapped",
                     i + n
                 ),
-            ));
+            )
+            .with_index(i + n));
         }
         Self::new(p, u[p..p + n].to_vec(), period, points[..n].to_vec())
     }
@@ -359,12 +361,12 @@ impl<T: Scalar, V: VectorSpace<T> + ControlPoint<T>> PeriodicBSpline<T, V> {
     /// The derivative $C'$: a periodic B-spline of degree `p − 1` on the same knots.
     ///
     /// # Errors
-    /// [`ErrorKind::InvalidArgument`] for degree 0; [`ErrorKind::NonFinite`] when a
+    /// [`ErrorKind::Unsupported`] for degree 0; [`ErrorKind::NonFinite`] when a
     /// coefficient overflows.
     pub fn derivative(&self) -> Result<Self> {
         if self.degree() == 0 {
             return Err(Error::new(
-                ErrorKind::InvalidArgument,
+                ErrorKind::Unsupported,
                 "the derivative of a periodic curve of degree 0 is not a periodic B-spline",
             ));
         }

@@ -110,7 +110,8 @@ fn format_of(path: &Path) -> Result<&'static str> {
                 "{}: unknown CAD format (the extension must be .step, .stp, .igs or .iges)",
                 path.display()
             ),
-        )),
+        )
+        .with_file(path.display())),
     }
 }
 

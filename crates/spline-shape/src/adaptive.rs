@@ -167,9 +167,11 @@ impl CostFunction for Criterion<'_> {
 /// `(1, 0)` (at least `control_points` of them), and returns every iteration.
 ///
 /// # Errors
-/// [`ErrorKind::InvalidArgument`] for fewer samples than control points, fewer than
-/// `degree + 2` control points, or data that do not start at `(0, 0)` and end at `(1, 0)`;
-/// the errors of the least-squares fits; [`ErrorKind::NoConvergence`] if Nelder–Mead fails.
+/// [`ErrorKind::InvalidArgument`] for degree 0, fewer samples than control points, fewer
+/// than `degree + 2` control points (the two counts of the failed inequality as
+/// [`Error::counts`]), or data that do not start at `(0, 0)` and end at `(1, 0)`;
+/// [`ErrorKind::InvalidTolerance`] for a negative `simplex_tolerance`; the errors of the
+/// least-squares fits; [`ErrorKind::NoConvergence`] if Nelder–Mead fails.
 pub fn optimise_perimeter_over_area(
     initial: &[Vector2<f64>],
     options: &AdaptiveOptions,
@@ -181,16 +183,25 @@ pub fn optimise_perimeter_over_area(
         return Err(Error::new(
             ErrorKind::InvalidArgument,
             "degree must be at least 1: a piecewise-constant curve encloses no area",
-        ));
+        )
+        .with_value(0.0)
+        .with_interval(1.0, f64::INFINITY));
     }
     if options.control_points < d + 2 || options.samples < options.control_points {
+        // The counts of the first inequality that fails.
+        let (expected, found) = if options.control_points < d + 2 {
+            (d + 2, options.control_points)
+        } else {
+            (options.control_points, options.samples)
+        };
         return Err(Error::new(
             ErrorKind::InvalidArgument,
             format!(
                 "need degree + 2 ≤ control points ≤ samples, got degree {d}, {} control points, {} samples",
                 options.control_points, options.samples
             ),
-        ));
+        )
+        .with_counts(expected, found));
     }
     let ends_ok = |p: Option<&Vector2<f64>>, x: f64| {
         p.is_some_and(|p| (p - Vector2::new(x, 0.0)).norm() < 1e-9)
@@ -223,7 +234,12 @@ pub fn optimise_perimeter_over_area(
         }
         let solver = NelderMead::new(simplex)
             .with_sd_tolerance(options.simplex_tolerance)
-            .map_err(|e| Error::new(ErrorKind::InvalidArgument, e.to_string()))?;
+            .map_err(|e| {
+                // Nelder–Mead refuses only a negative standard-deviation tolerance.
+                Error::new(ErrorKind::InvalidTolerance, e.to_string())
+                    .with_value(options.simplex_tolerance)
+                    .with_interval(0.0, f64::INFINITY)
+            })?;
         let result = Executor::new(criterion, solver)
             .configure(|state| state.max_iters(options.max_simplex_iterations))
             .run()

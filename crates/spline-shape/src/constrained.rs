@@ -240,19 +240,18 @@ impl FunctionApproximation {
             return Err(Error::new(
                 ErrorKind::InvalidArgument,
                 "the refinement must split each span into at least one piece",
-            ));
+            )
+            .with_value(0.0)
+            .with_interval(1.0, f64::INFINITY));
         }
         for (i, c) in self.constraints.iter().enumerate() {
             let what = format!("constraint {i}");
             if c.order() > self.knots.degree() {
-                return Err(Error::new(
-                    ErrorKind::InvalidArgument,
-                    format!(
-                        "{what}: derivative order {} exceeds the degree {}",
-                        c.order(),
-                        self.knots.degree()
-                    ),
-                ));
+                return Err(
+                    Error::order_too_high(c.order(), self.knots.degree(), "the degree")
+                        .context(&what)
+                        .with_index(i),
+                );
             }
             check_interval(&self.knots, self.interval_of(c), &what)?;
         }
@@ -264,17 +263,15 @@ impl FunctionApproximation {
     /// as set, except for sign changes). Its matrix is the Jacobian of the constraint values.
     ///
     /// # Errors
-    /// [`ErrorKind::InvalidArgument`] if the order exceeds the degree;
-    /// [`ErrorKind::OutOfDomain`] or [`ErrorKind::NonFinite`] for a bad interval.
+    /// [`ErrorKind::OrderTooHigh`] if the order exceeds the degree (`(degree, order)` as
+    /// [`Error::counts`]); [`ErrorKind::OutOfDomain`] or [`ErrorKind::NonFinite`] for a bad
+    /// interval.
     pub fn constraint_map(&self, constraint: &FunctionConstraint) -> Result<SplineMap<f64>> {
         if constraint.order() > self.knots.degree() {
-            return Err(Error::new(
-                ErrorKind::InvalidArgument,
-                format!(
-                    "derivative order {} exceeds the degree {}",
-                    constraint.order(),
-                    self.knots.degree()
-                ),
+            return Err(Error::order_too_high(
+                constraint.order(),
+                self.knots.degree(),
+                "the degree",
             ));
         }
         let interval = self.interval_of(constraint);
@@ -293,9 +290,10 @@ impl FunctionApproximation {
     /// # Errors
     /// [`ErrorKind::InvalidLength`] if the lengths differ or there are no samples;
     /// [`ErrorKind::NonFinite`] for a non-finite value; [`ErrorKind::OutOfDomain`] for a
-    /// parameter outside the domain; [`ErrorKind::InvalidArgument`] for a bad constraint or
-    /// more than [`MAX_SIGN_PATTERNS`] patterns, or a sign change on a single piece of a
-    /// piecewise-constant derivative.
+    /// parameter outside the domain; [`ErrorKind::OrderTooHigh`] for a constraint whose
+    /// derivative order exceeds the degree (the constraint as [`Error::index`]);
+    /// [`ErrorKind::InvalidArgument`] for a refinement of 0, more than [`MAX_SIGN_PATTERNS`]
+    /// patterns, or a sign change on a single piece of a piecewise-constant derivative.
     pub fn problems(&self, params: &[f64], values: &[f64]) -> Result<Vec<ApproximationProblem>> {
         self.validate()?;
         if params.len() != values.len() || params.is_empty() {
@@ -425,9 +423,10 @@ impl FunctionApproximation {
     /// constraint's interval, plus the interval's ends.
     ///
     /// # Errors
-    /// [`ErrorKind::InvalidArgument`] for a bad constraint (see
-    /// [`FunctionApproximation::constraint_map`]) or `samples_per_span = 0`;
-    /// [`ErrorKind::OutOfDomain`] if the spline does not cover the constraint intervals.
+    /// [`ErrorKind::OrderTooHigh`] for a constraint whose order exceeds the degree (see
+    /// [`FunctionApproximation::constraint_map`]); [`ErrorKind::InvalidArgument`] for a
+    /// refinement of 0 or `samples_per_span = 0`; [`ErrorKind::OutOfDomain`] if the spline
+    /// does not cover the constraint intervals.
     pub fn check(
         &self,
         spline: &BSpline<f64, f64>,

@@ -77,7 +77,9 @@ impl ParametricConvexity {
                 format!(
                     "convexity of a patch needs degree 2 or more in both directions, got ({p}, {q})"
                 ),
-            ));
+            )
+            .with_value(p.min(q) as f64)
+            .with_interval(2.0, f64::INFINITY));
         }
         let n = base.control_points().len();
         if n > 400 {

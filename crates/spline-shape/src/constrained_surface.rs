@@ -253,7 +253,9 @@ impl SurfaceApproximation {
             return Err(Error::new(
                 ErrorKind::InvalidArgument,
                 "the refinement must split each span into at least one piece",
-            ));
+            )
+            .with_value(0.0)
+            .with_interval(1.0, f64::INFINITY));
         }
         let (p, q) = (self.knots_u.degree(), self.knots_v.degree());
         for (i, c) in self.constraints.iter().enumerate() {
@@ -263,13 +265,21 @@ impl SurfaceApproximation {
                 SurfaceConstraint::Convex { region, .. } => ((2, 2), region),
             };
             if orders.0 > p || orders.1 > q {
+                // The counts of the first direction whose order is too high.
+                let (degree, order) = if orders.0 > p {
+                    (p, orders.0)
+                } else {
+                    (q, orders.1)
+                };
                 return Err(Error::new(
-                    ErrorKind::InvalidArgument,
+                    ErrorKind::OrderTooHigh,
                     format!(
                         "{what}: derivative orders ({}, {}) exceed the degrees ({p}, {q})",
                         orders.0, orders.1
                     ),
-                ));
+                )
+                .with_index(i)
+                .with_counts(degree, order));
             }
             let (ru, rv) = self.region_of(region);
             check_interval(&self.knots_u, ru, &format!("{what} (u)"))?;
@@ -282,7 +292,7 @@ impl SurfaceApproximation {
     /// derivative restricted to a rectangle and refined as set.
     ///
     /// # Errors
-    /// [`ErrorKind::InvalidArgument`] if an order exceeds its degree;
+    /// [`ErrorKind::OrderTooHigh`] if an order exceeds its degree;
     /// [`ErrorKind::OutOfDomain`] or [`ErrorKind::NonFinite`] for a bad rectangle.
     pub fn derivative_map(
         &self,
@@ -304,7 +314,7 @@ impl SurfaceApproximation {
     /// coefficient `k` is $\tfrac12 x^T H_k x$ (row-major, `i` along `u`).
     ///
     /// # Errors
-    /// [`ErrorKind::InvalidArgument`] unless both degrees are at least 2;
+    /// [`ErrorKind::OrderTooHigh`] unless both degrees are at least 2;
     /// [`ErrorKind::OutOfDomain`] or [`ErrorKind::NonFinite`] for a bad rectangle.
     pub fn determinant_map(
         &self,
@@ -336,7 +346,10 @@ impl SurfaceApproximation {
     /// # Errors
     /// [`ErrorKind::InvalidLength`] unless there are `us.len() · vs.len() > 0` values;
     /// [`ErrorKind::NonFinite`] for a non-finite value; [`ErrorKind::OutOfDomain`] for a
-    /// parameter outside the domain; [`ErrorKind::InvalidArgument`] for a bad constraint.
+    /// parameter outside the domain; [`ErrorKind::OrderTooHigh`] for a constraint whose
+    /// derivative orders exceed the degrees (a convexity constraint below degree 2), with
+    /// the constraint as [`Error::index`] and `(degree, order)` of the first such direction
+    /// as [`Error::counts`]; [`ErrorKind::InvalidArgument`] for a refinement of 0.
     pub fn problem(&self, us: &[f64], vs: &[f64], values: &[f64]) -> Result<ApproximationProblem> {
         self.validate()?;
         check_grid(us, vs, values.len(), |j| values[j].is_finite(), "value")?;
@@ -491,7 +504,8 @@ impl SurfaceApproximation {
     /// larger of $\max(0, -\sigma s_{uu})$ and $\max(0, -(s_{uu}s_{vv} - s_{uv}^2))$.
     ///
     /// # Errors
-    /// [`ErrorKind::InvalidArgument`] for a bad constraint or `samples_per_span = 0`;
+    /// [`ErrorKind::OrderTooHigh`] for a constraint whose orders exceed the degrees;
+    /// [`ErrorKind::InvalidArgument`] for a refinement of 0 or `samples_per_span = 0`;
     /// [`ErrorKind::OutOfDomain`] if the surface does not cover the constraint rectangles.
     pub fn check(
         &self,

@@ -79,7 +79,8 @@ pub fn control_flecnodal_circles(
         return Err(Error::new(
             ErrorKind::InvalidArgument,
             format!("the controlled interval ({a}, {b}) must lie inside the domain ({lo}, {hi})"),
-        ));
+        )
+        .with_interval(lo, hi));
     }
     check_allowed(&circles.allowed, (a, b))?;
     let params = uniform_samples((lo, hi), samples)?;

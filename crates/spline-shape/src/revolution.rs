@@ -51,7 +51,9 @@ pub(crate) fn refined_knots(
                 "the meridian needs degree 3 or more (a continuous f''), got {}",
                 meridian.degree()
             ),
-        ));
+        )
+        .with_value(meridian.degree() as f64)
+        .with_interval(3.0, f64::INFINITY));
     }
     if refine > 8 {
         return Err(Error::new(
@@ -74,17 +76,20 @@ pub(crate) fn refined_knots(
 /// `(a, b)`.
 ///
 /// # Errors
-/// [`ErrorKind::InvalidArgument`] naming the first interval that is not.
+/// [`ErrorKind::InvalidArgument`] naming the first interval that is not (its position as
+/// [`Error::index`], `(a, b)` as [`Error::interval`]).
 pub(crate) fn check_allowed(allowed: &[(f64, f64)], (a, b): (f64, f64)) -> Result<()> {
     let mut previous = a;
-    for &(s, t) in allowed {
+    for (i, &(s, t)) in allowed.iter().enumerate() {
         if !(s > previous && t > s && t < b) {
             return Err(Error::new(
                 ErrorKind::InvalidArgument,
                 format!(
                     "the allowed intervals must be increasing, disjoint and inside ({a}, {b}); got ({s}, {t})"
                 ),
-            ));
+            )
+            .with_index(i)
+            .with_interval(a, b));
         }
         previous = t;
     }

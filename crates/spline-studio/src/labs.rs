@@ -71,7 +71,9 @@ pub(crate) fn bezier(request: &BezierRequest) -> Result<Value> {
                 "elevate must be at most {MAX_DEGREE}, got {}",
                 request.elevate
             ),
-        ));
+        )
+        .with_value(request.elevate as f64)
+        .with_interval(0.0, MAX_DEGREE as f64));
     } else {
         request.elevate
     };
@@ -198,10 +200,10 @@ pub(crate) fn interpolate(request: &InterpolateRequest) -> Result<Value> {
     let data = points(&request.points, 2, "points")?;
     let per_span = count(request.per_span, MAX_SAMPLES, "per_span")?;
     if request.parametrizations.len() > 3 {
-        return Err(Error::new(
-            ErrorKind::InvalidArgument,
-            "at most three parametrizations",
-        ));
+        return Err(
+            Error::new(ErrorKind::InvalidLength, "at most three parametrizations")
+                .with_counts(3, request.parametrizations.len()),
+        );
     }
     let mut fits = Vec::new();
     for name in &request.parametrizations {

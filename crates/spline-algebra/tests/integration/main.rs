@@ -7,6 +7,7 @@ mod bounds;
 mod common;
 mod curves;
 mod curves_features;
+mod errors;
 mod features;
 mod intersections;
 mod intersections_examples;

@@ -125,6 +125,58 @@ fn numerator_signs_are_the_curvature_signs() {
     }
 }
 
+/// Along the lines `v = c` and `u = c` for each of `lines_at`, `m` samples each: the sign
+/// changes of the pointwise K are exactly the crossings of the reported parabolic lines
+/// with the line, each within `tolerance` (a sample step plus a chord's sagitta). Returns
+/// how many sign changes were checked.
+fn crossings_match_sampling(
+    s: &NurbsSurface<f64, 3>,
+    lines: &spline_algebra::ZeroSet,
+    lines_at: &[f64],
+    m: usize,
+    tolerance: f64,
+) -> usize {
+    let mut total = 0;
+    for axis in 0..2 {
+        for &c in lines_at {
+            let at = |t: f64| if axis == 0 { (t, c) } else { (c, t) };
+            let k: Vec<f64> = (0..=m)
+                .map(|j| {
+                    let (u, v) = at(j as f64 / m as f64);
+                    s.local_properties(u, v).unwrap().gaussian_curvature
+                })
+                .collect();
+            let sampled: Vec<f64> = (1..=m)
+                .filter(|&j| k[j - 1] * k[j] < 0.0)
+                .map(|j| (j as f64 - 0.5) / m as f64)
+                .collect();
+            // Crossings of the polylines with the line (the other coordinate = c).
+            let o = 1 - axis;
+            let mut found: Vec<f64> = Vec::new();
+            for curve in &lines.curves {
+                for w in curve.windows(2) {
+                    let (a, b) = (w[0][o] - c, w[1][o] - c);
+                    if a * b < 0.0 || (a == 0.0 && b != 0.0) {
+                        let t = a / (a - b);
+                        found.push(w[0][axis] + t * (w[1][axis] - w[0][axis]));
+                    }
+                }
+            }
+            found.sort_by(f64::total_cmp);
+            assert_eq!(
+                found.len(),
+                sampled.len(),
+                "axis {axis} c {c}: {found:?} vs {sampled:?}"
+            );
+            for (f, e) in found.iter().zip(&sampled) {
+                assert!((f - e).abs() < tolerance, "axis {axis} c {c}: {f} vs {e}");
+            }
+            total += sampled.len();
+        }
+    }
+    total
+}
+
 /// Dense sampling: along many lines `v = c` (and `u = c`), the sign changes of the
 /// pointwise K are exactly where the reported parabolic lines cross the line — every sign
 /// change found, none invented.
@@ -135,49 +187,13 @@ fn parabolic_lines_match_dense_sampling() {
         let s = random_surface(seed, rational);
         let lines = parabolic_lines(&s, 16).unwrap();
         assert!(lines.regions.is_empty());
-        let m = 4000;
-        for axis in 0..2 {
-            for c in [0.1234, 0.3321, 0.5077, 0.6941, 0.8813] {
-                let at = |t: f64| if axis == 0 { (t, c) } else { (c, t) };
-                let k: Vec<f64> = (0..=m)
-                    .map(|j| {
-                        let (u, v) = at(j as f64 / m as f64);
-                        s.local_properties(u, v).unwrap().gaussian_curvature
-                    })
-                    .collect();
-                let sampled: Vec<f64> = (1..=m)
-                    .filter(|&j| k[j - 1] * k[j] < 0.0)
-                    .map(|j| (j as f64 - 0.5) / m as f64)
-                    .collect();
-                // Crossings of the polylines with the line (the other coordinate = c).
-                let o = 1 - axis;
-                let mut found: Vec<f64> = Vec::new();
-                for curve in &lines.curves {
-                    for w in curve.windows(2) {
-                        let (a, b) = (w[0][o] - c, w[1][o] - c);
-                        if a * b < 0.0 || (a == 0.0 && b != 0.0) {
-                            let t = a / (a - b);
-                            found.push(w[0][axis] + t * (w[1][axis] - w[0][axis]));
-                        }
-                    }
-                }
-                found.sort_by(f64::total_cmp);
-                assert_eq!(
-                    found.len(),
-                    sampled.len(),
-                    "seed {seed} axis {axis} c {c}: {found:?} vs {sampled:?}"
-                );
-                for (f, e) in found.iter().zip(&sampled) {
-                    // The polyline is a chord between exact points: within a sample step
-                    // plus the chord's sagitta.
-                    assert!(
-                        (f - e).abs() < 5e-3,
-                        "seed {seed}: {found:?} vs {sampled:?}"
-                    );
-                }
-                total += sampled.len();
-            }
-        }
+        total += crossings_match_sampling(
+            &s,
+            &lines,
+            &[0.1234, 0.3321, 0.5077, 0.6941, 0.8813],
+            4000,
+            5e-3,
+        );
     }
     assert!(total > 20, "the check is not vacuous: {total}");
 }
@@ -441,45 +457,8 @@ fn surface_features_at_the_reproducers_size() {
     let lines = &features.parabolic_lines;
     assert!(lines.regions.is_empty());
     assert!(lines.curves.len() > 100, "{}", lines.curves.len());
-    let m = 40_000;
-    let mut crossings = 0;
-    for axis in 0..2 {
-        for c in [0.1234, 0.5077, 0.8813] {
-            let at = |t: f64| if axis == 0 { (t, c) } else { (c, t) };
-            let k: Vec<f64> = (0..=m)
-                .map(|j| {
-                    let (u, v) = at(j as f64 / m as f64);
-                    s.local_properties(u, v).unwrap().gaussian_curvature
-                })
-                .collect();
-            let sampled: Vec<f64> = (1..=m)
-                .filter(|&j| k[j - 1] * k[j] < 0.0)
-                .map(|j| (j as f64 - 0.5) / m as f64)
-                .collect();
-            let o = 1 - axis;
-            let mut found: Vec<f64> = Vec::new();
-            for curve in &lines.curves {
-                for w in curve.windows(2) {
-                    let (a, b) = (w[0][o] - c, w[1][o] - c);
-                    if a * b < 0.0 || (a == 0.0 && b != 0.0) {
-                        let t = a / (a - b);
-                        found.push(w[0][axis] + t * (w[1][axis] - w[0][axis]));
-                    }
-                }
-            }
-            found.sort_by(f64::total_cmp);
-            assert_eq!(
-                found.len(),
-                sampled.len(),
-                "axis {axis} c {c}: {found:?} vs {sampled:?}"
-            );
-            for (f, e) in found.iter().zip(&sampled) {
-                // A sample step plus the chord's sagitta, on patches 1/57 wide.
-                assert!((f - e).abs() < 3e-4, "axis {axis} c {c}: {f} vs {e}");
-            }
-            crossings += sampled.len();
-        }
-    }
+    // A sample step plus the chord's sagitta, on patches 1/57 wide.
+    let crossings = crossings_match_sampling(&s, lines, &[0.1234, 0.5077, 0.8813], 40_000, 3e-4);
     assert!(crossings > 100, "the check is not vacuous: {crossings}");
     let umbilics = &features.umbilics.points;
     assert!(umbilics.len() > 100, "{}", umbilics.len());

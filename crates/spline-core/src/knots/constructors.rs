@@ -63,7 +63,8 @@ impl<T: Scalar> KnotVector<T> {
         knots.extend(std::iter::repeat_n(a, degree + 1));
         knots.extend_from_slice(interior);
         knots.extend(std::iter::repeat_n(b, degree + 1));
-        if let Some(&k) = interior.iter().find(|&&k| !(k > a && k < b)) {
+        if let Some(i) = interior.iter().position(|&k| !(k > a && k < b)) {
+            let k = interior[i];
             return Err(Error::new(
                 ErrorKind::InvalidArgument,
                 format!(
@@ -72,7 +73,10 @@ impl<T: Scalar> KnotVector<T> {
                     to_f64(a),
                     to_f64(b)
                 ),
-            ));
+            )
+            .with_index(i)
+            .with_value(to_f64(k))
+            .with_interval(to_f64(a), to_f64(b)));
         }
         Self::new(degree, knots)
     }

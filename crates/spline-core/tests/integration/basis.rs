@@ -298,10 +298,9 @@ fn basis_errors() {
             .kind(),
         ErrorKind::NonFinite
     );
-    assert_eq!(
-        knots.basis_function(3, 0.5).unwrap_err().kind(),
-        ErrorKind::InvalidArgument
-    );
+    let e = knots.basis_function(3, 0.5).unwrap_err();
+    assert_eq!(e.kind(), ErrorKind::IndexOutOfRange);
+    assert_eq!(e.index(), Some(3));
 }
 
 proptest! {

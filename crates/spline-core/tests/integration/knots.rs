@@ -151,9 +151,15 @@ fn generators() {
             .kind(),
         ErrorKind::EmptyDomain
     );
+    let e = KnotVector::clamped(1, 0.0, 1.0, &[0.5, 1.5]).unwrap_err();
+    assert_eq!(e.kind(), ErrorKind::InvalidArgument);
     assert_eq!(
-        KnotVector::clamped(1, 0.0, 1.0, &[1.5]).unwrap_err().kind(),
-        ErrorKind::InvalidArgument
+        e.to_string(),
+        "interior knot 1.5 is not strictly inside (0, 1)"
+    );
+    assert_eq!(
+        (e.index(), e.value(), e.interval()),
+        (Some(1), Some(1.5), Some((0.0, 1.0)))
     );
     let bez = KnotVector::<f64>::bezier(2, -1.0, 1.0).unwrap();
     assert_eq!(bez.knots(), &[-1.0, -1.0, -1.0, 1.0, 1.0, 1.0]);

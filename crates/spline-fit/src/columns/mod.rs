@@ -90,7 +90,7 @@ fn invalid(message: impl Into<String>) -> Error {
 /// finite).
 fn check_data(x: &[f64], y: &[f64], columns: usize) -> Result<()> {
     if columns == 0 {
-        return Err(invalid("the data need at least one column"));
+        return Err(invalid("the data need at least one column").with_counts(1, 0));
     }
     if Some(y.len()) != x.len().checked_mul(columns) {
         return Err(Error::new(
@@ -169,7 +169,8 @@ pub fn make_interp_spline(
                 "First and last points does not match while periodic case expected (column {j}: {} and {})",
                 y[j],
                 y[(n - 1) * columns + j]
-            )));
+            ))
+            .with_index(j));
         }
     }
     if let Some(i) = (1..n).find(|&i| x[i] == x[i - 1]) {
@@ -268,7 +269,7 @@ pub fn make_interp_spline(
     };
     for (side, at) in [(left, x[0]), (right, x[n - 1])] {
         if side.iter().any(|(order, _)| *order > k) {
-            return Err(invalid(format!("Bad boundary conditions at {at:?}.")));
+            return Err(invalid(format!("Bad boundary conditions at {at:?}.")).with_value(at));
         }
         if let Some((order, v)) = side.iter().find(|(_, v)| v.len() != columns) {
             return Err(Error::new(

@@ -190,8 +190,10 @@ impl<'a, T: Scalar, P: ControlPoint<T>> LeastSquares<'a, T, P> {
     /// [`ErrorKind::TooFewPoints`] without points; [`ErrorKind::NonFinite`];
     /// [`ErrorKind::UnsortedKnots`] for decreasing parameters; [`ErrorKind::OutOfDomain`];
     /// [`ErrorKind::InvalidWeight`] for weights that are not positive and finite;
-    /// [`ErrorKind::InvalidArgument`] for a negative smoothing weight, a fixed index or
-    /// coordinate out of range, or pinned ends on an unclamped knot vector;
+    /// [`ErrorKind::InvalidArgument`] for a negative smoothing weight or pinned ends on an
+    /// unclamped knot vector; [`ErrorKind::IndexOutOfRange`] for a fixed index or coordinate
+    /// out of range, [`ErrorKind::NonFinite`] for a fixed value that is not finite (the
+    /// control point as [`Error::index`]);
     /// [`ErrorKind::SchoenbergWhitney`] when the data leave a free basis function without a
     /// parameter of its own (the message names it and an empty knot span);
     /// [`ErrorKind::SingularSystem`] for numerically singular systems.
@@ -330,22 +332,32 @@ impl<'a, T: Scalar, P: ControlPoint<T>> LeastSquares<'a, T, P> {
         for &(i, v) in &self.fixed_points {
             if i >= n || !v.all_finite() {
                 return Err(Error::new(
-                    ErrorKind::InvalidArgument,
+                    if i >= n {
+                        ErrorKind::IndexOutOfRange
+                    } else {
+                        ErrorKind::NonFinite
+                    },
                     format!(
                         "cannot fix control point {i} of {n} (index out of range or value not finite)"
                     ),
-                ));
+                )
+                .with_index(i));
             }
         }
         for &(i, c, v) in &self.fixed_coords {
             if i >= n || c >= P::DIM || !v.is_finite() {
                 return Err(Error::new(
-                    ErrorKind::InvalidArgument,
+                    if i >= n || c >= P::DIM {
+                        ErrorKind::IndexOutOfRange
+                    } else {
+                        ErrorKind::NonFinite
+                    },
                     format!(
                         "cannot fix coordinate {c} of control point {i} ({n} control points of dimension {}; value must be finite)",
                         P::DIM
                     ),
-                ));
+                )
+                .with_index(i));
             }
         }
         if self.pin_ends {

@@ -126,7 +126,9 @@ pub(super) fn check_degree(degree: usize, max: usize) -> Result<()> {
         Err(Error::new(
             ErrorKind::InvalidArgument,
             format!("smoothing to a residual target takes degrees 1 to {max}, got {degree}"),
-        ))
+        )
+        .with_value(from_count(degree))
+        .with_interval(1.0, from_count(max)))
     }
 }
 

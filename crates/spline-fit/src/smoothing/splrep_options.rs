@@ -101,7 +101,8 @@ impl<T: Scalar> SplrepOptions<'_, T> {
                 return Err(invalid(format!(
                     "`nest` too small: nest = {nest} < 2*(k+1) = {}",
                     2 * (k + 1)
-                )));
+                ))
+                .with_counts(2 * (k + 1), nest));
             }
             if self.t.is_some() {
                 return Err(invalid("Either supply `t` or `nest`."));

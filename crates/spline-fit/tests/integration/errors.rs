@@ -6,9 +6,10 @@
 use nalgebra::Vector2;
 use spline_core::{ErrorKind, KnotVector};
 use spline_fit::{
-    InterpolationOptions, KnotChoice, LeastSquares, Parametrization, approximate,
-    bezier_interpolate, interpolate, interpolate_closed, interpolate_function,
-    interpolate_with_knots, natural_cubic, natural_spline, parametrize,
+    CorrectionOptions, InterpolationOptions, KnotChoice, LeastSquares, MAX_CORRECTION_ITERATIONS,
+    Parametrization, approximate, bezier_interpolate, correct_parameters, curvature_knots_with,
+    interpolate, interpolate_closed, interpolate_function, interpolate_with_knots, make_ndbspl,
+    natural_cubic, natural_spline, parametrize,
 };
 
 fn v(x: f64, y: f64) -> Vector2<f64> {
@@ -257,7 +258,14 @@ fn other_argument_errors() {
         .fix_coordinate(7, 0, 1.0)
         .solve()
         .unwrap_err();
-    assert_eq!(e.kind(), ErrorKind::InvalidArgument);
+    assert_eq!(e.kind(), ErrorKind::IndexOutOfRange);
+    assert_eq!(e.index(), Some(7));
+    let e = LeastSquares::new(&pts(), &params, knots.clone())
+        .fix_point(1, v(f64::NAN, 0.0))
+        .solve()
+        .unwrap_err();
+    assert_eq!(e.kind(), ErrorKind::NonFinite);
+    assert_eq!(e.index(), Some(1));
     let e = LeastSquares::new(&pts(), &params[..4], knots.clone())
         .solve()
         .unwrap_err();
@@ -278,7 +286,60 @@ fn other_argument_errors() {
     assert_eq!(e.interval(), Some((0.0, f64::INFINITY)));
     let e = natural_spline(&[0.0, 1.0, 2.0], &[0.0, 1.0, 0.0], 3).unwrap_err();
     assert_eq!(e.kind(), ErrorKind::InvalidArgument);
+    assert_eq!(e.value(), Some(3.0));
     let short = KnotVector::averaging(2, &params[..4]).unwrap();
     let e = interpolate_with_knots(&short, &params, &pts()).unwrap_err();
     assert_eq!(e.kind(), ErrorKind::InvalidLength);
+}
+
+#[test]
+fn argument_errors_carry_their_fields() {
+    // Parameter correction: a bad angle tolerance is a tolerance error; too many sweeps
+    // give the maximum and the number asked.
+    let params = [0.0, 0.25, 0.5, 0.75, 1.0];
+    let knots = KnotVector::clamped_uniform(2, 3, 0.0, 1.0).unwrap();
+    let points = pts();
+    let problem = LeastSquares::new(&points, &params, knots);
+    let options = CorrectionOptions {
+        angle_tolerance: -1.0,
+        ..CorrectionOptions::default()
+    };
+    let e = correct_parameters(&problem, &options).unwrap_err();
+    assert_eq!(e.kind(), ErrorKind::InvalidTolerance);
+    assert_eq!(e.message(), "the angle tolerance must be positive, got -1");
+    assert_eq!(
+        (e.value(), e.interval()),
+        (Some(-1.0), Some((0.0, f64::INFINITY)))
+    );
+    let options = CorrectionOptions {
+        max_halvings: MAX_CORRECTION_ITERATIONS + 1,
+        ..CorrectionOptions::default()
+    };
+    let e = correct_parameters(&problem, &options).unwrap_err();
+    assert_eq!(e.kind(), ErrorKind::InvalidArgument);
+    assert_eq!(
+        e.counts(),
+        Some((MAX_CORRECTION_ITERATIONS, MAX_CORRECTION_ITERATIONS + 1))
+    );
+    // Grid interpolation: as many degrees as dimensions, and degrees of at least 1.
+    let x: &[f64] = &[0.0, 1.0, 2.0, 3.0];
+    let values = [0.0; 16];
+    let e = make_ndbspl(&[x, x], &values, &[1], 1).unwrap_err();
+    assert_eq!(e.kind(), ErrorKind::InvalidLength);
+    assert_eq!(e.counts(), Some((2, 1)));
+    let e = make_ndbspl(&[x, x], &values, &[1, 0], 1).unwrap_err();
+    assert_eq!(e.kind(), ErrorKind::InvalidArgument);
+    assert_eq!(
+        (e.index(), e.value(), e.interval()),
+        (Some(1), Some(0.0), Some((1.0, f64::INFINITY)))
+    );
+    // Knots that follow the curvature: a prescribed knot outside the domain.
+    let curve =
+        interpolate_function(&[0.0, 0.5, 1.0, 1.5, 2.0], &[0.0, 1.0, 0.0, 1.0, 0.0], 3).unwrap();
+    let e = curvature_knots_with(&curve, 3, 8, 1.0, 0.0, &[(0.5, 1), (3.0, 1)]).unwrap_err();
+    assert_eq!(e.kind(), ErrorKind::InvalidArgument);
+    assert_eq!(
+        (e.index(), e.value(), e.interval()),
+        (Some(1), Some(3.0), Some((0.0, 2.0)))
+    );
 }

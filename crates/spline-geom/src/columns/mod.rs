@@ -221,9 +221,9 @@ impl ColumnSpline {
     /// empty basis functions), without reduced coefficients yet.
     fn assemble(t: Vec<f64>, knots: KnotVector<f64>, c: Vec<f64>, columns: usize) -> Result<Self> {
         if columns == 0 {
-            return Err(invalid(
-                "a spline needs at least one column of coefficients",
-            ));
+            return Err(
+                invalid("a spline needs at least one column of coefficients").with_counts(1, 0),
+            );
         }
         if c.len() % columns != 0 {
             return Err(Error::new(

@@ -222,7 +222,7 @@ impl ColumnSpline {
             .with_interval(a, b));
         }
         if times == 0 {
-            return Err(invalid("`m` must be positive, got m = 0"));
+            return Err(invalid("`m` must be positive, got m = 0").with_counts(1, 0));
         }
         let k = self.degree();
         let m = self.columns;
@@ -281,7 +281,8 @@ fn insert_once(
     if periodic && interval < 2 * k && interval + 1 + 2 * k >= len {
         return Err(invalid(format!(
             "Not enough internal knots to insert {x} into a periodic spline of degree {k}"
-        )));
+        ))
+        .with_value(x));
     }
     t.insert(interval + 1, x);
     let rows = c.len() / m;

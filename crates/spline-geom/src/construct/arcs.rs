@@ -204,7 +204,9 @@ pub(super) fn arc_pieces<T: Scalar>(sweep: T, max_piece: T) -> Result<usize> {
                 to_f64(max_piece),
                 spline_core::Short(ratio)
             ),
-        ));
+        )
+        .with_value(ratio)
+        .with_interval(1.0, MAX_ARC_PIECES as f64));
     }
     #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]
     let pieces = ratio as usize;

@@ -354,7 +354,9 @@ impl<T: Scalar> NurbsSurface<T, 3> {
                     to_f64(major),
                     to_f64(minor)
                 ),
-            ));
+            )
+            .with_value(to_f64(major))
+            .with_interval(to_f64(minor), f64::INFINITY));
         }
         let x = perpendicular(&axis.direction());
         let frame = Frame::new(center + x * major, x, -axis.direction())?;

@@ -355,7 +355,8 @@ fn bad_input_is_an_error() {
     assert_eq!(e.kind(), ErrorKind::InvalidLength);
     // Degrees and knot vectors disagree.
     let e = NdSpline::new(vec![t.clone()], vec![0.0; 2], &[1, 1], 1, true).unwrap_err();
-    assert_eq!(e.kind(), ErrorKind::InvalidArgument);
+    assert_eq!(e.kind(), ErrorKind::InvalidLength);
+    assert_eq!(e.counts(), Some((1, 2)));
     // Unsorted knots in dimension 1 are named.
     let e = NdSpline::new(
         vec![t.clone(), vec![0.0, 1.0, 0.5, 1.0]],

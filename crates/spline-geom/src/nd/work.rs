@@ -23,7 +23,8 @@ impl Dims {
             return Err(Error::new(
                 ErrorKind::InvalidArgument,
                 "a tensor-product spline needs at least one dimension",
-            ));
+            )
+            .with_counts(1, 0));
         }
         let shape: Vec<usize> = knots.iter().map(KnotVector::num_basis).collect();
         let mut strides = vec![1usize; shape.len()];

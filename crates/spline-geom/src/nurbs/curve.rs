@@ -224,7 +224,7 @@ impl<T: Scalar, const D: usize> NurbsCurve<T, D> {
     /// ```
     ///
     /// # Errors
-    /// [`ErrorKind::InvalidArgument`] above [`spline_core::MAX_DERIVATIVE_ORDER`]; the errors
+    /// [`ErrorKind::OrderTooHigh`] above [`spline_core::MAX_DERIVATIVE_ORDER`]; the errors
     /// of [`NurbsCurve::derivatives_into`].
     pub fn derivatives(&self, u: T, order: usize) -> Result<Vec<SVector<T, D>>> {
         spline_core::check_derivative_order(order)?;

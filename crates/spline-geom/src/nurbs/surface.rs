@@ -193,7 +193,7 @@ impl<T: Scalar, const D: usize> NurbsSurface<T, D> {
     /// The rational partial derivatives `[k][l]` for `0 ≤ k, l ≤ order`.
     ///
     /// # Errors
-    /// [`ErrorKind::InvalidArgument`] above [`spline_core::MAX_DERIVATIVE_ORDER`]; the errors
+    /// [`ErrorKind::OrderTooHigh`] above [`spline_core::MAX_DERIVATIVE_ORDER`]; the errors
     /// of [`NurbsSurface::derivatives_into`].
     pub fn derivatives(&self, u: T, v: T, order: usize) -> Result<Vec<Vec<SVector<T, D>>>> {
         spline_core::check_derivative_order(order)?;

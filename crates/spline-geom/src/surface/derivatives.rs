@@ -124,7 +124,7 @@ impl<T: Scalar, P: ControlPoint<T>> Surface<T, P> {
     /// `0 ≤ k, l ≤ order`.
     ///
     /// # Errors
-    /// [`ErrorKind::InvalidArgument`] above [`spline_core::MAX_DERIVATIVE_ORDER`];
+    /// [`ErrorKind::OrderTooHigh`] above [`spline_core::MAX_DERIVATIVE_ORDER`];
     /// [`ErrorKind::NonFinite`] or [`ErrorKind::OutOfDomain`].
     pub fn derivatives(&self, u: T, v: T, order: usize) -> Result<Vec<Vec<P>>> {
         spline_core::check_derivative_order(order)?;

@@ -132,8 +132,9 @@ impl<T: Scalar, P: ControlPoint<T>> Surface<T, P> {
     /// ```
     ///
     /// # Errors
-    /// The first error of `f`; [`ErrorKind::InvalidArgument`] if `f` returns curves with
-    /// different knot vectors.
+    /// The first error of `f`; [`ErrorKind::SpaceMismatch`] if `f` returns curves with
+    /// different knot vectors (the index of the first curve unlike the one before it as
+    /// [`Error::index`]).
     pub fn map_curves(
         &self,
         direction: Direction,
@@ -144,11 +145,12 @@ impl<T: Scalar, P: ControlPoint<T>> Surface<T, P> {
             .iter()
             .map(&mut f)
             .collect::<Result<Vec<_>>>()?;
-        if curves.windows(2).any(|w| w[0].knots() != w[1].knots()) {
+        if let Some(i) = curves.windows(2).position(|w| w[0].knots() != w[1].knots()) {
             return Err(Error::new(
-                ErrorKind::InvalidArgument,
+                ErrorKind::SpaceMismatch,
                 "the control curves ended with different knot vectors",
-            ));
+            )
+            .with_index(i + 1));
         }
         let knots = curves[0].knots().clone();
         let lines = curves.into_iter().map(|c| Line(c.into_parts().1)).collect();

@@ -230,6 +230,14 @@ fn bad_periodic_input_is_an_error() {
     .unwrap();
     let e = PeriodicBSpline::from_wrapped(&open).unwrap_err();
     assert_eq!(e.kind(), ErrorKind::InvalidArgument);
+    assert_eq!(e.message(), "knots 0 and 2 do not differ by the period 2");
+    assert_eq!(e.index(), Some(2));
+    // The derivative of a polygon is a step function, whose own derivative is not a
+    // periodic B-spline.
+    let polygon = PeriodicBSpline::new(1, vec![0.0, 1.0, 2.0], 3.0, vec![1.0, 2.0, 0.0]).unwrap();
+    let steps = polygon.derivative().unwrap();
+    let e = steps.derivative().unwrap_err();
+    assert_eq!(e.kind(), ErrorKind::Unsupported);
     let curve = PeriodicBSpline::new(
         2,
         vec![0.0, 1.0, 2.0],

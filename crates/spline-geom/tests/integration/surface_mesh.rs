@@ -3,7 +3,7 @@
 
 use nalgebra::Vector3;
 use spline_core::ErrorKind;
-use spline_geom::{BSpline, NurbsSurface, Surface, TriangleMesh};
+use spline_geom::{BSpline, MAX_MESH_SEGMENTS, NurbsSurface, Surface, TriangleMesh};
 use std::f64::consts::PI;
 
 #[test]
@@ -108,10 +108,12 @@ fn open_surfaces_give_open_meshes() {
 #[test]
 fn bad_tessellations_are_errors() {
     let s = NurbsSurface::sphere(Vector3::zeros(), 1.0).unwrap();
-    assert_eq!(
-        s.tessellate(0, 4).unwrap_err().kind(),
-        ErrorKind::InvalidArgument
-    );
+    let e = s.tessellate(0, 4).unwrap_err();
+    assert_eq!(e.kind(), ErrorKind::InvalidArgument);
+    assert_eq!(e.counts(), Some((1, 0)));
+    let e = s.tessellate(4, MAX_MESH_SEGMENTS + 1).unwrap_err();
+    assert_eq!(e.kind(), ErrorKind::InvalidArgument);
+    assert_eq!(e.counts(), Some((MAX_MESH_SEGMENTS, MAX_MESH_SEGMENTS + 1)));
     assert_eq!(
         TriangleMesh::from_grid(1, 3, &[Vector3::zeros(); 3])
             .unwrap_err()

@@ -344,3 +344,29 @@ fn surfaces_with_four_coordinates_cannot_be_meshed() {
         ErrorKind::DimensionMismatch
     );
 }
+
+#[test]
+fn control_curves_mapped_onto_different_knots_are_a_space_mismatch() {
+    let s = Surface::bezier(vec![
+        vec![Vector3::new(0.0, 0.0, 0.0), Vector3::new(0.0, 1.0, 0.0)],
+        vec![Vector3::new(1.0, 0.0, 0.0), Vector3::new(1.0, 1.0, 1.0)],
+    ])
+    .unwrap();
+    let mut calls = 0;
+    let e = s
+        .map_curves(Direction::U, |c| {
+            calls += 1;
+            if calls == 2 {
+                c.insert_knot(0.5, 1)
+            } else {
+                Ok(c.clone())
+            }
+        })
+        .unwrap_err();
+    assert_eq!(e.kind(), ErrorKind::SpaceMismatch);
+    assert_eq!(
+        e.message(),
+        "the control curves ended with different knot vectors"
+    );
+    assert_eq!(e.index(), Some(1));
+}

@@ -37,9 +37,8 @@ pub fn nd_to_value(s: &NdSpline) -> Value {
 ///
 /// # Errors
 /// [`ErrorKind::Parse`] for a degree or knots that are not arrays of the right kind
-/// (`malformed degree: …`); [`ErrorKind::InvalidArgument`] without coefficients or for
-/// coefficients that are not a regular nested array ([`nested_array`]); the errors of
-/// [`NdSpline::new`].
+/// (`malformed degree: …`), without coefficients or for coefficients that are not a regular
+/// nested array ([`nested_array`]); the errors of [`NdSpline::new`].
 pub fn nd_from_value(value: &Value) -> Result<NdSpline> {
     let degree: Vec<usize> = deserialize(
         "degree",
@@ -52,7 +51,7 @@ pub fn nd_from_value(value: &Value) -> Result<NdSpline> {
         .or_else(|| value.get("control_points"))
         .ok_or_else(|| {
             Error::new(
-                ErrorKind::InvalidArgument,
+                ErrorKind::Parse,
                 "an N-dimensional spline needs \"degree\", \"knots\" and \"coefficients\"",
             )
         })?;
@@ -73,24 +72,24 @@ pub fn nd_from_value(value: &Value) -> Result<NdSpline> {
 /// ```
 ///
 /// # Errors
-/// [`ErrorKind::InvalidArgument`] (the message starts with `what`) for a level that is not
-/// an array or is empty, or an array that is not regular (rows of different lengths, points
-/// of different sizes, leaves that are not numbers).
+/// [`ErrorKind::Parse`] (the message starts with `what`) for a level that is not an array
+/// or is empty (with the level as [`Error::index`]), or an array that is not regular (rows
+/// of different lengths, points of different sizes, leaves that are not numbers).
 pub fn nested_array(
     value: &Value,
     depth: usize,
     what: &str,
 ) -> Result<(Vec<usize>, usize, Vec<f64>)> {
-    let bad = |detail: String| Error::new(ErrorKind::InvalidArgument, format!("{what}: {detail}"));
+    let bad = |detail: String| Error::new(ErrorKind::Parse, format!("{what}: {detail}"));
     let mut shape = Vec::with_capacity(depth);
     let mut level = value;
     for d in 0..depth {
-        let items = level
-            .as_array()
-            .ok_or_else(|| bad(format!("level {d} is {}, not an array", json_kind(level))))?;
+        let items = level.as_array().ok_or_else(|| {
+            bad(format!("level {d} is {}, not an array", json_kind(level))).with_index(d)
+        })?;
         let first = items
             .first()
-            .ok_or_else(|| bad(format!("level {d} is empty")))?;
+            .ok_or_else(|| bad(format!("level {d} is empty")).with_index(d))?;
         shape.push(items.len());
         level = first;
     }

@@ -229,7 +229,8 @@ pub fn write_iges(items: &[Item]) -> Result<String> {
                     "IGES writer: the name of item {index} ({:?}) is not printable ASCII",
                     item.name
                 ),
-            ));
+            )
+            .with_index(index));
         }
         let mut params = entity_params(item);
         max_coordinate = max_coordinate.max(self::max_coordinate(&item.geometry));

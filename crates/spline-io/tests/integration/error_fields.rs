@@ -34,6 +34,11 @@ fn read_file_names_the_file_in_a_field() {
     // A file that does not exist is an I/O error, not a complaint about an argument.
     let e = spline_io::read_file(&dir.join("missing.igs")).unwrap_err();
     assert_eq!(e.kind(), ErrorKind::Io, "{e}");
+    // An unknown extension names the file in the field too.
+    let other = dir.join("curve.dxf");
+    let e = spline_io::read_file(&other).unwrap_err();
+    assert_eq!(e.kind(), ErrorKind::InvalidArgument, "{e}");
+    assert_eq!(e.file(), Some(other.display().to_string().as_str()));
 }
 
 #[test]

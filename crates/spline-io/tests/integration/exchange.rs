@@ -346,9 +346,11 @@ fn nested_arrays_and_scipy_objects() {
         (json!([]), 1, "v: level 0 is empty"),
     ] {
         let e = nested_array(&value, depth, "v").unwrap_err();
-        assert_eq!(e.kind(), ErrorKind::InvalidArgument);
+        assert_eq!(e.kind(), ErrorKind::Parse);
         assert_eq!(e.message(), message);
     }
+    let e = nested_array(&json!([[]]), 2, "v").unwrap_err();
+    assert_eq!((e.message(), e.index()), ("v: level 1 is empty", Some(1)));
     // The bilinear spline with coefficients c_ij = 2 i + j on [0, 1]²: f(x, y) = 2x + y.
     let bilinear = json!({
         "degree": [1, 1],
@@ -375,6 +377,7 @@ fn nested_arrays_and_scipy_objects() {
         nd_to_value(&s)
     );
     let e = nd_from_value(&json!({"degree": [1], "knots": [[0, 0, 1, 1]]})).unwrap_err();
+    assert_eq!(e.kind(), ErrorKind::Parse);
     assert!(
         e.message()
             .contains("needs \"degree\", \"knots\" and \"coefficients\""),

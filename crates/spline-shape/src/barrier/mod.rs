@@ -218,8 +218,10 @@ pub struct BarrierReport {
 /// Minimises `problem` from a strictly feasible `x0`.
 ///
 /// # Errors
-/// [`ErrorKind::InvalidArgument`] if `x0` has the wrong size or is not strictly feasible
-/// (see [`find_feasible`]); [`ErrorKind::NonFinite`] if the problem produces NaN;
+/// [`ErrorKind::InvalidLength`] if `x0` has the wrong size (`(unknowns, entries)` as
+/// [`Error::counts`]); [`ErrorKind::InvalidArgument`] if it is not strictly feasible (see
+/// [`find_feasible`]; the first constraint that is not negative as [`Error::index`], its
+/// value as [`Error::value`]); [`ErrorKind::NonFinite`] if the problem produces NaN;
 /// [`ErrorKind::NoConvergence`] if the iteration limits are reached;
 /// [`ErrorKind::SingularSystem`] if no shift makes the Newton matrix positive definite.
 pub fn minimize(
@@ -241,12 +243,13 @@ fn minimize_in(
     let m = problem.num_constraints();
     if x0.len() != n {
         return Err(Error::new(
-            ErrorKind::InvalidArgument,
+            ErrorKind::InvalidLength,
             format!(
                 "starting point has {} entries, the problem {n} unknowns",
                 x0.len()
             ),
-        ));
+        )
+        .with_counts(n, x0.len()));
     }
     let c0 = problem.constraints(&x0);
     if let Some(i) = c0.iter().position(|&c| !(c < 0.0)) {
@@ -256,7 +259,10 @@ fn minimize_in(
                 "the starting point is not strictly feasible: constraint {i} = {:.3e} ≥ 0",
                 c0[i]
             ),
-        ));
+        )
+        .with_index(i)
+        .with_value(c0[i])
+        .with_interval(f64::NEG_INFINITY, 0.0));
     }
     let mut x = x0;
     let mut t = match options.t_initial {

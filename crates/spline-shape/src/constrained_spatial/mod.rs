@@ -106,7 +106,9 @@ impl SpatialConvexity {
                 format!(
                     "convexity of a patch needs degree 2 or more in both directions, got ({p}, {q})"
                 ),
-            ));
+            )
+            .with_value(p.min(q) as f64)
+            .with_interval(2.0, f64::INFINITY));
         }
         let n = knots_u.num_basis() * knots_v.num_basis();
         if n > MAX_SPATIAL_CONTROL_POINTS {

@@ -22,7 +22,7 @@ const MOST_AUTO_EXTREMA: usize = 8;
 /// tolerance is the answer.
 ///
 /// # Errors
-/// [`ErrorKind::InvalidArgument`] for a tolerance that is not positive and finite; the
+/// [`ErrorKind::InvalidTolerance`] for a tolerance that is not positive and finite; the
 /// errors of [`smooth`](super::smooth) for unusable data or settings;
 /// [`ErrorKind::ToleranceExceeded`] when no count reaches the tolerance (the message gives
 /// the best deviation found and its count).
@@ -35,7 +35,7 @@ pub fn smooth_fewest_extrema(
         Some(t) if t > 0.0 && t.is_finite() => t,
         Some(t) => {
             return Err(Error::new(
-                ErrorKind::InvalidArgument,
+                ErrorKind::InvalidTolerance,
                 format!("the maximum deviation must be positive and finite, got {t}"),
             )
             .with_value(t)

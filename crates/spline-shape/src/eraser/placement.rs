@@ -142,7 +142,9 @@ pub(crate) fn place_extrema<C: PlanarCurve<f64>>(
                     "no room for curvature extremum {} between {lo} and {hi}: give its parameter",
                     i + 1
                 ),
-            ));
+            )
+            .with_index(i)
+            .with_interval(lo, hi));
         };
         slots[i] = Some(u);
     }

@@ -43,15 +43,17 @@ impl SmoothingOptions {
     /// ```
     ///
     /// # Errors
-    /// [`ErrorKind::InvalidArgument`] when `count` disagrees with the extrema given, or for a
-    /// count above [`MAX_CURVATURE_EXTREMA`]; the options are then unchanged.
+    /// [`ErrorKind::InvalidLength`] when `count` disagrees with the extrema given
+    /// (`(given, count)` as [`Error::counts`]); [`ErrorKind::InvalidArgument`] for a count
+    /// above [`MAX_CURVATURE_EXTREMA`]; the options are then unchanged.
     pub fn request_extrema(&mut self, count: Option<usize>, given: Vec<Extremum>) -> Result<()> {
         if !given.is_empty() {
             if let Some(k) = count.filter(|&k| k != given.len()) {
                 return Err(Error::new(
-                    ErrorKind::InvalidArgument,
+                    ErrorKind::InvalidLength,
                     format!("{k} disagrees with the {} extrema given", given.len()),
-                ));
+                )
+                .with_counts(given.len(), k));
             }
             self.extrema = given;
             return Ok(());

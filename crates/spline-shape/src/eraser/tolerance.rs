@@ -13,7 +13,7 @@ use spline_core::{Error, ErrorKind, Result};
 /// fall as control points are added, so this is the fewest such a search finds).
 ///
 /// # Errors
-/// [`ErrorKind::InvalidArgument`] for a tolerance that is not positive and finite; the
+/// [`ErrorKind::InvalidTolerance`] for a tolerance that is not positive and finite; the
 /// errors of [`smooth`](super::smooth) for the other settings; [`ErrorKind::ToleranceExceeded`] when no
 /// count up to one less than the number of data points reaches the tolerance (the message
 /// gives the best deviation found).
@@ -24,7 +24,7 @@ pub fn smooth_to_tolerance(
 ) -> Result<SmoothedCurve> {
     if !(tolerance > 0.0 && tolerance.is_finite()) {
         return Err(Error::new(
-            ErrorKind::InvalidArgument,
+            ErrorKind::InvalidTolerance,
             format!("the maximum deviation must be positive and finite, got {tolerance}"),
         )
         .with_value(tolerance)

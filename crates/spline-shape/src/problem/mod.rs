@@ -451,7 +451,9 @@ pub(crate) fn check_samples(samples_per_span: usize) -> Result<()> {
         return Err(Error::new(
             ErrorKind::InvalidArgument,
             "need at least one sample per span",
-        ));
+        )
+        .with_value(0.0)
+        .with_interval(1.0, f64::INFINITY));
     }
     Ok(())
 }

@@ -85,3 +85,45 @@ fn bad_settings_are_errors() {
     shifted[0].x = 0.1;
     assert!(optimise_perimeter_over_area(&shifted, &AdaptiveOptions::default()).is_err());
 }
+
+#[test]
+fn bad_options_say_what_failed() {
+    // Issue 26: the counts of the inequality that fails, and a bad tolerance's kind.
+    let arch = flat_arch(12);
+    let options = AdaptiveOptions {
+        degree: 3,
+        control_points: 4,
+        ..AdaptiveOptions::default()
+    };
+    let err = optimise_perimeter_over_area(&arch, &options).unwrap_err();
+    assert_eq!(err.kind(), spline_core::ErrorKind::InvalidArgument);
+    assert_eq!(err.counts(), Some((5, 4)), "{err}");
+    let options = AdaptiveOptions {
+        control_points: 11,
+        samples: 10,
+        ..AdaptiveOptions::default()
+    };
+    let err = optimise_perimeter_over_area(&arch, &options).unwrap_err();
+    assert_eq!(err.counts(), Some((11, 10)), "{err}");
+    let options = AdaptiveOptions {
+        degree: 0,
+        ..AdaptiveOptions::default()
+    };
+    let err = optimise_perimeter_over_area(&arch, &options).unwrap_err();
+    assert_eq!(
+        (err.value(), err.interval()),
+        (Some(0.0), Some((1.0, f64::INFINITY)))
+    );
+    let options = AdaptiveOptions {
+        simplex_tolerance: -1.0,
+        iterations: 1,
+        ..AdaptiveOptions::default()
+    };
+    let err = optimise_perimeter_over_area(&arch, &options).unwrap_err();
+    assert_eq!(
+        err.kind(),
+        spline_core::ErrorKind::InvalidTolerance,
+        "{err}"
+    );
+    assert_eq!(err.value(), Some(-1.0));
+}

@@ -226,11 +226,15 @@ fn errors() {
     let e = minimize(&problem, DVector::from_row_slice(&[2.0]), &options).unwrap_err();
     assert_eq!(e.kind(), ErrorKind::InvalidArgument);
     assert!(e.message().contains("not strictly feasible"), "{e}");
+    // Issue 26: the constraint and its value.
+    assert_eq!((e.index(), e.value()), (Some(0), Some(1.0)), "{e}");
+    assert_eq!(e.interval(), Some((f64::NEG_INFINITY, 0.0)));
+    let e = minimize(&problem, DVector::zeros(2), &options).unwrap_err();
+    assert_eq!(e.kind(), ErrorKind::InvalidLength);
+    assert_eq!(e.counts(), Some((1, 2)));
     assert_eq!(
-        minimize(&problem, DVector::zeros(2), &options)
-            .unwrap_err()
-            .kind(),
-        ErrorKind::InvalidArgument
+        e.message(),
+        "starting point has 2 entries, the problem 1 unknowns"
     );
     // x ≤ −1 and x ≥ 1 at once: no feasible point.
     let inconsistent = BoxProjection {

@@ -8,7 +8,7 @@ use spline_geom::Curve2;
 use spline_io::points::parse_points;
 use spline_shape::{
     Extremum, ExtremumKind, MAX_CURVATURE_EXTREMA, Objective, SmoothingOptions,
-    sampled_curvature_extrema, smooth,
+    sampled_curvature_extrema, smooth, smooth_to_tolerance,
 };
 
 fn airfoil(path: &str) -> Vec<Vector2<f64>> {
@@ -218,4 +218,24 @@ fn bad_requests_are_errors() {
         err.to_string(),
         "at most 1000 curvature extrema can be allowed, got 1001"
     );
+}
+
+#[test]
+fn bad_counts_and_tolerances_say_what_failed() {
+    // Issue 26: a count that disagrees with the extrema given is a length error.
+    let mut options = SmoothingOptions::new(20);
+    let err = options
+        .request_extrema(Some(2), vec![Extremum::maximum()])
+        .unwrap_err();
+    assert_eq!(err.kind(), ErrorKind::InvalidLength);
+    assert_eq!(err.counts(), Some((1, 2)));
+    assert_eq!(err.to_string(), "2 disagrees with the 1 extrema given");
+    // A maximum deviation that is not positive is a bad tolerance.
+    let points = airfoil("clarkv");
+    for t in [0.0, -1e-3, f64::NAN] {
+        let err = smooth_to_tolerance(&points, t, &options).unwrap_err();
+        assert_eq!(err.kind(), ErrorKind::InvalidTolerance, "{t}");
+        assert_eq!(err.interval(), Some((0.0, f64::INFINITY)));
+        assert!(err.value().is_some_and(|v| v.to_bits() == t.to_bits()));
+    }
 }

@@ -83,5 +83,9 @@ fn auto_extrema_on_a_plate_picks_two() {
     let err = smooth_fewest_extrema(&clarkv, Some(1e-9), &SmoothingOptions::new(12)).unwrap_err();
     assert_eq!(err.kind(), ErrorKind::ToleranceExceeded, "{err}");
     let err = smooth_fewest_extrema(&clarkv, Some(-1.0), &SmoothingOptions::new(12)).unwrap_err();
-    assert_eq!(err.kind(), ErrorKind::InvalidArgument);
+    assert_eq!(err.kind(), ErrorKind::InvalidTolerance);
+    assert_eq!(
+        (err.value(), err.interval()),
+        (Some(-1.0), Some((0.0, f64::INFINITY)))
+    );
 }

@@ -123,6 +123,22 @@ fn bad_requests_are_errors() {
     let circles = request((0.0, 1.0), vec![]);
     let e = control_flecnodal_circles(&quadratic, &circles, 100, 0).unwrap_err();
     assert_eq!(e.kind(), ErrorKind::InvalidArgument);
+    // Issue 26: what failed, in fields a program can read.
+    assert_eq!(
+        (e.value(), e.interval()),
+        (Some(2.0), Some((3.0, f64::INFINITY)))
+    );
+    let e =
+        control_flecnodal_circles(&meridian, &request((-2.0, 1.0), vec![]), 100, 0).unwrap_err();
+    assert_eq!(e.interval(), Some((-1.0, 1.0)), "{e}");
+    let allowed = vec![(-0.5, 0.0), (-0.1, 0.2)];
+    let e =
+        control_flecnodal_circles(&meridian, &request((-1.0, 1.0), allowed), 100, 0).unwrap_err();
+    assert_eq!(
+        (e.index(), e.interval()),
+        (Some(1), Some((-1.0, 1.0))),
+        "{e}"
+    );
     let e = control_flecnodal_circles(&meridian, &request((-1.0, 1.0), vec![]), 1, 0).unwrap_err();
     assert_eq!(e.kind(), ErrorKind::TooFewPoints);
     let e =

@@ -435,7 +435,18 @@ fn bad_input_is_an_error() {
     );
     // Derivative order above the degree.
     let high = approx.clone().sign(4, Sign::NonNegative);
-    assert_eq!(kind(&high, &params, &values), ErrorKind::InvalidArgument);
+    assert_eq!(kind(&high, &params, &values), ErrorKind::OrderTooHigh);
+    // Issue 26: which constraint, and (degree, order).
+    let err = high.fit(&params, &values).unwrap_err();
+    assert_eq!(
+        (err.index(), err.counts()),
+        (Some(0), Some((3, 4))),
+        "{err}"
+    );
+    assert_eq!(
+        err.to_string(),
+        "constraint 0: derivative order 4 exceeds the degree 3"
+    );
     // Intervals outside the domain, empty, or non-finite.
     for (a, b) in [(-1.0, 2.0), (2.0, 2.0), (3.0, 1.0), (0.0, f64::INFINITY)] {
         let bad = approx.clone().sign_on(0, Sign::NonNegative, a, b);
@@ -448,6 +459,15 @@ fn bad_input_is_an_error() {
     assert_eq!(
         kind(&approx.clone().refinement(0), &params, &values),
         ErrorKind::InvalidArgument
+    );
+    let err = approx
+        .clone()
+        .refinement(0)
+        .fit(&params, &values)
+        .unwrap_err();
+    assert_eq!(
+        (err.value(), err.interval()),
+        (Some(0.0), Some((1.0, f64::INFINITY)))
     );
     // Inconsistent constraints: s > 0 and s < 0 on the same interval.
     let inconsistent = approx
@@ -467,9 +487,11 @@ fn bad_input_is_an_error() {
     // The check refuses zero samples; fit_function refuses fewer than two samples.
     let ok = approx.clone().sign(0, Sign::NonNegative);
     let spline = ok.fit(&params, &values).expect("fit").spline;
+    let err = ok.check(&spline, 0).expect_err("zero samples");
+    assert_eq!(err.kind(), ErrorKind::InvalidArgument);
     assert_eq!(
-        ok.check(&spline, 0).expect_err("zero samples").kind(),
-        ErrorKind::InvalidArgument
+        (err.value(), err.interval()),
+        (Some(0.0), Some((1.0, f64::INFINITY)))
     );
     assert_eq!(
         ok.fit_function(1, f64::cos).expect_err("one sample").kind(),
@@ -480,13 +502,10 @@ fn bad_input_is_an_error() {
         sign: Sign::NonNegative,
         interval: None,
     };
-    assert_eq!(
-        approx
-            .constraint_map(&constraint)
-            .expect_err("order")
-            .kind(),
-        ErrorKind::InvalidArgument
-    );
+    let err = approx.constraint_map(&constraint).expect_err("order");
+    assert_eq!(err.kind(), ErrorKind::OrderTooHigh);
+    assert_eq!(err.counts(), Some((3, 9)));
+    assert_eq!(err.to_string(), "derivative order 9 exceeds the degree 3");
 }
 
 #[test]

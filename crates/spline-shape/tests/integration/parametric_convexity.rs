@@ -72,7 +72,13 @@ fn bad_patches_are_refused() {
     let k1 = KnotVector::clamped(1, 0.0, 1.0, &[]).unwrap();
     let k3 = KnotVector::clamped(3, 0.0, 1.0, &[]).unwrap();
     let flat = Surface::new(k1, k3, vec![Vector2::zeros(); 8]).unwrap();
-    assert!(ParametricConvexity::new(flat, Sign::NonNegative).is_err());
+    let err = ParametricConvexity::new(flat, Sign::NonNegative).unwrap_err();
+    // Issue 26: the degree below 2 and the allowed degrees.
+    assert_eq!(err.kind(), spline_core::ErrorKind::InvalidArgument);
+    assert_eq!(
+        (err.value(), err.interval()),
+        (Some(1.0), Some((2.0, f64::INFINITY)))
+    );
     let convex = ParametricConvexity::new(base(), Sign::NonNegative).unwrap();
     assert!(convex.fit_grid(&[0.5], &[0.5], &[]).is_err());
     assert!(convex.fit_grid(&[0.5], &[0.5], &[f64::NAN]).is_err());

@@ -136,6 +136,10 @@ fn bad_input_is_refused() {
     let cubic = KnotVector::clamped(3, 0.0, 1.0, &[]).unwrap();
     let e = SpatialConvexity::new(linear, cubic.clone(), Sign::NonNegative).unwrap_err();
     assert_eq!(e.kind(), ErrorKind::InvalidArgument);
+    assert_eq!(
+        (e.value(), e.interval()),
+        (Some(1.0), Some((2.0, f64::INFINITY)))
+    );
     let big = KnotVector::clamped(3, 0.0, 1.0, &[0.1, 0.2, 0.3, 0.4, 0.5, 0.6, 0.7]).unwrap();
     let e = SpatialConvexity::new(big.clone(), big, Sign::NonNegative).unwrap_err();
     assert_eq!(e.kind(), ErrorKind::InvalidArgument);

@@ -303,11 +303,22 @@ fn bad_input_is_an_error() {
         ErrorKind::SchoenbergWhitney
     );
     let high = uniform(6).sign(4, 0, Sign::NonNegative);
-    assert_eq!(kind(&high, &us, &us, &values), ErrorKind::InvalidArgument);
+    assert_eq!(kind(&high, &us, &us, &values), ErrorKind::OrderTooHigh);
     let linear = SurfaceApproximation::uniform((1, 3), (6, 6), DOMAIN, DOMAIN)
         .expect("knots")
         .convex();
-    assert_eq!(kind(&linear, &us, &us, &values), ErrorKind::InvalidArgument);
+    assert_eq!(kind(&linear, &us, &us, &values), ErrorKind::OrderTooHigh);
+    // Issue 26: the constraint, and (degree, order) of the first direction too high.
+    let err = linear.fit_grid(&us, &us, &values).unwrap_err();
+    assert_eq!(
+        (err.index(), err.counts()),
+        (Some(0), Some((1, 2))),
+        "{err}"
+    );
+    assert!(
+        err.to_string().contains("exceed the degrees (1, 3)"),
+        "{err}"
+    );
     let region = uniform(6).sign_on(0, 0, Sign::NonNegative, ((1.0, 0.5), (0.0, 1.0)));
     assert_eq!(kind(&region, &us, &us, &values), ErrorKind::OutOfDomain);
     let refinement = uniform(6).refinement(0);

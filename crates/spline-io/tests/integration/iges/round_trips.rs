@@ -177,8 +177,7 @@ fn names_go_to_the_label_and_a_name_property() {
         ]
     );
     let bad = item("é", items[0].geometry.clone());
-    assert_eq!(
-        write_iges(&[bad]).unwrap_err().kind(),
-        ErrorKind::InvalidArgument
-    );
+    let e = write_iges(&[items[0].clone(), bad]).unwrap_err();
+    assert_eq!(e.kind(), ErrorKind::InvalidArgument);
+    assert_eq!(e.index(), Some(1));
 }
