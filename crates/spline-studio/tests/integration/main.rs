@@ -4,4 +4,5 @@
 #![allow(unreachable_pub)]
 
 mod browser;
+mod browser_driver;
 mod http;
