@@ -4,7 +4,9 @@
 use crate::{Csr, Features, IntoPy, array, bad_input, csr, flatten, knot_vector, points, slice};
 use numpy::{PyArray1, PyReadonlyArray1};
 use pyo3::prelude::*;
-use spline::algebra::{SplineMap, planar_features, product_with_jacobians};
+use spline::algebra::{
+    SplineMap, default_feature_accuracy, planar_features, product_with_jacobians,
+};
 use spline::io::exchange::CurveRecord;
 use spline::nalgebra::SVector;
 use spline::{BSpline, ControlPoint, KnotVector};
@@ -136,6 +138,9 @@ impl Dyn {
         with!(self, c => flatten(c.control_points()))
     }
 
+    /// The `nu`-th derivative at every parameter, flat: the library's batch on the curve or,
+    /// for `nu > 0`, on its derivative curve (one value per point, through that curve's
+    /// cached piecewise form; `derivatives_many_into` would compute every order up to `nu`).
     fn eval(&self, x: &[f64], nu: usize) -> spline::Result<Vec<f64>> {
         if nu == 0 {
             with!(self, c => eval_flat(c, x))
@@ -293,14 +298,17 @@ impl Curve {
             .map(Self)
     }
 
-    /// Inflections and curvature extrema of a planar curve, located to `accuracy`:
+    /// Inflections and curvature extrema of a planar curve, located to `accuracy` (absolute,
+    /// in the parameter; by default the library's, relative to the domain):
     /// `(inflections, curvature_extrema, constant_curvature)`.
-    fn features<'py>(&self, py: Python<'py>, accuracy: f64) -> PyResult<Features<'py>> {
+    #[pyo3(signature = (accuracy=None))]
+    fn features<'py>(&self, py: Python<'py>, accuracy: Option<f64>) -> PyResult<Features<'py>> {
         let Dyn::V2(c) = &self.0 else {
             return Err(bad_input(
                 "features need a planar curve (coefficients of shape (n, 2))",
             ));
         };
+        let accuracy = accuracy.unwrap_or_else(|| default_feature_accuracy(c.domain()));
         let f = py.detach(|| planar_features(c, accuracy)).py()?;
         Ok(crate::features(py, f))
     }
@@ -317,6 +325,7 @@ impl Curve {
             ));
         };
         let x = slice(&x, "x")?;
+        // The library has no batch of curvatures: one call per point.
         let out = py
             .detach(|| {
                 x.iter()

@@ -2,7 +2,7 @@
 //! reader, as the library (and the CLI's `interpolate`, `approximate`, `smooth`) call them.
 
 use crate::curve::{Curve, Dyn, dyn_by_dim};
-use crate::{IntoPy, array, bad_input, flatten, knot_vector, optional_slice, points, slice};
+use crate::{IntoPy, array, flatten, knot_vector, optional_slice, points, slice};
 use numpy::{PyArray1, PyReadonlyArray1};
 use pyo3::prelude::*;
 use spline::KnotVector;
@@ -12,7 +12,7 @@ use spline::fit::{
 };
 use spline::io::airfoil::parse_airfoil;
 use spline::nalgebra::Vector2;
-use spline::shape::{Extremum, Objective, SmoothingOptions, smooth as erase, smooth_to_tolerance};
+use spline::shape::{ExtremaCount, OptionSpelling, SmoothRequest, SmoothWords};
 
 /// Runs `$e` with `$P` the point type of dimension `$dim` (`0`: scalar) and wraps the
 /// resulting B-spline in the matching [`Dyn`] variant.
@@ -154,52 +154,8 @@ fn fit<'py>(
     Ok((Curve(curve), array(py, params), max, rms, sweeps, converged))
 }
 
-/// The options of `spline smooth` (the CLI's flags, by the same names).
-#[allow(clippy::too_many_arguments)]
-fn smoothing_options(
-    control_points: Option<usize>,
-    max_deviation: Option<f64>,
-    degree: usize,
-    curvature_extrema: Option<usize>,
-    extrema: &[String],
-    objective: &str,
-    thorough: bool,
-    closed: bool,
-    knot_exponents: Option<Vec<f64>>,
-) -> PyResult<SmoothingOptions> {
-    let control = match (control_points, max_deviation) {
-        (Some(n), None) => n,
-        (None, Some(_)) => 0,
-        _ => {
-            return Err(bad_input(
-                "give control_points or max_deviation (one of them)",
-            ));
-        }
-    };
-    let mut options = SmoothingOptions::new(control);
-    options.degree = degree;
-    options.thorough = thorough;
-    options.closed = closed;
-    if let Some(betas) = knot_exponents {
-        options.knot_exponents = betas;
-    }
-    options.objective = objective
-        .parse::<Objective>()
-        .map_err(|e| e.context("objective"))
-        .py()?;
-    let given = extrema
-        .iter()
-        .map(|t| t.parse::<Extremum>().map_err(|e| e.context("extrema")))
-        .collect::<spline::Result<_>>()
-        .py()?;
-    options
-        .request_extrema(curvature_extrema, given)
-        .map_err(|e| e.context("curvature_extrema"))
-        .py()?;
-    Ok(options)
-}
-
-/// What `smooth` returns besides the curve: the CLI's report fields.
+/// What `smooth` returns besides the curve: the CLI's report fields, then the library's record
+/// of the line of its `summary.jsonl` ([`SummaryLine`]).
 type SmoothReport = (
     (bool, usize, usize, usize),
     f64,
@@ -212,13 +168,27 @@ type SmoothReport = (
     usize,
     usize,
     usize,
+    SummaryLine,
+);
+
+/// [`spline::shape::SmoothSummary`]'s fields in order: control points, max deviation, max
+/// deviation to the data, extrema, error, warnings.
+type SummaryLine = (
+    Option<usize>,
+    Option<f64>,
+    Option<f64>,
+    Option<usize>,
+    Option<String>,
+    Vec<String>,
 );
 
 /// The selective eraser of curvature extrema (`spline smooth`) on planar points (flat,
-/// `x0, y0, x1, …`): `(curve, ((closed, first_point, control_points, control points of the
-/// opened curve), max_deviation, max_deviation_index, max_deviation_to_data, rms, extrema
-/// (u, x, y, kind), inflections, refinements, conditions, least_squares_curvature_extrema,
-/// newton_steps))`. A closed curve comes as its wrapped container (as the CLI writes it).
+/// `x0, y0, x1, …`), the options by the CLI's names (`curvature_extrema`: a count or `auto`,
+/// as text): `(curve, ((closed, first_point, control_points, control points of the opened
+/// curve), max_deviation, max_deviation_index, max_deviation_to_data, rms, extrema (u, x, y,
+/// kind), inflections, refinements, conditions, least_squares_curvature_extrema,
+/// newton_steps, summary))`. A closed curve comes as its wrapped container (as the CLI writes
+/// it).
 #[pyfunction]
 #[pyo3(signature = (points, control_points, max_deviation, degree, curvature_extrema, extrema, objective, thorough, closed, knot_exponents))]
 #[allow(clippy::too_many_arguments)]
@@ -228,38 +198,39 @@ fn smooth(
     control_points: Option<usize>,
     max_deviation: Option<f64>,
     degree: usize,
-    curvature_extrema: Option<usize>,
+    curvature_extrema: Option<String>,
     extrema: Vec<String>,
     objective: &str,
     thorough: bool,
     closed: bool,
     knot_exponents: Option<Vec<f64>>,
 ) -> PyResult<(Curve, SmoothReport)> {
-    let options = smoothing_options(
+    let words = SmoothWords {
         control_points,
         max_deviation,
         degree,
-        curvature_extrema,
-        &extrema,
+        curvature_extrema: curvature_extrema.map(|text| {
+            text.parse::<ExtremaCount>()
+                .map_err(|e| e.context("curvature_extrema"))
+        }),
+        extrema: &extrema,
         objective,
         thorough,
         closed,
-        knot_exponents,
-    )?;
-    let q: Vec<Vector2<f64>> = rows(slice(&points, "points")?).py()?;
-    let r = py
-        .detach(|| match max_deviation {
-            Some(d) => smooth_to_tolerance(&q, d, &options),
-            None => erase(&q, &options),
-        })
-        .py()?;
-    let opened = r.curve.control_points().len();
-    let (curve, count) = match &r.periodic {
-        Some(periodic) => (periodic.wrapped().clone(), periodic.len()),
-        None => (r.curve.clone(), opened),
+        knot_exponents: knot_exponents.map(Ok),
     };
+    let request = SmoothRequest::from_words(words, OptionSpelling::Keywords).py()?;
+    let q: Vec<Vector2<f64>> = rows(slice(&points, "points")?).py()?;
+    let r = py.detach(|| request.run(&q)).py()?;
+    let summary = r.summary();
+    let opened = r.curve.control_points().len();
     let report = (
-        (r.periodic.is_some(), r.first_point, count, opened),
+        (
+            r.periodic.is_some(),
+            r.first_point,
+            r.control_point_count(),
+            opened,
+        ),
         r.deviation.to_curve.max,
         r.deviation.to_curve.max_index,
         r.deviation.to_data,
@@ -268,13 +239,21 @@ fn smooth(
             .iter()
             .map(|e| (e.param, e.point.x, e.point.y, e.kind.to_string()))
             .collect(),
-        r.inflections,
+        r.inflections.clone(),
         r.refinements,
         r.conditions,
         r.start_extrema,
         r.newton_steps,
+        (
+            summary.control_points,
+            summary.max_deviation,
+            summary.max_deviation_to_data,
+            summary.extrema,
+            summary.error,
+            summary.warnings,
+        ),
     );
-    Ok((Curve(Dyn::V2(curve)), report))
+    Ok((Curve(Dyn::V2(r.output_curve().clone())), report))
 }
 
 /// The points of an airfoil file's text (Selig or Lednicer), flat, in Selig order, and the

@@ -5,7 +5,7 @@ use crate::curve::curve_record;
 use crate::{Features, IntoPy, array, bad_input, flatten, knot_vector, slice};
 use numpy::{PyArray1, PyReadonlyArray1};
 use pyo3::prelude::*;
-use spline::algebra::planar_features;
+use spline::algebra::{default_feature_accuracy, planar_features};
 use spline::geom::{CircleConstruction, Frame};
 use spline::io::exchange::{CurveRecord, SurfaceRecord};
 use spline::nalgebra::{SVector, Vector2, Vector3};
@@ -141,7 +141,8 @@ impl NurbsCurveCore {
         array(py, with!(&self.0, c => c.weights().to_vec()))
     }
 
-    /// The `nu`-th derivative at every parameter of `x`, flat (GIL released).
+    /// The `nu`-th derivative at every parameter of `x`, flat (GIL released): points by the
+    /// library's batch, derivatives by its evaluator (the curve's cached piecewise form).
     fn eval<'py>(
         &self,
         py: Python<'py>,
@@ -155,9 +156,15 @@ impl NurbsCurveCore {
                     if nu == 0 {
                         Ok(flatten(&c.eval_many(x)?))
                     } else {
+                        // The library has no batch of rational derivatives: one evaluator
+                        // call per point, into one buffer (order ν needs the lower orders
+                        // anyway, The NURBS Book A4.2).
+                        spline::core::check_derivative_order(nu)?;
+                        let evaluator = c.evaluator();
+                        let mut d = vec![SVector::zeros(); nu + 1];
                         let mut out = Vec::with_capacity(x.len() * self.dim());
                         for &u in x {
-                            let d = c.derivatives(u, nu)?;
+                            evaluator.derivatives_into(u, &mut d)?;
                             out.extend(d[nu].iter());
                         }
                         Ok(out)
@@ -185,10 +192,12 @@ impl NurbsCurveCore {
     }
 
     /// Inflections and curvature extrema of a planar curve (as `Curve.features`).
-    fn features<'py>(&self, py: Python<'py>, accuracy: f64) -> PyResult<Features<'py>> {
+    #[pyo3(signature = (accuracy=None))]
+    fn features<'py>(&self, py: Python<'py>, accuracy: Option<f64>) -> PyResult<Features<'py>> {
         let Rational::N2(c) = &self.0 else {
             return Err(bad_input("features need a planar curve"));
         };
+        let accuracy = accuracy.unwrap_or_else(|| default_feature_accuracy(c.domain()));
         let f = py.detach(|| planar_features(c, accuracy)).py()?;
         Ok(crate::features(py, f))
     }
@@ -308,7 +317,8 @@ impl NurbsSurfaceCore {
         )
     }
 
-    /// The points at the parameter pairs `(u[i], v[i])`, flat (GIL released).
+    /// The points at the parameter pairs `(u[i], v[i])`, flat (GIL released), by the
+    /// library's evaluator (the surface's cached piecewise form).
     fn eval<'py>(
         &self,
         py: Python<'py>,
@@ -325,9 +335,12 @@ impl NurbsSurfaceCore {
         }
         let out = py
             .detach(|| -> spline::Result<Vec<f64>> {
+                // The library batches surfaces on grids only (`eval_grid`): scattered pairs
+                // are one evaluator call each.
+                let evaluator = self.0.evaluator();
                 let mut out = Vec::with_capacity(3 * u.len());
                 for (&a, &b) in u.iter().zip(v) {
-                    out.extend(self.0.eval(a, b)?.iter());
+                    out.extend(evaluator.eval(a, b)?.iter());
                 }
                 Ok(out)
             })

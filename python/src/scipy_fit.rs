@@ -1,8 +1,7 @@
 //! scipy's fitting functions for many columns (`make_interp_spline`, `make_lsq_spline`,
-//! `make_smoothing_spline`, `make_ndbspl`) as the library implements them; the smoothing
-//! spline runs the library's scalar fit per column of the row-major `len(x) × m` data
-//! (scipy chooses λ per column). `spline._bspline` validates the arguments with scipy's
-//! words and moves the axes.
+//! `make_smoothing_spline`, `make_ndbspl`) as the library implements them, each one call
+//! on the row-major `len(x) × m` data. `spline._make` and `spline._nd` convert the
+//! arguments and move the axes.
 
 use crate::columns::Columns;
 use crate::{IntoPy, array, bad_input, optional_slice, slice};
@@ -10,65 +9,29 @@ use numpy::{PyArray1, PyReadonlyArray1};
 use pyo3::prelude::*;
 use spline::KnotVector;
 use spline::fit::{
-    InterpBc, LsqMethod, SmoothingParameter, make_interp_spline, make_lsq_spline, smoothing_spline,
+    InterpBc, LsqMethod, SmoothingParameter, make_interp_spline, make_lsq_spline,
+    make_smoothing_spline,
 };
 
-/// Knots and row-major coefficients of a fitted spline.
-pub(crate) type KnotsAndCoefficients<'py> = (Bound<'py, PyArray1<f64>>, Bound<'py, PyArray1<f64>>);
-
-/// Column `j` of a row-major matrix of `m` columns.
-fn column(flat: &[f64], m: usize, j: usize) -> Vec<f64> {
-    flat.iter().skip(j).step_by(m).copied().collect()
-}
-
-/// The columns' coefficients (each of `rows` entries) as one row-major matrix.
-fn interleave(columns: &[Vec<f64>], rows: usize) -> Vec<f64> {
-    let mut out = Vec::with_capacity(rows * columns.len());
-    for i in 0..rows {
-        out.extend(columns.iter().map(|c| c[i]));
-    }
-    out
-}
-
-/// Checks that `y` holds `len(x)` rows of `m ≥ 1` values.
-fn check_rows(x: &[f64], y: &[f64], m: usize) -> PyResult<()> {
-    if m == 0 || Some(y.len()) != x.len().checked_mul(m) {
-        return Err(bad_input(format!(
-            "{} values do not make {} rows of {m} columns",
-            y.len(),
-            x.len()
-        )));
-    }
-    Ok(())
-}
-
-/// scipy's `make_smoothing_spline` for every column: λ given, or chosen per column by
-/// generalised cross-validation. `(t, c)` with `c` row-major.
+/// scipy's `make_smoothing_spline` on every column at once (the library's
+/// `spline_fit::make_smoothing_spline`): λ given, or chosen per column by generalised
+/// cross-validation.
 #[pyfunction]
 #[pyo3(signature = (x, y, m, w=None, lam=None))]
-fn smoothing_columns<'py>(
-    py: Python<'py>,
-    x: PyReadonlyArray1<'py, f64>,
-    y: PyReadonlyArray1<'py, f64>,
+fn smoothing_columns(
+    py: Python<'_>,
+    x: PyReadonlyArray1<'_, f64>,
+    y: PyReadonlyArray1<'_, f64>,
     m: usize,
-    w: Option<PyReadonlyArray1<'py, f64>>,
+    w: Option<PyReadonlyArray1<'_, f64>>,
     lam: Option<f64>,
-) -> PyResult<KnotsAndCoefficients<'py>> {
+) -> PyResult<Columns> {
     let (x, y) = (slice(&x, "x")?, slice(&y, "y")?);
-    check_rows(x, y, m)?;
     let w = optional_slice(&w, "w")?;
     let parameter = lam.map_or(SmoothingParameter::Gcv, SmoothingParameter::Lambda);
-    let fits = py
-        .detach(|| {
-            (0..m)
-                .map(|j| smoothing_spline(x, &column(y, m, j), w, parameter).map(|f| f.spline))
-                .collect::<spline::Result<Vec<_>>>()
-        })
-        .py()?;
-    let t = fits[0].knots().knots().to_vec();
-    let rows = fits[0].len();
-    let columns: Vec<Vec<f64>> = fits.iter().map(|s| s.control_points().to_vec()).collect();
-    Ok((array(py, t), array(py, interleave(&columns, rows))))
+    py.detach(|| make_smoothing_spline(x, y, m, w, parameter))
+        .py()
+        .map(Columns)
 }
 
 /// The not-a-knot knots of degree `k` for the abscissae `x` (scipy's `_not_a_knot`: the

@@ -137,3 +137,22 @@ def test_smooth_closed_contour():
     lo, hi = r.curve.domain
     np.testing.assert_allclose(r.curve(lo), r.curve(hi), atol=1e-12)
     np.testing.assert_allclose(r.curve(lo, 1), r.curve(hi, 1), rtol=1e-9, atol=1e-9)
+
+
+def test_smooth_auto_extrema_as_the_tool():
+    # The fewest curvature extrema within the default tolerance: two on this plate (as
+    # `spline smooth --curvature-extrema auto`), with the warning-free answer and its summary.
+    pts, _ = spline.read_airfoil(AIRFOILS / "plates" / "goe417a.dat")
+    r = spline.smooth(pts, 20, curvature_extrema="auto")
+    assert len(r.extrema) == 2 and r.max_deviation < 2e-3
+    assert not r.warnings
+    assert r.summary["control_points"] == 20 and r.summary["error"] is None
+    # One maximum only: the plate's camber line turns, the tool warns and so does Python.
+    one = spline.smooth(pts, 20)
+    assert one.warnings and one.max_deviation > 8e-3
+    try:
+        spline.smooth(pts, 20, curvature_extrema="many")
+    except spline.SplineError as e:
+        assert "auto" in str(e)
+    else:
+        raise AssertionError("an unknown count was accepted")

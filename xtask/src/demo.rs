@@ -69,7 +69,7 @@ fn draw(demo: &Demo, ls_extrema: usize, out: &Path) -> Result<(), String> {
     plot.add_markers(&demo.points, "data");
     let nose: Vec<Vector2<f64>> = demo.smoothed.extrema.iter().map(|e| e.point).collect();
     plot.add_markers(&nose, "extremum");
-    crate::write_doc(out, "airfoil.svg", &plot.render())?;
+    crate::docs_output::write_doc(out, "airfoil.svg", &plot.render())?;
     // Signed curvature along the curve, on an asinh scale so that the nose (κ ≈ 10²) and the
     // flat parts (κ ≈ 10⁻¹) are both readable.
     let mut graph = SvgPlot::new();
@@ -93,7 +93,7 @@ fn draw(demo: &Demo, ls_extrema: usize, out: &Path) -> Result<(), String> {
         graph.add_polyline(&samples, class);
     }
     graph.add_polyline(&[Vector2::new(0.0, 0.0), Vector2::new(1.0, 0.0)], "axis");
-    crate::write_doc(out, "airfoil_curvature.svg", &graph.render())
+    crate::docs_output::write_doc(out, "airfoil_curvature.svg", &graph.render())
 }
 
 /// The pictures of the demo, for `cargo xtask docs`.

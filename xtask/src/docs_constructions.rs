@@ -204,8 +204,8 @@ fn swept() -> Result<String> {
 /// construction fails).
 pub(crate) fn render(root: &Path, out_dir: &Path) -> std::result::Result<(), String> {
     let failed = |e: Error| format!("docs_constructions: {e}");
-    crate::write_doc(out_dir, "wing.svg", &wing(root).map_err(failed)?)?;
-    crate::write_doc(out_dir, "coons.svg", &coons().map_err(failed)?)?;
-    crate::write_doc(out_dir, "sweep.svg", &swept().map_err(failed)?)?;
+    crate::docs_output::write_doc(out_dir, "wing.svg", &wing(root).map_err(failed)?)?;
+    crate::docs_output::write_doc(out_dir, "coons.svg", &coons().map_err(failed)?)?;
+    crate::docs_output::write_doc(out_dir, "sweep.svg", &swept().map_err(failed)?)?;
     Ok(())
 }

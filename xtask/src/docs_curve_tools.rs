@@ -62,7 +62,7 @@ pub(crate) fn render(out: &Path) -> Result<(), String> {
         }
     }
     plot.add_markers(&cusp_points, "inflection");
-    crate::write_doc(out, "offsets.svg", &plot.render())?;
+    crate::docs_output::write_doc(out, "offsets.svg", &plot.render())?;
 
     // Intersections of the wave with a loop, and the loop's self-intersection.
     let other = BSpline::from_knots(
@@ -91,7 +91,7 @@ pub(crate) fn render(out: &Path) -> Result<(), String> {
         &loops.points.iter().map(|h| h.point).collect::<Vec<_>>(),
         "extremum",
     );
-    crate::write_doc(out, "intersections.svg", &plot.render())?;
+    crate::docs_output::write_doc(out, "intersections.svg", &plot.render())?;
 
     // Noisy samples of sin(2πx) smoothed with λ by generalised cross-validation.
     let n = 120;
@@ -132,7 +132,7 @@ pub(crate) fn render(out: &Path) -> Result<(), String> {
         .map(|&u| Vector2::new(3.0 * u, (std::f64::consts::TAU * u).sin()))
         .collect();
     plot.add_polyline(&truth, "axis");
-    crate::write_doc(out, "smoothing_gcv.svg", &plot.render())?;
+    crate::docs_output::write_doc(out, "smoothing_gcv.svg", &plot.render())?;
     closed_contour(out)
 }
 
@@ -187,5 +187,5 @@ fn closed_contour(out: &Path) -> Result<(), String> {
     plot.add_markers(&points, "data");
     let extrema: Vec<Vector2<f64>> = smoothed.extrema.iter().map(|e| e.point).collect();
     plot.add_markers(&extrema, "extremum");
-    crate::write_doc(out, "closed_smoothing.svg", &plot.render())
+    crate::docs_output::write_doc(out, "closed_smoothing.svg", &plot.render())
 }

@@ -8,7 +8,7 @@ use spline::io::svg::SvgPlot;
 use std::path::Path;
 
 fn write(out: &Path, name: &str, plot: &SvgPlot) -> Result<(), String> {
-    crate::write_doc(out, name, &plot.render())
+    crate::docs_output::write_doc(out, name, &plot.render())
 }
 
 fn seed_curve() -> Curve2 {

@@ -34,7 +34,7 @@ pub(crate) fn render(out_dir: &Path) -> std::result::Result<(), String> {
         &view,
         &overlays,
     );
-    crate::write_doc(out_dir, "ellipsoid_ridges.svg", &svg)?;
+    crate::docs_output::write_doc(out_dir, "ellipsoid_ridges.svg", &svg)?;
 
     let spheroid = sphere.map_control_points(|p| Vector3::new(1.5 * p.x, 1.5 * p.y, p.z));
     let found = umbilics(&spheroid).map_err(failed)?;
@@ -57,6 +57,6 @@ pub(crate) fn render(out_dir: &Path) -> std::result::Result<(), String> {
         &view,
         &overlays,
     );
-    crate::write_doc(out_dir, "spheroid_umbilics.svg", &svg)?;
+    crate::docs_output::write_doc(out_dir, "spheroid_umbilics.svg", &svg)?;
     Ok(())
 }

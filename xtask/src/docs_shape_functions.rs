@@ -328,7 +328,7 @@ fn surface_pictures(out_dir: &Path) -> std::result::Result<(), String> {
             ],
         )
         .map_err(failed)?;
-        crate::write_doc(out_dir, &format!("shape_{file}.svg"), &maps)?;
+        crate::docs_output::write_doc(out_dir, &format!("shape_{file}.svg"), &maps)?;
         if file != "5_5_2" {
             let (along_u, what) = if file == "5_6" {
                 (true, "u ↦ s(u, v) for v = 0, 2π/3, …, 4π (convex)")
@@ -337,7 +337,7 @@ fn surface_pictures(out_dir: &Path) -> std::result::Result<(), String> {
             };
             let iso = iso_curves(title, &format!("iso-curves {what}"), &fit.surface, along_u)
                 .map_err(failed)?;
-            crate::write_doc(out_dir, &format!("shape_{file}_iso.svg"), &iso)?;
+            crate::docs_output::write_doc(out_dir, &format!("shape_{file}_iso.svg"), &iso)?;
         }
     }
     Ok(())
@@ -357,7 +357,7 @@ pub(crate) fn render(out_dir: &Path) -> std::result::Result<(), String> {
     for e in &experiments() {
         for n in [11, 200] {
             let svg = function_picture(e, n).map_err(failed)?;
-            crate::write_doc(out_dir, &format!("shape_{}_{n}.svg", e.file), &svg)?;
+            crate::docs_output::write_doc(out_dir, &format!("shape_{}_{n}.svg", e.file), &svg)?;
         }
     }
     surface_pictures(out_dir)

@@ -62,7 +62,7 @@ pub(crate) fn render(out_dir: &Path) -> std::result::Result<(), String> {
     };
     let (svg, n, _) = picture(&torus, (48, 64), &view).map_err(failed)?;
     assert_eq!(n, 2, "the torus has two parabolic circles");
-    crate::write_doc(out_dir, "torus_parabolic.svg", &svg)?;
+    crate::docs_output::write_doc(out_dir, "torus_parabolic.svg", &svg)?;
 
     let sphere = NurbsSurface::sphere(Vector3::zeros(), 1.0).map_err(failed)?;
     let ellipsoid = sphere.map_control_points(|p| Vector3::new(1.5 * p.x, 2.0 * p.y, p.z));
@@ -76,7 +76,7 @@ pub(crate) fn render(out_dir: &Path) -> std::result::Result<(), String> {
     };
     let (svg, _, u) = picture(&ellipsoid, (48, 64), &view).map_err(failed)?;
     assert_eq!(u, 4, "the ellipsoid has four umbilics");
-    crate::write_doc(out_dir, "ellipsoid_umbilics.svg", &svg)?;
+    crate::docs_output::write_doc(out_dir, "ellipsoid_umbilics.svg", &svg)?;
 
     // A bell-like meridian with a wiggle: three parabolic circles, one wanted.
     let z: Vec<f64> = (0..=24).map(|k| f64::from(k) / 24.0).collect();
@@ -96,7 +96,7 @@ pub(crate) fn render(out_dir: &Path) -> std::result::Result<(), String> {
     let n = parabolic_lines(&before, 16).map_err(failed)?.curves.len();
     let title = format!("Surface of revolution: {n} parabolic circles (one wanted)");
     let (svg, _, _) = picture(&before, (64, 48), &view(title)).map_err(failed)?;
-    crate::write_doc(out_dir, "bell_before.svg", &svg)?;
+    crate::docs_output::write_doc(out_dir, "bell_before.svg", &svg)?;
     let one = ParabolicCircles {
         first: Sign::NonPositive,
         allowed: vec![(0.25, 0.45)],
@@ -109,6 +109,6 @@ pub(crate) fn render(out_dir: &Path) -> std::result::Result<(), String> {
     );
     let (svg, n, _) = picture(&after, (64, 48), &view(title)).map_err(failed)?;
     assert_eq!(n, 1, "one parabolic circle after the control");
-    crate::write_doc(out_dir, "bell_after.svg", &svg)?;
+    crate::docs_output::write_doc(out_dir, "bell_after.svg", &svg)?;
     Ok(())
 }

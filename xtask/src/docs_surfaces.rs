@@ -80,20 +80,20 @@ pub(crate) fn render(out_dir: &Path) -> std::result::Result<(), String> {
         "Full circle: 9 control points on a square, knots (6.9), weights (6.10)",
     )
     .map_err(failed)?;
-    crate::write_doc(out_dir, "circle_square.svg", &square)?;
+    crate::docs_output::write_doc(out_dir, "circle_square.svg", &square)?;
     let triangle = circle_picture(
         CircleConstruction::Triangle,
         "Full circle: 7 control points on a triangle, weights [1, 1/2, 1, 1/2, 1, 1/2, 1]",
     )
     .map_err(failed)?;
-    crate::write_doc(out_dir, "circle_triangle.svg", &triangle)?;
-    crate::write_doc(out_dir, "conics.svg", &conics_picture().map_err(failed)?)?;
+    crate::docs_output::write_doc(out_dir, "circle_triangle.svg", &triangle)?;
+    crate::docs_output::write_doc(out_dir, "conics.svg", &conics_picture().map_err(failed)?)?;
     let sphere = NurbsSurface::sphere(Vector3::zeros(), 1.0).map_err(failed)?;
     let view = MeshView {
         title: Some("NURBS sphere (6.13)-(6.14): 5 x 9 control points, 24 x 48 mesh".into()),
         ..MeshView::default()
     };
-    crate::write_doc(
+    crate::docs_output::write_doc(
         out_dir,
         "sphere.svg",
         &mesh_picture(&sphere, (24, 48), &view).map_err(failed)?,
@@ -105,7 +105,7 @@ pub(crate) fn render(out_dir: &Path) -> std::result::Result<(), String> {
         title: Some("NURBS torus: 9 x 9 control points, 24 x 64 mesh".into()),
         ..MeshView::default()
     };
-    crate::write_doc(
+    crate::docs_output::write_doc(
         out_dir,
         "torus.svg",
         &mesh_picture(&torus, (24, 64), &view).map_err(failed)?,

@@ -50,6 +50,7 @@ mod demo;
 mod docs_constructions;
 mod docs_curve_tools;
 mod docs_curves;
+mod docs_output;
 mod docs_ridges;
 mod docs_shape_functions;
 mod docs_studio;
@@ -73,12 +74,6 @@ fn repo_root() -> PathBuf {
         .parent()
         .expect("xtask lives in the repository")
         .to_path_buf()
-}
-
-/// Writes one generated document into `out_dir`.
-pub(crate) fn write_doc(out_dir: &Path, name: &str, text: &str) -> Result<(), String> {
-    let path = out_dir.join(name);
-    std::fs::write(&path, text).map_err(|e| format!("cannot write {}: {e}", path.display()))
 }
 
 fn run_ci(root: &Path) -> Result<(), String> {

@@ -129,15 +129,7 @@ impl<T: Scalar> PlanarInvariants<T> {
             .with_value(d as f64)
             .with_interval(2.0, f64::INFINITY));
         }
-        if 4 * d - 6 > spline_core::MAX_DEGREE {
-            return Err(Error::new(
-                ErrorKind::DegreeTooHigh,
-                format!(
-                    "g of a degree-{d} curve has degree {}, above the supported maximum",
-                    4 * d - 6
-                ),
-            ));
-        }
+        check_extremum_numerator_degree(d)?;
         let n = knots.num_basis();
         let breakpoints = knots.domain_breaks();
         let segments = breakpoints.len() - 1;
@@ -452,4 +444,22 @@ impl<T: Scalar> PlanarInvariants<T> {
             Form::BSpline => h.then(self.g_removal.matrix())?,
         })
     }
+}
+
+/// [`ErrorKind::DegreeTooHigh`] when the curvature-extremum numerator `g` of a degree-`d`
+/// planar curve (degree `4d − 6`) is above [`spline_core::MAX_DEGREE`].
+pub(crate) fn check_extremum_numerator_degree(d: usize) -> Result<()> {
+    let degree = (4 * d).saturating_sub(6);
+    if degree > spline_core::MAX_DEGREE {
+        return Err(Error::new(
+            ErrorKind::DegreeTooHigh,
+            format!(
+                "g of a degree-{d} curve has degree {degree}, above the supported maximum {}",
+                spline_core::MAX_DEGREE
+            ),
+        )
+        .with_value(degree as f64)
+        .with_interval(0.0, spline_core::MAX_DEGREE as f64));
+    }
+    Ok(())
 }

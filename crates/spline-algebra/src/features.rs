@@ -33,6 +33,28 @@ pub trait CurveFeatures<T: Scalar> {
     fn features(&self, accuracy: T) -> Result<PlanarFeatures<T>>;
 }
 
+/// The default accuracy of curve features relative to the width of the domain: the
+/// front ends (tool, studio, Python) locate features to this fraction of `b − a`
+/// ([`default_feature_accuracy`]).
+pub const RELATIVE_FEATURE_ACCURACY: f64 = 1e-12;
+
+/// The default absolute accuracy of the features of a curve on the domain `(a, b)`:
+/// [`RELATIVE_FEATURE_ACCURACY`] of its width (of 1 where the width is not positive, so that
+/// the accuracy is always valid).
+///
+/// ```
+/// let accuracy = spline_algebra::default_feature_accuracy((2.0f64, 6.0));
+/// assert_eq!(accuracy, 4e-12);
+/// ```
+pub fn default_feature_accuracy<T: Scalar>((a, b): (T, T)) -> T {
+    let width = b - a;
+    if width > T::zero() {
+        cast::<T>(RELATIVE_FEATURE_ACCURACY) * width
+    } else {
+        cast::<T>(RELATIVE_FEATURE_ACCURACY)
+    }
+}
+
 /// The inflections and curvature extrema of a regular planar curve of any kind
 /// ([`CurveFeatures`]) of degree at least 2, located to `accuracy` (absolute, in parameter
 /// units) by [`crate::zeros`]:

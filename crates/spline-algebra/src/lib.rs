@@ -97,14 +97,15 @@ mod zero_set;
 pub use bilinear::SparseBilinear;
 pub use bounds::tight_box;
 pub use curve_intersection::{
-    CurveIntersection, CurveIntersections, CurveOverlap, MAX_INTERSECTION_PAIRS, TANGENTIAL_SINE,
-    intersect_curves, intersect_curves_relative, planar_extent, self_intersections,
-    self_intersections_relative,
+    CurveEvent, CurveIntersection, CurveIntersections, CurveOverlap, DEFAULT_RELATIVE_CONTACT,
+    MAX_INTERSECTION_PAIRS, TANGENTIAL_SINE, intersect_curves, intersect_curves_relative,
+    planar_extent, self_intersections, self_intersections_relative,
 };
 pub use curves::{Differentiated, Form, Invariant, PlanarInvariants};
 pub use features::{
-    CurveFeatures, PlanarFeatures, RationalNumerators, curvature_extrema, inflections,
-    planar_features, rational_planar_hessians, rational_planar_numerators,
+    CurveFeatures, PlanarFeatures, RELATIVE_FEATURE_ACCURACY, RationalNumerators,
+    curvature_extrema, default_feature_accuracy, inflections, planar_features,
+    rational_planar_hessians, rational_planar_numerators,
 };
 pub use maps::SplineMap;
 pub use nalgebra_sparse::CsrMatrix;
@@ -129,7 +130,8 @@ pub use space::{
 };
 pub use sparse::kron;
 pub use surface_features::{
-    SurfaceFeatureLines, SurfaceFeatures, surface_feature_lines, surface_features,
+    FunctionFeatures, LiftedPolyline, SurfaceFeatureLines, SurfaceFeatures, function_features,
+    on_graph, on_surface, surface_feature_lines, surface_features,
 };
 pub use surface_numerators::{
     CurvatureNumerators, NumeratorJacobians, curvature_numerators,

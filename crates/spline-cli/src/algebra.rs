@@ -4,7 +4,7 @@ use crate::io;
 use crate::objects::{Object, read_object};
 use clap::Args;
 use serde_json::{Value, json};
-use spline_algebra::{CsrMatrix, ProductMap};
+use spline_algebra::{CsrMatrix, product_with_jacobians};
 use spline_core::{Error, ErrorKind, Result};
 use spline_geom::BSpline;
 use spline_io::exchange::CurveRecord;
@@ -58,18 +58,16 @@ fn matrix_json(m: &CsrMatrix<f64>) -> Value {
 pub fn product(args: &ProductArgs) -> Result<()> {
     let a = read_function(&args.a)?;
     let b = read_function(&args.b)?;
-    let map = ProductMap::new(a.knots(), b.knots())?;
-    let c = map.product(&a, &b)?;
-    let record = CurveRecord::from_bspline(&c);
     if args.jacobian {
-        let ja = map.jacobian_left(b.control_points())?;
-        let jb = map.jacobian_right(a.control_points())?;
+        let c = product_with_jacobians(&a, &b)?;
         io::print_json(&json!({
-            "product": record,
-            "jacobian_a": matrix_json(&ja),
-            "jacobian_b": matrix_json(&jb),
+            "product": CurveRecord::from_bspline(&c.product),
+            "jacobian_a": matrix_json(&c.jacobian_a),
+            "jacobian_b": matrix_json(&c.jacobian_b),
         }))
     } else {
-        io::print_json(&record)
+        io::print_json(&CurveRecord::from_bspline(&spline_algebra::product(
+            &a, &b,
+        )?))
     }
 }

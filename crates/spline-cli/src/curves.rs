@@ -11,8 +11,8 @@ use clap::Args;
 use nalgebra::{SVector, Vector3};
 use serde_json::{Value, json};
 use spline_algebra::{
-    CurveIntersections, intersect_curves, intersect_curves_relative, self_intersections,
-    self_intersections_relative,
+    CurveEvent, CurveIntersections, DEFAULT_RELATIVE_CONTACT, intersect_curves,
+    intersect_curves_relative, self_intersections, self_intersections_relative,
 };
 use spline_core::{Error, ErrorKind, Result};
 use spline_fit::{
@@ -105,26 +105,19 @@ pub struct SmoothingArgs {
     degree: usize,
 }
 
-/// The points, then the overlaps (`"overlap": true`, intervals on both curves), in one
-/// array sorted by `u` (an overlap by the start of its interval).
+/// The points and the overlaps (`"overlap": true`, intervals on both curves), in one array
+/// in the library's order ([`CurveIntersections::events`]).
 fn hits_json(hits: &CurveIntersections<f64>) -> Value {
-    let mut out: Vec<(f64, Value)> = hits
-        .points
-        .iter()
-        .map(|h| {
-            let value = json!({"u": h.u, "v": h.v, "point": [h.point.x, h.point.y],
-                               "tangential": h.tangential, "gap": h.gap});
-            (h.u, value)
-        })
-        .collect();
-    out.extend(hits.overlaps.iter().map(|o| {
-        let (p, q) = o.points;
-        let value = json!({"overlap": true, "u": [o.u.0, o.u.1], "v": [o.v.0, o.v.1],
-                           "reversed": o.reversed, "points": [[p.x, p.y], [q.x, q.y]]});
-        (o.u.0, value)
-    }));
-    out.sort_by(|x, y| x.0.total_cmp(&y.0));
-    Value::Array(out.into_iter().map(|(_, v)| v).collect())
+    let events = hits.events().into_iter().map(|event| match event {
+        CurveEvent::Point(h) => json!({"u": h.u, "v": h.v, "point": [h.point.x, h.point.y],
+                                       "tangential": h.tangential, "gap": h.gap}),
+        CurveEvent::Overlap(o) => {
+            let (p, q) = o.points;
+            json!({"overlap": true, "u": [o.u.0, o.u.1], "v": [o.v.0, o.v.1],
+                   "reversed": o.reversed, "points": [[p.x, p.y], [q.x, q.y]]})
+        }
+    });
+    Value::Array(events.collect())
 }
 
 /// A contact tolerance as given (`--tolerance`, absolute) or by default (relative to size).
@@ -150,7 +143,7 @@ fn pair<A: PlanarCurve<f64>>(
 /// Curve–curve intersections for `spline intersect A [B]` (the command lives with the
 /// surface intersections, which dispatch here when neither object is a surface): all
 /// intersections of two planar curves, or the self-intersections of one, at the contact
-/// tolerance `tolerance` (default [`CURVE_CONTACT_TOLERANCE`]).
+/// tolerance `tolerance` (default [`DEFAULT_RELATIVE_CONTACT`], relative to their size).
 /// The objects are read once by the caller (a path `-` is standard input, which can be read
 /// only once); `a` and `b` pair each with the path it came from, for messages.
 pub fn intersect_curve_objects(
@@ -161,7 +154,7 @@ pub fn intersect_curve_objects(
     // Without --tolerance: relative to the curves' size (the same answer at every scale).
     let contact = match tolerance {
         Some(t) => Contact::Absolute(t),
-        None => Contact::Relative(CURVE_CONTACT_TOLERANCE),
+        None => Contact::Relative(DEFAULT_RELATIVE_CONTACT),
     };
     let first = planar_of(a.0, a.1, "intersect")?;
     let hits = match b {
@@ -181,10 +174,6 @@ pub fn intersect_curve_objects(
     };
     print_json(&hits_json(&hits))
 }
-
-/// The distance under which two curves touch, relative to their size (the larger side of
-/// the box of their control points), unless `--tolerance` gives an absolute one.
-pub const CURVE_CONTACT_TOLERANCE: f64 = 1e-9;
 
 /// `spline offset CURVE --distance D [--direction X,Y,Z]`: one call of
 /// `spline_shape::offset_planar_curve` (planar curves) or `offset_space_curve` (3-D curves,

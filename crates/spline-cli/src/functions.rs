@@ -80,8 +80,17 @@ pub struct NdEvalArgs {
     nu: Option<String>,
     /// Outside the base box: continue the end pieces (on, the default), or refuse points
     /// there (off).
-    #[arg(long, value_enum, default_value_t = Mode::On)]
-    extrapolate: Mode,
+    #[arg(long, value_enum, default_value_t = NdMode::On)]
+    extrapolate: NdMode,
+}
+
+/// scipy's `NdBSpline(extrapolate=…)`: a flag (no periodic mode).
+#[derive(Clone, Copy, Debug, ValueEnum)]
+pub enum NdMode {
+    /// The end pieces' polynomials continue outside the base box.
+    On,
+    /// Points outside the base box are refused.
+    Off,
 }
 
 #[derive(Args)]
@@ -209,7 +218,7 @@ pub fn nd_eval(args: &NdEvalArgs) -> Result<()> {
         None => vec![0; d],
     };
     let flat: Vec<f64> = points.concat();
-    let extrapolate = !matches!(args.extrapolate, Mode::Off);
+    let extrapolate = matches!(args.extrapolate, NdMode::On);
     let mut out = vec![0.0; points.len() * s.columns()];
     let nan = s.eval_into(&flat, &nu, extrapolate, &mut out)?;
     if nan > 0 {

@@ -8,13 +8,12 @@ use crate::structural::ObjectArgs;
 use clap::Args;
 use nalgebra::{Vector2, Vector3};
 use serde_json::json;
-use spline_algebra::{CurveFeatures, PlanarFeatures, SpaceCurveFeatures, SpaceFeatures};
+use spline_algebra::{
+    CurveFeatures, PlanarFeatures, SpaceCurveFeatures, SpaceFeatures, default_feature_accuracy,
+};
 use spline_core::{Error, ErrorKind, Result};
 use spline_geom::{BSpline, NurbsCurve, ParamCurve, PlanarCurve};
 use spline_io::svg::SvgPlot;
-
-/// Root accuracy of `features`, relative to the length of the domain.
-const RELATIVE_ACCURACY: f64 = 1e-12;
 
 #[derive(Args)]
 pub struct PlotArgs {
@@ -77,10 +76,9 @@ pub fn planar_of(object: Object, path: &str, what: &str) -> Result<Planar> {
     }
 }
 
-/// Inflections and curvature extrema, located to `1e-12` times the domain length.
+/// Inflections and curvature extrema, located to the library's default accuracy.
 fn features_of<C: PlanarCurve<f64> + CurveFeatures<f64>>(curve: &C) -> Result<PlanarFeatures<f64>> {
-    let (a, b) = curve.domain();
-    curve.features(RELATIVE_ACCURACY * (b - a))
+    curve.features(default_feature_accuracy(curve.domain()))
 }
 
 fn draw<C: PlanarCurve<f64> + CurveFeatures<f64>>(
@@ -185,11 +183,10 @@ pub fn features(args: &ObjectArgs) -> Result<()> {
     io::print_json(&out)
 }
 
-/// Curvature extrema and torsion zeros of a 3-D curve, located to `1e-12` times the domain
-/// length.
+/// Curvature extrema and torsion zeros of a 3-D curve, located to the library's default
+/// accuracy.
 fn space_features_of<C: ParamCurve<f64> + SpaceCurveFeatures<f64>>(
     curve: &C,
 ) -> Result<SpaceFeatures<f64>> {
-    let (a, b) = curve.domain();
-    curve.space_features(RELATIVE_ACCURACY * (b - a))
+    curve.space_features(default_feature_accuracy(curve.domain()))
 }

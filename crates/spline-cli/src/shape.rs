@@ -11,8 +11,8 @@ use spline_core::{Error, ErrorKind, Result};
 use spline_io::airfoil::parse_airfoil;
 use spline_io::exchange::CurveRecord;
 use spline_shape::{
-    AdaptiveOptions, Extremum, Objective, SmoothedCurve, SmoothingOptions,
-    optimise_perimeter_over_area, smooth as erase, smooth_fewest_extrema, smooth_to_tolerance,
+    AdaptiveOptions, ExtremaCount, OptionSpelling, SmoothRequest, SmoothSummary, SmoothWords,
+    SmoothedCurve, default_initial_shape, optimise_perimeter_over_area,
 };
 use std::io::IsTerminal;
 use std::path::{Path, PathBuf};
@@ -70,67 +70,30 @@ pub struct SmoothArgs {
     jobs: Option<usize>,
 }
 
-/// Whether the extrema are `auto`.
-fn auto_extrema(args: &SmoothArgs) -> bool {
-    args.curvature_extrema.as_deref().map(str::trim) == Some("auto")
-}
-
-fn options(args: &SmoothArgs) -> Result<SmoothingOptions> {
-    let auto = auto_extrema(args);
-    let control = match (args.control_points, args.max_deviation) {
-        (Some(n), None) => n,
-        (Some(n), Some(_)) if auto => n,
-        (None, Some(_)) if auto => {
-            return Err(Error::new(
-                ErrorKind::InvalidArgument,
-                "--curvature-extrema auto needs --control-points N",
-            ));
-        }
-        (None, Some(_)) => 0,
-        (None, None) => {
-            return Err(Error::new(
-                ErrorKind::InvalidArgument,
-                "give --control-points N or --max-deviation D",
-            ));
-        }
-        (Some(_), Some(_)) => {
-            return Err(Error::new(
-                ErrorKind::InvalidArgument,
-                "give --control-points N or --max-deviation D, not both (both only with --curvature-extrema auto)",
-            ));
-        }
+/// The request of the flags: the numbers and JSON parsed here, the rest checked by the
+/// library.
+fn request(args: &SmoothArgs) -> Result<SmoothRequest> {
+    let words = SmoothWords {
+        control_points: args.control_points,
+        max_deviation: args.max_deviation,
+        degree: args.degree,
+        curvature_extrema: args
+            .curvature_extrema
+            .as_deref()
+            .map(|text| match text.trim() {
+                "auto" => Ok(ExtremaCount::Auto),
+                _ => io::parse_arg("--curvature-extrema", text).map(ExtremaCount::Count),
+            }),
+        extrema: &args.extrema,
+        objective: &args.objective,
+        thorough: args.thorough,
+        closed: args.closed,
+        knot_exponents: args
+            .knot_exponents
+            .as_deref()
+            .map(|text| io::parse_arg("--knot-exponents", text)),
     };
-    let mut options = SmoothingOptions::new(control);
-    options.degree = args.degree;
-    options.thorough = args.thorough;
-    options.closed = args.closed;
-    if let Some(text) = &args.knot_exponents {
-        options.knot_exponents = io::parse_arg("--knot-exponents", text)?;
-    }
-    options.objective = args
-        .objective
-        .parse::<Objective>()
-        .map_err(|e| e.context("--objective"))?;
-    let given = args
-        .extrema
-        .iter()
-        .map(|t| t.parse::<Extremum>().map_err(|e| e.context("--extremum")))
-        .collect::<Result<_>>()?;
-    let count = match args.curvature_extrema.as_deref() {
-        Some(_) if auto => None,
-        Some(text) => Some(io::parse_arg::<usize>("--curvature-extrema", text)?),
-        None => None,
-    };
-    if auto && !args.extrema.is_empty() {
-        return Err(Error::new(
-            ErrorKind::InvalidArgument,
-            "--curvature-extrema auto chooses the extrema: give no --extremum",
-        ));
-    }
-    options
-        .request_extrema(count, given)
-        .map_err(|e| e.context("--curvature-extrema"))?;
-    Ok(options)
+    SmoothRequest::from_words(words, OptionSpelling::Flags)
 }
 
 /// Reads planar points: a JSON array of pairs, or an airfoil file.
@@ -156,28 +119,13 @@ fn read_planar(path: &str) -> Result<Vec<Vector2<f64>>> {
     }
 }
 
-fn run_one(
-    path: &str,
-    options: &SmoothingOptions,
-    tolerance: Option<f64>,
-    auto: bool,
-) -> Result<SmoothedCurve> {
-    let points = read_planar(path)?;
-    match tolerance {
-        _ if auto => smooth_fewest_extrema(&points, tolerance, options),
-        Some(d) => smooth_to_tolerance(&points, d, options),
-        None => erase(&points, options),
-    }
+fn run_one(path: &str, request: &SmoothRequest) -> Result<SmoothedCurve> {
+    request.run(&read_planar(path)?)
 }
 
 fn report(result: &SmoothedCurve) -> Value {
-    // A closed curve is written as its wrapped container (the same points on [0, 1]).
-    let curve = result
-        .periodic
-        .as_ref()
-        .map_or(&result.curve, |periodic| periodic.wrapped());
     let mut value = json!({
-        "curve": CurveRecord::from_bspline(curve),
+        "curve": CurveRecord::from_bspline(result.output_curve()),
         "closed": result.periodic.is_some(),
         "first_point": result.first_point,
         "max_deviation": result.deviation.to_curve.max,
@@ -191,10 +139,7 @@ fn report(result: &SmoothedCurve) -> Value {
             "kind": e.kind.to_string(),
         })).collect::<Vec<_>>(),
         "inflections": result.inflections,
-        "control_points": result
-            .periodic
-            .as_ref()
-            .map_or(result.curve.control_points().len(), spline_geom::PeriodicBSpline::len),
+        "control_points": result.control_point_count(),
         "degree": result.curve.degree(),
         "refinements": result.refinements,
         "conditions": result.conditions,
@@ -210,6 +155,25 @@ fn report(result: &SmoothedCurve) -> Value {
     value
 }
 
+/// The line of `summary.jsonl` of one input: the library's record, the input's name and the
+/// seconds it took.
+fn summary_line(name: &str, input: &str, summary: &SmoothSummary, seconds: f64) -> Value {
+    let mut line = json!({
+        "name": name,
+        "input": input,
+        "control_points": summary.control_points,
+        "max_deviation": summary.max_deviation,
+        "max_deviation_to_data": summary.max_deviation_to_data,
+        "extrema": summary.extrema,
+        "seconds": seconds,
+        "error": summary.error,
+    });
+    if !summary.warnings.is_empty() {
+        line["warnings"] = json!(summary.warnings);
+    }
+    line
+}
+
 /// The `.dat` files of a directory, sorted.
 fn dat_files(dir: &Path) -> Result<Vec<PathBuf>> {
     let entries = std::fs::read_dir(dir)
@@ -223,7 +187,7 @@ fn dat_files(dir: &Path) -> Result<Vec<PathBuf>> {
 }
 
 pub fn smooth(args: &SmoothArgs) -> Result<()> {
-    let options = options(args)?;
+    let request = request(args)?;
     let mut inputs: Vec<String> = Vec::new();
     let mut directory = false;
     for input in &args.inputs {
@@ -237,7 +201,7 @@ pub fn smooth(args: &SmoothArgs) -> Result<()> {
     }
     if inputs.len() == 1 && !directory && args.out.is_none() {
         io::check_stdout_open()?;
-        let result = run_one(&inputs[0], &options, args.max_deviation, auto_extrema(args))?;
+        let result = run_one(&inputs[0], &request)?;
         for warning in &result.warnings {
             eprintln!("spline: warning: {warning}");
         }
@@ -252,7 +216,7 @@ pub fn smooth(args: &SmoothArgs) -> Result<()> {
             ),
         ));
     };
-    batch(&inputs, Path::new(out), &options, args)
+    batch(&inputs, Path::new(out), &request, args.jobs)
 }
 
 /// The output name of each input: its file stem, made unique by `-2`, `-3`, … for inputs
@@ -282,15 +246,15 @@ fn unique_names(inputs: &[String]) -> Vec<String> {
 fn batch(
     inputs: &[String],
     out: &Path,
-    options: &SmoothingOptions,
-    args: &SmoothArgs,
+    request: &SmoothRequest,
+    jobs: Option<usize>,
 ) -> Result<()> {
     std::fs::create_dir_all(out)
         .map_err(|e| Error::io(format_args!("create {}", out.display()), e))?;
     let summary_path = out.join("summary.jsonl");
     let summary_name = summary_path.display().to_string();
     let summary_file = io::create_file(&summary_name)?;
-    let jobs = args.jobs.unwrap_or(0);
+    let jobs = jobs.unwrap_or(0);
     let pool = rayon::ThreadPoolBuilder::new()
         .num_threads(jobs)
         .build()
@@ -314,45 +278,17 @@ fn batch(
             .zip(names.par_iter())
             .map(|(input, name)| {
                 let t0 = Instant::now();
-                let auto = auto_extrema(args);
-                let outcome =
-                    run_one(input, options, args.max_deviation, auto).and_then(|result| {
-                        let mut value = report(&result);
-                        value["name"] = json!(name);
-                        let path = out.join(format!("{name}.json"));
-                        let shown = path.display().to_string();
-                        io::write_file(io::create_file(&shown)?, &shown, &io::encode(&value)?)?;
-                        Ok(result)
-                    });
+                let outcome = run_one(input, request).and_then(|result| {
+                    let mut value = report(&result);
+                    value["name"] = json!(name);
+                    let path = out.join(format!("{name}.json"));
+                    let shown = path.display().to_string();
+                    io::write_file(io::create_file(&shown)?, &shown, &io::encode(&value)?)?;
+                    Ok(result)
+                });
                 let seconds = t0.elapsed().as_secs_f64();
                 bar.inc(1);
-                let mut line = match &outcome {
-                    Ok(r) => json!({
-                        "name": name,
-                        "input": input,
-                        "control_points": r.curve.control_points().len(),
-                        "max_deviation": r.deviation.to_curve.max,
-                        "max_deviation_to_data": r.deviation.to_data,
-                        "extrema": r.extrema.len(),
-                        "seconds": seconds,
-                        "error": null,
-                    }),
-                    Err(e) => json!({
-                        "name": name,
-                        "input": input,
-                        "control_points": null,
-                        "max_deviation": null,
-                        "max_deviation_to_data": null,
-                        "extrema": null,
-                        "seconds": seconds,
-                        "error": e.to_string(),
-                    }),
-                };
-                if let Ok(r) = &outcome
-                    && !r.warnings.is_empty()
-                {
-                    line["warnings"] = json!(r.warnings);
-                }
+                let line = summary_line(name, input, &SmoothSummary::new(&outcome), seconds);
                 (line.to_string(), outcome.is_ok())
             })
             .collect()
@@ -397,7 +333,7 @@ pub struct OptimizeArgs {
     /// Sample points of the adaptive re-fit (N + 1).
     #[arg(long, default_value_t = 11)]
     samples: usize,
-    /// Iterations of optimisation and re-fit.
+    /// Iterations of optimisation and re-fit (1 to 1000).
     #[arg(long, default_value_t = 8)]
     iterations: usize,
     /// Nelder–Mead iterations per step, at most.
@@ -405,42 +341,12 @@ pub struct OptimizeArgs {
     simplex_iterations: u64,
 }
 
-/// The largest number of iterations `optimize` accepts.
-const MAX_OPTIMIZE_ITERATIONS: usize = 1000;
-
 /// Seed 000 §3: minimise J = P²/A by Nelder–Mead on the free ordinates, re-fitting the
 /// parametrisation between steps.
 pub fn optimize(args: &OptimizeArgs) -> Result<()> {
-    if args.iterations == 0 || args.iterations > MAX_OPTIMIZE_ITERATIONS {
-        return Err(Error::new(
-            ErrorKind::InvalidArgument,
-            format!(
-                "--iterations must be 1 to {MAX_OPTIMIZE_ITERATIONS}, got {}",
-                args.iterations
-            ),
-        )
-        .with_value(args.iterations as f64)
-        .with_interval(1.0, MAX_OPTIMIZE_ITERATIONS as f64));
-    }
-    if args.samples > 100_000 || args.control_points > 1000 || args.simplex_iterations > 10_000_000
-    {
-        return Err(Error::new(
-            ErrorKind::InvalidArgument,
-            "at most 100000 samples, 1000 control points and 10000000 simplex iterations",
-        ));
-    }
     let initial = match &args.initial {
         Some(path) => read_planar(path)?,
-        None => (0..41)
-            .map(|i| {
-                let t = std::f64::consts::PI * f64::from(i) / 40.0;
-                if i == 40 {
-                    Vector2::new(1.0, 0.0)
-                } else {
-                    Vector2::new(0.5 - 0.5 * t.cos(), 0.3 * t.sin())
-                }
-            })
-            .collect(),
+        None => default_initial_shape(),
     };
     let options = AdaptiveOptions {
         degree: args.degree,

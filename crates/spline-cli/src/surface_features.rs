@@ -8,9 +8,9 @@ use crate::io;
 use crate::objects::{Object, read_object, surface3};
 use clap::Args;
 use serde_json::{Value, json};
-use spline_algebra::ZeroSet;
+use spline_algebra::{FunctionFeatures, LiftedPolyline, on_graph, on_surface};
 use spline_core::Result;
-use spline_geom::{NurbsSurface, Surface};
+use spline_geom::Surface;
 
 /// Curves of curvature features of a surface.
 #[derive(Args)]
@@ -24,16 +24,16 @@ pub struct SurfaceFeaturesArgs {
     samples: usize,
 }
 
-/// The polylines of a zero set in `(u, v)` and on the surface.
-pub fn polylines(surface: &NurbsSurface<f64, 3>, set: &ZeroSet) -> Result<Vec<Value>> {
-    set.curves
+/// Lifted polylines as `{"uv", "points"}` (and the colour of a ridge).
+fn polylines(lines: &[LiftedPolyline], colour: Option<&str>) -> Vec<Value> {
+    lines
         .iter()
-        .map(|uv| {
-            let points = uv
-                .iter()
-                .map(|p| surface.eval(p[0], p[1]).map(|x| [x.x, x.y, x.z]))
-                .collect::<Result<Vec<_>>>()?;
-            Ok(json!({"uv": uv, "points": points}))
+        .map(|line| {
+            let points: Vec<[f64; 3]> = line.points.iter().map(|p| [p.x, p.y, p.z]).collect();
+            match colour {
+                Some(colour) => json!({"colour": colour, "uv": line.uv, "points": points}),
+                None => json!({"uv": line.uv, "points": points}),
+            }
         })
         .collect()
 }
@@ -57,37 +57,32 @@ pub fn surface_features(args: &SurfaceFeaturesArgs) -> Result<()> {
         ridges,
     } = spline_algebra::surface_features(&surface, args.samples)
         .map_err(|e| e.context(&args.surface))?;
-    let pole = |p: &[f64; 2], on_line: bool| -> Result<Value> {
-        let x = surface.eval(p[0], p[1])?;
-        Ok(json!({"uv": p, "point": [x.x, x.y, x.z], "singular_line": on_line}))
-    };
     let mut points = Vec::new();
-    for p in &umbilics.points {
-        points.push(pole(p, false)?);
-    }
-    for p in &umbilics.poles {
-        points.push(pole(p, true)?);
-    }
-    let mut coloured = Vec::new();
-    let mut constant = Vec::new();
-    for (colour, lines, regions) in [
-        ("red", &ridges.red, &ridges.red_constant),
-        ("blue", &ridges.blue, &ridges.blue_constant),
-    ] {
-        let set = ZeroSet {
-            curves: lines.clone(),
-            ..ZeroSet::default()
-        };
-        for mut line in polylines(&surface, &set)? {
-            line["colour"] = json!(colour);
-            coloured.push(line);
-        }
-        for r in regions {
-            constant.push(json!({"colour": colour, "uv": r}));
+    for (uvs, on_line) in [(&umbilics.points, false), (&umbilics.poles, true)] {
+        for line in on_surface(&surface, std::slice::from_ref(uvs))? {
+            for (p, x) in line.uv.iter().zip(&line.points) {
+                points.push(json!({"uv": p, "point": [x.x, x.y, x.z], "singular_line": on_line}));
+            }
         }
     }
+    let mut coloured = polylines(&on_surface(&surface, &ridges.red)?, Some("red"));
+    coloured.extend(polylines(
+        &on_surface(&surface, &ridges.blue)?,
+        Some("blue"),
+    ));
+    let constant: Vec<Value> = [
+        ("red", &ridges.red_constant),
+        ("blue", &ridges.blue_constant),
+    ]
+    .into_iter()
+    .flat_map(|(colour, regions)| {
+        regions
+            .iter()
+            .map(move |r| json!({"colour": colour, "uv": r}))
+    })
+    .collect();
     io::print_json(&json!({
-        "parabolic_lines": polylines(&surface, &set)?,
+        "parabolic_lines": polylines(&on_surface(&surface, &set.curves)?, None),
         "parabolic_regions": set.regions,
         "singular_points": set.singular,
         "umbilics": points,
@@ -102,27 +97,14 @@ pub fn surface_features(args: &SurfaceFeaturesArgs) -> Result<()> {
 /// parabolic lines are the zeros of the Hessian determinant `s_uu s_vv − s_uv²` (whose sign
 /// is the sign of K), its ridges those of thesis §5.7 ([`spline_algebra::ridges`]).
 fn function_features(s: &Surface<f64, f64>, args: &SurfaceFeaturesArgs) -> Result<()> {
-    let context = |e: spline_core::Error| e.context(&args.surface);
-    let graph = |uv: &[[f64; 2]]| -> Result<Value> {
-        let points = uv
-            .iter()
-            .map(|p| s.eval(p[0], p[1]).map(|z| [p[0], p[1], z]))
-            .collect::<Result<Vec<_>>>()?;
-        Ok(json!({"uv": uv, "points": points}))
-    };
-    let det = spline_algebra::hessian_determinant(s).map_err(context)?;
-    let set = spline_algebra::zero_set(&det.value, args.samples).map_err(context)?;
-    let ridges = spline_algebra::ridges(s, args.samples).map_err(context)?;
-    let mut coloured = Vec::new();
-    for (colour, lines) in [("red", &ridges.red), ("blue", &ridges.blue)] {
-        for line in lines {
-            let mut value = graph(line)?;
-            value["colour"] = json!(colour);
-            coloured.push(value);
-        }
-    }
+    let FunctionFeatures {
+        parabolic_lines: set,
+        ridges,
+    } = spline_algebra::function_features(s, args.samples).map_err(|e| e.context(&args.surface))?;
+    let mut coloured = polylines(&on_graph(s, &ridges.red)?, Some("red"));
+    coloured.extend(polylines(&on_graph(s, &ridges.blue)?, Some("blue")));
     io::print_json(&json!({
-        "parabolic_lines": set.curves.iter().map(|c| graph(c)).collect::<Result<Vec<_>>>()?,
+        "parabolic_lines": polylines(&on_graph(s, &set.curves)?, None),
         "parabolic_regions": set.regions,
         "singular_points": set.singular,
         "ridges": coloured,

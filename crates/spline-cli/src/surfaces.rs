@@ -8,9 +8,9 @@ use nalgebra::Vector3;
 use serde_json::json;
 use spline_core::{Error, ErrorKind, Result};
 use spline_fit::{
-    ScatteredOptions, SurfaceProjector, Tolerances, closest_point, fit_scattered, gordon,
-    intersect_curve_surface_with_overlaps, intersect_surfaces_as_splines, skin, skin_rational,
-    sweep,
+    CurveSurfaceEvent, ScatteredOptions, SurfaceProjector, Tolerances, closest_point,
+    fit_scattered, gordon, intersect_curve_surface_with_overlaps, intersect_surfaces_as_splines,
+    skin, skin_rational, sweep,
 };
 use spline_geom::{NurbsCurve, NurbsSurface, ParamCurve, ParamSurface, Surface};
 
@@ -133,7 +133,7 @@ fn spatial_surface(object: &Object, path: &str) -> Result<Option<Spatial>> {
 
 /// Dispatches on the kinds of the objects: curve–surface (either order) and
 /// surface–surface here; curve–curve and self-intersections (no surface) go to
-/// [`crate::curves::intersect_curve_files`].
+/// [`crate::curves::intersect_curve_objects`].
 ///
 /// # Errors
 /// Unreadable objects, objects not in space, bad tolerances.
@@ -193,23 +193,18 @@ fn curve_surface(
         Spatial::Plain(s) => intersect_curve_surface_with_overlaps(&c3, s, t)?,
         Spatial::Rational(s) => intersect_curve_surface_with_overlaps(&c3, s, t)?,
     };
-    // Points, then arcs of the curve in the surface, sorted by (the start of) t.
-    let mut out: Vec<(f64, serde_json::Value)> = found
-        .points
-        .iter()
-        .map(|h| (h.t, json!({"t": h.t, "u": h.u, "v": h.v, "point": [h.point.x, h.point.y, h.point.z], "tangential": h.tangential})))
-        .collect();
-    out.extend(found.overlaps.iter().map(|o| {
-        let (p, q) = o.points;
-        let ((u0, v0), (u1, v1)) = o.uv;
-        (
-            o.t.0,
+    // Points and arcs of the curve in the surface, in the library's order.
+    let events = found.events().into_iter().map(|event| match event {
+        CurveSurfaceEvent::Point(h) => json!({"t": h.t, "u": h.u, "v": h.v,
+            "point": [h.point.x, h.point.y, h.point.z], "tangential": h.tangential}),
+        CurveSurfaceEvent::Overlap(o) => {
+            let (p, q) = o.points;
+            let ((u0, v0), (u1, v1)) = o.uv;
             json!({"overlap": true, "t": [o.t.0, o.t.1], "uv": [[u0, v0], [u1, v1]],
-                       "points": [[p.x, p.y, p.z], [q.x, q.y, q.z]]}),
-        )
-    }));
-    out.sort_by(|x, y| x.0.total_cmp(&y.0));
-    Ok(out.into_iter().map(|(_, v)| v).collect())
+                   "points": [[p.x, p.y, p.z], [q.x, q.y, q.z]]})
+        }
+    });
+    Ok(events.collect())
 }
 
 fn surface_surface(a: &Spatial, b: &Spatial, t: &Tolerances<f64>) -> Result<serde_json::Value> {
@@ -250,9 +245,13 @@ fn surface_surface(a: &Spatial, b: &Spatial, t: &Tolerances<f64>) -> Result<serd
         .map(serde_json::Value::Array)
 }
 
-/// Curves of the same dimension, all polynomial (for the constructions that combine
-/// control points linearly).
-fn polynomial_curves(paths: &[String], what: &str) -> Result<(Vec<Curve>, usize)> {
+/// The curves of these files, all of the first one's dimension (and polynomial when
+/// `require_polynomial`: for the constructions that combine control points linearly).
+fn curves_of_one_dimension(
+    paths: &[String],
+    what: &str,
+    require_polynomial: bool,
+) -> Result<(Vec<AnyCurve>, usize)> {
     let curves: Vec<AnyCurve> = paths.iter().map(|p| read_curve(p)).collect::<Result<_>>()?;
     let dim = curves.first().map_or(0, |c| c.curve.dim);
     for (c, path) in curves.iter().zip(paths) {
@@ -265,13 +264,20 @@ fn polynomial_curves(paths: &[String], what: &str) -> Result<(Vec<Curve>, usize)
                 ),
             ));
         }
-        if c.rational {
+        if require_polynomial && c.rational {
             return Err(Error::new(
                 ErrorKind::Unsupported,
                 format!("{path}: a rational curve; {what}s must be B-spline curves"),
             ));
         }
     }
+    Ok((curves, dim))
+}
+
+/// Curves of the same dimension, all polynomial (for the constructions that combine
+/// control points linearly).
+fn polynomial_curves(paths: &[String], what: &str) -> Result<(Vec<Curve>, usize)> {
+    let (curves, dim) = curves_of_one_dimension(paths, what, true)?;
     Ok((curves.iter().map(AnyCurve::polynomial).collect(), dim))
 }
 
@@ -289,17 +295,7 @@ pub fn make_skin(paths: &[String], degree: usize) -> Result<Json> {
             ),
         ));
     }
-    let curves: Vec<AnyCurve> = paths.iter().map(|p| read_curve(p)).collect::<Result<_>>()?;
-    let dim = curves[0].curve.dim;
-    if let Some(k) = curves.iter().position(|c| c.curve.dim != dim) {
-        return Err(Error::new(
-            ErrorKind::DimensionMismatch,
-            format!(
-                "{}: {} coordinates, the first section has {dim}",
-                paths[k], curves[k].curve.dim
-            ),
-        ));
-    }
+    let (curves, dim) = curves_of_one_dimension(paths, "section", false)?;
     let (surface, params) = if curves.iter().any(|c| c.rational) {
         let sections: Vec<_> = curves.iter().map(|c| c.curve.value.clone()).collect();
         let skinned = skin_rational(&sections, degree, None)?;
@@ -339,24 +335,14 @@ pub fn make_coons(paths: &[String]) -> Result<Json> {
         )
         .with_counts(4, paths.len()));
     }
-    let curves: Vec<AnyCurve> = paths.iter().map(|p| read_curve(p)).collect::<Result<_>>()?;
+    let (curves, dim) = curves_of_one_dimension(paths, "boundary curve", false)?;
     if !curves.iter().any(|c| c.rational) {
-        let (c, dim) = polynomial_curves(paths, "boundary curve")?;
+        let c: Vec<Curve> = curves.iter().map(AnyCurve::polynomial).collect();
         return Sized {
             value: Surface::coons(&c[0], &c[1], &c[2], &c[3])?,
             dim,
         }
         .json();
-    }
-    let dim = curves[0].curve.dim;
-    if let Some(k) = curves.iter().position(|c| c.curve.dim != dim) {
-        return Err(Error::new(
-            ErrorKind::DimensionMismatch,
-            format!(
-                "{}: {} coordinates, the first boundary curve has {dim}",
-                paths[k], curves[k].curve.dim
-            ),
-        ));
     }
     let c: Vec<_> = curves.iter().map(|c| &c.curve.value).collect();
     Sized {

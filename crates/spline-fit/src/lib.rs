@@ -66,6 +66,7 @@ mod adaptive_surface;
 mod arclength;
 mod banded;
 mod bezier;
+mod bezier_request;
 mod columns;
 mod correction;
 mod feature_knots;
@@ -99,6 +100,9 @@ pub use adaptive_surface::{
 };
 pub use arclength::reparametrize_by_arc_length;
 pub use bezier::{BezierFit, bezier_interpolate, bezier_least_squares};
+pub use bezier_request::{
+    BezierLeastSquaresFit, BezierLeastSquaresRequest, fit_bezier_least_squares,
+};
 pub use columns::{InterpBc, make_interp_spline, make_lsq_spline};
 pub use correction::{
     CorrectionOptions, CorrectionReport, MAX_CORRECTION_ITERATIONS, correct_parameters,
@@ -111,10 +115,10 @@ pub use interpolate::{
     interpolate_with_knots,
 };
 pub use intersect::{
-    CurveSurfaceHit, CurveSurfaceIntersections, CurveSurfaceOverlap, IntersectionCurve,
-    IntersectionSpline, MAX_TRACE_POINTS, SurfaceIntersection, Tolerances, intersect_curve_surface,
-    intersect_curve_surface_with_overlaps, intersect_surfaces, intersect_surfaces_as_splines,
-    intersection_splines,
+    CurveSurfaceEvent, CurveSurfaceHit, CurveSurfaceIntersections, CurveSurfaceOverlap,
+    IntersectionCurve, IntersectionSpline, MAX_TRACE_POINTS, SurfaceIntersection, Tolerances,
+    intersect_curve_surface, intersect_curve_surface_with_overlaps, intersect_surfaces,
+    intersect_surfaces_as_splines, intersection_splines,
 };
 #[cfg(feature = "parallel")]
 pub use lsq::PARALLEL_MIN_POINTS;
@@ -140,8 +144,8 @@ pub use scattered::{MAX_SCATTERED_SYSTEM, ScatteredFit, ScatteredOptions, fit_sc
 pub use skin::{Gordon, Skinned, gordon, skin};
 pub use skin_rational::{SkinnedNurbs, skin_rational};
 pub use smoothing::{
-    MAX_RESIDUAL_ITERATIONS, ResidualFit, SmoothingFit, SmoothingParameter, smoothing_curve,
-    smoothing_curve_to_residual, smoothing_spline, smoothing_to_residual,
+    MAX_RESIDUAL_ITERATIONS, ResidualFit, SmoothingFit, SmoothingParameter, make_smoothing_spline,
+    smoothing_curve, smoothing_curve_to_residual, smoothing_spline, smoothing_to_residual,
 };
 pub use smoothing::{
     SplrepOptions, chord_length_parameters, generate_knots, make_splprep, make_splrep,

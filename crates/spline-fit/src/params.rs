@@ -323,6 +323,23 @@ pub(crate) fn check_weights<T: Scalar>(weights: &[T], m: usize) -> Result<()> {
     Ok(())
 }
 
+/// [`ErrorKind::InvalidArgument`] unless `value` (a smoothing weight, a residual target) is
+/// finite and non-negative: `{what} must be finite and non-negative, got {value}`.
+pub(crate) fn check_non_negative<T: Scalar>(value: T, what: &str) -> Result<()> {
+    if value >= T::zero() && value.is_finite() {
+        return Ok(());
+    }
+    Err(Error::new(
+        ErrorKind::InvalidArgument,
+        format!(
+            "{what} must be finite and non-negative, got {}",
+            to_f64(value)
+        ),
+    )
+    .with_value(to_f64(value))
+    .with_interval(0.0, f64::INFINITY))
+}
+
 /// Checks given parameters: the right number, finite, non-decreasing.
 pub(crate) fn check_given<T: Scalar>(params: &[T], expected: usize) -> Result<()> {
     if params.len() != expected {

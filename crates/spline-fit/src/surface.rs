@@ -9,10 +9,10 @@
 
 use crate::interpolate::interpolate_with_knots;
 use crate::lsq::{LeastSquares, scattered_normal_equations};
-use crate::params::check_degree;
 use crate::params::{KnotChoice, Parametrization, check_given, knots_for, parametrize};
+use crate::params::{check_degree, check_non_negative};
 use crate::report::Deviation;
-use spline_core::{ControlPoint, Error, ErrorKind, KnotVector, Result, Scalar, from_count, to_f64};
+use spline_core::{ControlPoint, Error, ErrorKind, KnotVector, Result, Scalar, from_count};
 use spline_geom::Surface;
 
 /// A fitted tensor-product surface $S(u, v) = \sum_i \sum_j N_i(u) N_j(v) P_{ij}$ with the
@@ -366,17 +366,7 @@ pub fn approximate_surface_scattered<T: Scalar, P: ControlPoint<T>>(
             format!("data point {k} is not finite"),
         ));
     }
-    if !(smoothing >= T::zero() && smoothing.is_finite()) {
-        return Err(Error::new(
-            ErrorKind::InvalidArgument,
-            format!(
-                "the smoothing weight must be finite and non-negative, got {}",
-                to_f64(smoothing)
-            ),
-        )
-        .with_value(to_f64(smoothing))
-        .with_interval(0.0, f64::INFINITY));
-    }
+    check_non_negative(smoothing, "the smoothing weight")?;
     if !params_inside_on_every_core(params, knots_u, knots_v) {
         // Sequentially (also when a parallel check failed): the error names the first bad
         // pair.

@@ -167,8 +167,42 @@ impl<T: Scalar, P: ControlPoint<T>> Bezier<T, P> {
             .fold(P::origin(), |acc, (p, w)| acc + *p * *w))
     }
 
+    /// De Casteljau's triangle at `t` (seed 003 TD1): level 0 is the control points and
+    /// level `j` the $n + 1 - j$ points
+    /// $P_i^j = (1 - s)\,P_i^{j-1} + s\,P_{i+1}^{j-1}$, $s = \frac{t-a}{b-a}$, so that
+    /// $P_i^j$ is the point at `t` of the Bézier curve of $P_i, \dots, P_{i+j}$; the last
+    /// level is the single point $P_0^n = P(t)$, equal to [`Bezier::eval`] bit for bit.
+    /// The first points of the levels are the control points of the left half of
+    /// [`Bezier::subdivide`] at `t`, the last points (from the last level up) those of the
+    /// right half.
+    ///
+    /// Like [`Bezier::eval`], it accepts the whole closed interval `[a, b]` (at the ends
+    /// the triangle degenerates: every level repeats the first, or the last, points of the
+    /// one above) and refuses parameters outside it: no extrapolation.
+    ///
+    /// ```
+    /// use spline_geom::Bezier;
+    /// let b = Bezier::new(vec![0.0, 4.0, 8.0])?;
+    /// let levels = b.de_casteljau(0.25)?;
+    /// assert_eq!(levels, vec![vec![0.0, 4.0, 8.0], vec![1.0, 5.0], vec![2.0]]);
+    /// assert_eq!(levels[2][0], b.eval(0.25)?);
+    /// # Ok::<(), spline_core::Error>(())
+    /// ```
+    ///
+    /// # Errors
+    /// [`ErrorKind::NonFinite`] for a non-finite `t`; [`ErrorKind::OutOfDomain`] for `t`
+    /// outside `[a, b]`.
+    pub fn de_casteljau(&self, t: T) -> Result<Vec<Vec<P>>> {
+        let s = self.local(t)?;
+        let mut work = self.control_points.clone();
+        let mut levels = Vec::with_capacity(work.len());
+        casteljau_levels(&mut work, s, |level| levels.push(level.to_vec()));
+        Ok(levels)
+    }
+
     /// Splits at `t` (seed 004 §8.4): the left and right Bézier curves on `[a, t]` and
-    /// `[t, b]`, whose control points are the two sides of the de Casteljau triangle.
+    /// `[t, b]`, whose control points are the two sides of the de Casteljau triangle
+    /// ([`Bezier::de_casteljau`]).
     ///
     /// # Errors
     /// [`ErrorKind::NonFinite`]; [`ErrorKind::OutOfDomain`] unless `a < t < b`.
@@ -180,20 +214,13 @@ impl<T: Scalar, P: ControlPoint<T>> Bezier<T, P> {
                 "subdivision parameter must lie strictly inside the interval",
             ));
         }
-        let n = self.degree();
         let mut work = self.control_points.clone();
-        let mut left = Vec::with_capacity(n + 1);
-        let mut right = Vec::with_capacity(n + 1);
-        left.push(work[0]);
-        right.push(work[n]);
-        let r = T::one() - s;
-        for level in 1..=n {
-            for i in 0..=n - level {
-                work[i] = work[i] * r + work[i + 1] * s;
-            }
-            left.push(work[0]);
-            right.push(work[n - level]);
-        }
+        let mut left = Vec::with_capacity(work.len());
+        let mut right = Vec::with_capacity(work.len());
+        casteljau_levels(&mut work, s, |level| {
+            left.push(level[0]);
+            right.push(level[level.len() - 1]);
+        });
         right.reverse();
         Ok((
             Self::new_unchecked(left, self.start, t),
@@ -280,6 +307,26 @@ impl<T: Scalar, P: ControlPoint<T>> Bezier<T, P> {
     }
 }
 
+/// De Casteljau's triangle at the local parameter `s`, in place: `work` holds the control
+/// points on entry; `level` sees level 0 (the control points), then each level `j` as the
+/// first `n + 1 - j` points of `work` after $P_i \leftarrow (1 - s) P_i + s P_{i+1}$.
+/// The one kernel of [`Bezier::de_casteljau`] and [`Bezier::subdivide`].
+fn casteljau_levels<T: Scalar, P: ControlPoint<T>>(
+    work: &mut [P],
+    s: T,
+    mut level: impl FnMut(&[P]),
+) {
+    let n = work.len() - 1;
+    let r = T::one() - s;
+    level(work);
+    for j in 1..=n {
+        for i in 0..=n - j {
+            work[i] = work[i] * r + work[i + 1] * s;
+        }
+        level(&work[..=n - j]);
+    }
+}
+
 impl<T: Scalar, V: VectorSpace<T>> BSpline<T, V> {
     /// The Bézier segments of the curve, one per non-empty knot span of the domain, each on
     /// its own parameter interval ([`BSpline::to_bernstein`], cut into segments).
@@ -310,4 +357,89 @@ pub(crate) fn bezier_as_bspline<T: Scalar, P: VectorSpace<T>>(
         KnotVector::new_unchecked(p, knots),
         segment.control_points().to_vec(),
     )
+}
+
+#[cfg(test)]
+mod tests {
+    use super::Bezier;
+    use nalgebra::Vector2;
+    use spline_core::ErrorKind;
+
+    fn quartic_on(a: f64, b: f64) -> Bezier<f64, Vector2<f64>> {
+        Bezier::with_interval(
+            vec![
+                Vector2::new(0.0, 0.0),
+                Vector2::new(1.0, 2.5),
+                Vector2::new(3.0, -1.0),
+                Vector2::new(4.0, 0.7),
+                Vector2::new(5.5, 2.0),
+            ],
+            a,
+            b,
+        )
+        .unwrap()
+    }
+
+    /// The triangle's last point is `eval` bit for bit; its first points are the left half
+    /// of `subdivide`, its last points (from the bottom up) the right half; every point of
+    /// level `j` is the sub-polygon's curve at `t`.
+    #[test]
+    fn the_triangle_is_eval_and_subdivide() {
+        for (a, b) in [(0.0, 1.0), (-2.0, 3.0)] {
+            let curve = quartic_on(a, b);
+            let n = curve.degree();
+            for k in 1..10 {
+                let t = a + (b - a) * f64::from(k) / 10.0;
+                let levels = curve.de_casteljau(t).unwrap();
+                assert_eq!(levels.len(), n + 1);
+                assert_eq!(levels[0], curve.control_points());
+                for (j, level) in levels.iter().enumerate() {
+                    assert_eq!(level.len(), n + 1 - j);
+                    for (i, point) in level.iter().enumerate() {
+                        let sub = curve.control_points()[i..=i + j].to_vec();
+                        let sub = Bezier::with_interval(sub, a, b).unwrap();
+                        assert_eq!(*point, sub.eval(t).unwrap());
+                    }
+                }
+                assert_eq!(levels[n], vec![curve.eval(t).unwrap()]);
+                let (left, right) = curve.subdivide(t).unwrap();
+                let firsts: Vec<_> = levels.iter().map(|l| l[0]).collect();
+                let lasts: Vec<_> = levels.iter().rev().map(|l| l[l.len() - 1]).collect();
+                assert_eq!(left.control_points(), firsts);
+                assert_eq!(right.control_points(), lasts);
+                assert!((curve.eval_bernstein(t).unwrap() - levels[n][0]).norm() < 1e-13);
+            }
+        }
+    }
+
+    /// At the ends of the interval the triangle degenerates (each level repeats the first
+    /// or the last points); outside it and for non-finite parameters it is refused, as
+    /// `eval` refuses them.
+    #[test]
+    fn the_triangle_takes_the_closed_interval_only() {
+        let curve = quartic_on(-2.0, 3.0);
+        let points = curve.control_points();
+        let n = curve.degree();
+        let at_start = curve.de_casteljau(-2.0).unwrap();
+        let at_end = curve.de_casteljau(3.0).unwrap();
+        for j in 0..=n {
+            assert_eq!(at_start[j], points[..=n - j]);
+            assert_eq!(at_end[j], points[j..]);
+        }
+        for t in [-2.5, 3.0 + 1e-12] {
+            assert_eq!(
+                curve.de_casteljau(t).unwrap_err().kind(),
+                ErrorKind::OutOfDomain
+            );
+        }
+        assert_eq!(
+            curve.de_casteljau(f64::NAN).unwrap_err().kind(),
+            ErrorKind::NonFinite
+        );
+        let point = Bezier::new(vec![Vector2::new(1.0, 2.0)]).unwrap();
+        assert_eq!(
+            point.de_casteljau(0.3).unwrap(),
+            vec![vec![Vector2::new(1.0, 2.0)]]
+        );
+    }
 }

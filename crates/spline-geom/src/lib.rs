@@ -35,6 +35,7 @@ mod arclength;
 mod bezier;
 mod bspline;
 mod columns;
+mod comb;
 mod construct;
 mod curve_tools;
 mod evaluator;
@@ -61,6 +62,7 @@ pub use arclength::DEFAULT_ACCURACY;
 pub use bezier::Bezier;
 pub use bspline::BSpline;
 pub use columns::{ColumnSpline, Extrapolate, PowerBasisKnots};
+pub use comb::{CombTooth, comb_segments, curvature_comb, evenly_spaced_params};
 pub use construct::{
     Axis, CircleConstruction, ConicKind, Frame, MAX_ARC_PIECES, MovingFrame, boolean_sum,
     compatible_curves, compatible_surfaces, rotation_minimizing_frames,

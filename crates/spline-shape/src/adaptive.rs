@@ -163,11 +163,46 @@ impl CostFunction for Criterion<'_> {
     }
 }
 
+/// The largest number of outer iterations [`optimise_perimeter_over_area`] takes.
+pub const MAX_ADAPTIVE_ITERATIONS: usize = 1000;
+/// The largest number of samples of one adaptation.
+pub const MAX_ADAPTIVE_SAMPLES: usize = 100_000;
+/// The largest number of control points.
+pub const MAX_ADAPTIVE_CONTROL_POINTS: usize = 1000;
+/// The largest number of Nelder–Mead iterations of one optimisation.
+pub const MAX_SIMPLEX_ITERATIONS: u64 = 10_000_000;
+
+/// The initial shape when none is given: 41 points of the upper half of the ellipse through
+/// `(0, 0)` and `(1, 0)` with semi-axes 0.5 and 0.3 (the last point exactly `(1, 0)`).
+///
+/// ```
+/// let shape = spline_shape::default_initial_shape();
+/// assert_eq!(shape.len(), 41);
+/// assert_eq!((shape[0].x, shape[0].y, shape[40].x, shape[40].y), (0.0, 0.0, 1.0, 0.0));
+/// assert!((shape[20].y - 0.3).abs() < 1e-15);
+/// ```
+#[must_use]
+pub fn default_initial_shape() -> Vec<Vector2<f64>> {
+    (0..41)
+        .map(|i| {
+            let t = std::f64::consts::PI * f64::from(i) / 40.0;
+            if i == 40 {
+                Vector2::new(1.0, 0.0)
+            } else {
+                Vector2::new(0.5 - 0.5 * t.cos(), 0.3 * t.sin())
+            }
+        })
+        .collect()
+}
+
 /// Runs the coupled optimisation from an initial shape given by points from `(0, 0)` to
 /// `(1, 0)` (at least `control_points` of them), and returns every iteration.
 ///
 /// # Errors
-/// [`ErrorKind::InvalidArgument`] for degree 0, fewer samples than control points, fewer
+/// [`ErrorKind::InvalidArgument`] for 0 iterations or more than [`MAX_ADAPTIVE_ITERATIONS`]
+/// (the value and the range as fields), more than [`MAX_ADAPTIVE_SAMPLES`] samples,
+/// [`MAX_ADAPTIVE_CONTROL_POINTS`] control points or [`MAX_SIMPLEX_ITERATIONS`] simplex
+/// iterations; for degree 0, fewer samples than control points, fewer
 /// than `degree + 2` control points (the two counts of the failed inequality as
 /// [`Error::counts`]), or data that do not start at `(0, 0)` and end at `(1, 0)`;
 /// [`ErrorKind::InvalidTolerance`] for a negative `simplex_tolerance`; the errors of the
@@ -176,6 +211,28 @@ pub fn optimise_perimeter_over_area(
     initial: &[Vector2<f64>],
     options: &AdaptiveOptions,
 ) -> Result<Vec<AdaptiveIteration>> {
+    if options.iterations == 0 || options.iterations > MAX_ADAPTIVE_ITERATIONS {
+        return Err(Error::new(
+            ErrorKind::InvalidArgument,
+            format!(
+                "iterations must be 1 to {MAX_ADAPTIVE_ITERATIONS}, got {}",
+                options.iterations
+            ),
+        )
+        .with_value(options.iterations as f64)
+        .with_interval(1.0, MAX_ADAPTIVE_ITERATIONS as f64));
+    }
+    if options.samples > MAX_ADAPTIVE_SAMPLES
+        || options.control_points > MAX_ADAPTIVE_CONTROL_POINTS
+        || options.max_simplex_iterations > MAX_SIMPLEX_ITERATIONS
+    {
+        return Err(Error::new(
+            ErrorKind::InvalidArgument,
+            format!(
+                "at most {MAX_ADAPTIVE_SAMPLES} samples, {MAX_ADAPTIVE_CONTROL_POINTS} control points and {MAX_SIMPLEX_ITERATIONS} simplex iterations"
+            ),
+        ));
+    }
     let d = options.degree;
     if d == 0 {
         // A piecewise-constant curve jumps between its values: it has no tangent, no

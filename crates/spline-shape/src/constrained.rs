@@ -36,8 +36,8 @@
 
 use crate::barrier::{BarrierOptions, BarrierReport};
 use crate::problem::{
-    ApproximationProblem, LeastSquaresObjective, Sign, check_interval, check_samples, derived_map,
-    normalized_rows, solve, vstack,
+    ApproximationProblem, LeastSquaresObjective, Sign, check_interval, check_refinement,
+    check_samples, derived_map, normalized_rows, solve, vstack,
 };
 use nalgebra_sparse::{CooMatrix, CsrMatrix};
 use spline_algebra::SplineMap;
@@ -236,14 +236,7 @@ impl FunctionApproximation {
     }
 
     fn validate(&self) -> Result<()> {
-        if self.refinement == 0 {
-            return Err(Error::new(
-                ErrorKind::InvalidArgument,
-                "the refinement must split each span into at least one piece",
-            )
-            .with_value(0.0)
-            .with_interval(1.0, f64::INFINITY));
-        }
+        check_refinement(self.refinement)?;
         for (i, c) in self.constraints.iter().enumerate() {
             let what = format!("constraint {i}");
             if c.order() > self.knots.degree() {

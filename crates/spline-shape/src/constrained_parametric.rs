@@ -20,7 +20,7 @@ use crate::barrier::BarrierOptions;
 use crate::constrained::{grid_pairs, sampled_grid};
 use crate::constrained_surface::ConstrainedSurfaceFit;
 use crate::problem::{ApproximationProblem, LeastSquaresObjective, Sign, normalized_rows, vstack};
-use crate::problem::{check_grid, normalized_forms};
+use crate::problem::{check_convexity_degrees, check_grid, normalized_forms};
 use nalgebra::{DMatrix, Vector2, Vector3};
 use nalgebra_sparse::CsrMatrix;
 use spline_algebra::{SparseBilinear, curvature_numerators_with_jacobians};
@@ -71,16 +71,7 @@ impl ParametricConvexity {
     /// control) or for more than 400 control points (the dense quadratic forms).
     pub fn new(base: Surface<f64, Vector2<f64>>, sign: Sign) -> Result<Self> {
         let (p, q) = base.degrees();
-        if p < 2 || q < 2 {
-            return Err(Error::new(
-                ErrorKind::InvalidArgument,
-                format!(
-                    "convexity of a patch needs degree 2 or more in both directions, got ({p}, {q})"
-                ),
-            )
-            .with_value(p.min(q) as f64)
-            .with_interval(2.0, f64::INFINITY));
-        }
+        check_convexity_degrees(p, q)?;
         let n = base.control_points().len();
         if n > 400 {
             return Err(Error::new(

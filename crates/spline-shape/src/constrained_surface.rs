@@ -38,7 +38,7 @@ use crate::problem::{
     ApproximationProblem, LeastSquaresObjective, Sign, check_interval, check_samples, derived_map,
     furthest_feasible, normalized_rows, refined, solve, strictly_feasible, vstack,
 };
-use crate::problem::{check_grid, normalized_forms};
+use crate::problem::{check_grid, check_refinement, normalized_forms};
 use nalgebra::{DVector, Matrix2, Matrix6, Vector6};
 
 use spline_algebra::{SparseBilinear, SplineMap, TensorMap, hessian_determinant};
@@ -249,14 +249,7 @@ impl SurfaceApproximation {
     }
 
     fn validate(&self) -> Result<()> {
-        if self.refinement == 0 {
-            return Err(Error::new(
-                ErrorKind::InvalidArgument,
-                "the refinement must split each span into at least one piece",
-            )
-            .with_value(0.0)
-            .with_interval(1.0, f64::INFINITY));
-        }
+        check_refinement(self.refinement)?;
         let (p, q) = (self.knots_u.degree(), self.knots_v.degree());
         for (i, c) in self.constraints.iter().enumerate() {
             let what = format!("constraint {i}");

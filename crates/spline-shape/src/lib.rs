@@ -15,25 +15,8 @@
 //!   and of surfaces; exact for arcs, planes and spheres, otherwise within a tolerance (the
 //!   tool calls it once).
 
-/// The settings shared by the constrained approximations of functions and of surfaces
-/// (their builders' `refinement` and `options`), written once.
-macro_rules! solver_settings {
-    ($refinement:literal) => {
-        #[doc = $refinement]
-        #[must_use]
-        pub fn refinement(mut self, pieces: usize) -> Self {
-            self.refinement = pieces;
-            self
-        }
-
-        /// Sets the barrier method's settings.
-        #[must_use]
-        pub fn options(mut self, options: BarrierOptions) -> Self {
-            self.options = options;
-            self
-        }
-    };
-}
+#[macro_use]
+mod settings;
 
 pub mod adaptive;
 pub mod barrier;
@@ -48,7 +31,9 @@ mod problem;
 pub mod revolution;
 
 pub use adaptive::{
-    AdaptiveIteration, AdaptiveOptions, optimise_perimeter_over_area, perimeter_squared_over_area,
+    AdaptiveIteration, AdaptiveOptions, MAX_ADAPTIVE_CONTROL_POINTS, MAX_ADAPTIVE_ITERATIONS,
+    MAX_ADAPTIVE_SAMPLES, MAX_SIMPLEX_ITERATIONS, default_initial_shape,
+    optimise_perimeter_over_area, perimeter_squared_over_area,
 };
 pub use barrier::{
     BarrierOptions, BarrierProblem, BarrierReport, STALL_STEPS, find_feasible, find_feasible_near,
@@ -65,10 +50,11 @@ pub use constrained_surface::{
     ConstrainedSurfaceFit, Region, SurfaceApproximation, SurfaceConstraint,
 };
 pub use eraser::{
-    AUTO_EXTREMA_TOLERANCE, CurvatureExtremum, DEVIATION_WARNING_FACTOR, DEVIATION_WARNING_FLOOR,
-    Extremum, ExtremumKind, MAX_CURVATURE_EXTREMA, Objective, SampledExtremum, SmoothedCurve,
-    SmoothingOptions, WarmStart, sampled_curvature_extrema, smooth, smooth_fewest_extrema,
-    smooth_from, smooth_to_tolerance,
+    AUTO_EXTREMA_TOLERANCE, AllowedExtrema, ControlPoints, CurvatureExtremum,
+    DEVIATION_WARNING_FACTOR, DEVIATION_WARNING_FLOOR, ExtremaCount, Extremum, ExtremumKind,
+    MAX_CURVATURE_EXTREMA, Objective, OptionSpelling, SampledExtremum, SmoothRequest,
+    SmoothSummary, SmoothWords, SmoothedCurve, SmoothingOptions, WarmStart,
+    sampled_curvature_extrema, smooth, smooth_fewest_extrema, smooth_from, smooth_to_tolerance,
 };
 pub use flecnodal::{FlecnodalCircles, control_flecnodal_circles};
 pub use offset::{

@@ -8,14 +8,14 @@ use crate::values::{
 };
 use serde::Deserialize;
 use serde_json::{Value, json};
-use spline_algebra::CurveFeatures;
+use spline_algebra::{CurveFeatures, default_feature_accuracy};
 use spline_core::{Error, ErrorKind, KnotVector, Result};
 use spline_fit::{
-    CorrectionOptions, InterpolationOptions, KnotChoice, LeastSquaresRequest, LsqKnots,
-    Parametrization, bezier_interpolate, bezier_least_squares, correct_parameters_bezier,
-    deviation, fit_least_squares,
+    BezierLeastSquaresRequest, CorrectionOptions, InterpolationOptions, KnotChoice,
+    LeastSquaresRequest, LsqKnots, Parametrization, bezier_interpolate, fit_bezier_least_squares,
+    fit_least_squares,
 };
-use spline_geom::{BSpline, Bezier, ParamCurve};
+use spline_geom::{BSpline, Bezier, ParamCurve, curvature_comb};
 use spline_io::exchange::CurveRecord;
 use spline_shape::{MAX_CURVATURE_EXTREMA, SmoothingOptions, WarmStart, smooth, smooth_from};
 
@@ -23,8 +23,6 @@ use spline_shape::{MAX_CURVATURE_EXTREMA, SmoothingOptions, WarmStart, smooth, s
 const PER_SPAN: usize = 24;
 /// Samples of a drawn Bézier curve, unless the request says otherwise.
 const BEZIER_SAMPLES: usize = 201;
-/// Relative accuracy of the located features (as `spline features`).
-const FEATURE_ACCURACY: f64 = 1e-12;
 
 fn per_span() -> usize {
     PER_SPAN
@@ -77,42 +75,29 @@ pub(crate) fn bezier(request: &BezierRequest) -> Result<Value> {
     } else {
         request.elevate
     };
-    let curve = Bezier::new(control.clone())?;
+    let curve = Bezier::new(control)?;
     let t = request.t;
+    // The de Casteljau triangle at t (level j, point i: the curve of P_i … P_{i+j} at t);
+    // it refuses a t outside [0, 1].
+    let triangle = curve.de_casteljau(t)?;
     let point = curve.eval(t)?;
-    // The de Casteljau triangle: level j, point i is the Bézier curve of P_i … P_{i+j} at t
-    // (the library's de Casteljau evaluation of each sub-polygon).
-    let n = control.len() - 1;
-    let mut triangle = Vec::with_capacity(n + 1);
-    for level in 0..=n {
-        let row = (0..=n - level)
-            .map(|i| Ok(xy(&Bezier::new(control[i..=i + level].to_vec())?.eval(t)?)))
-            .collect::<Result<Vec<_>>>()?;
-        triangle.push(row);
-    }
-    let (left, right) = if t > 0.0 && t < 1.0 {
-        let (l, r) = curve.subdivide(t)?;
-        (
+    // Halves only strictly inside the interval: at its ends the library refuses to split.
+    let (left, right) = match curve.subdivide(t) {
+        Ok((l, r)) => (
             json!(xys(l.control_points())),
             json!(xys(r.control_points())),
-        )
-    } else {
-        (Value::Null, Value::Null)
+        ),
+        Err(e) if e.kind() == ErrorKind::OutOfDomain => (Value::Null, Value::Null),
+        Err(e) => return Err(e),
     };
-    #[allow(clippy::cast_precision_loss)]
-    let params: Vec<f64> = (0..samples)
-        .map(|k| k as f64 / (samples - 1) as f64)
-        .collect();
-    let drawn = params
-        .iter()
-        .map(|&s| curve.eval(s).map(|p| xy(&p)))
-        .collect::<Result<Vec<_>>>()?;
+    // `samples` equal steps over the one piece of the curve, ends included.
+    let drawn = curve.eval_many(&curve.sample_params(samples - 1))?;
     let elevated = curve.elevate_degree(elevate);
     Ok(json!({
         "curve": record(&curve.to_bspline()?),
-        "samples": drawn,
+        "samples": xys(&drawn),
         "point": xy(&point),
-        "casteljau": triangle,
+        "casteljau": triangle.iter().map(|level| xys(level)).collect::<Vec<_>>(),
         "left": left,
         "right": right,
         "elevated": xys(elevated.control_points()),
@@ -134,15 +119,17 @@ pub(crate) struct BSplineRequest {
     per_span: usize,
 }
 
+/// The distinct knots of the domain (its ends included) with their multiplicities and
+/// points.
 fn knot_marks(curve: &BSpline<f64, Point>) -> Result<Vec<Value>> {
-    let (a, b) = curve.domain();
-    curve
-        .knots()
-        .breakpoints()
-        .into_iter()
-        .filter(|&(u, _)| u >= a && u <= b)
-        .map(|(u, mult)| Ok(json!({"u": u, "multiplicity": mult, "point": xy(&curve.eval(u)?)})))
-        .collect()
+    let knots = curve.knots();
+    let breaks = knots.domain_breaks();
+    let points = curve.eval_many(&breaks)?;
+    Ok(breaks
+        .iter()
+        .zip(&points)
+        .map(|(&u, p)| json!({"u": u, "multiplicity": knots.multiplicity(u), "point": xy(p)}))
+        .collect())
 }
 
 fn bspline_answer(curve: &BSpline<f64, Point>, per_span: usize) -> Result<Value> {
@@ -157,16 +144,7 @@ fn bspline_answer(curve: &BSpline<f64, Point>, per_span: usize) -> Result<Value>
 pub(crate) fn bspline(request: &BSplineRequest) -> Result<Value> {
     let control = points(&request.control_points, 2, "control_points")?;
     let p = degree(request.degree)?;
-    if p >= control.len() {
-        return Err(Error::new(
-            ErrorKind::DegreeTooHigh,
-            format!(
-                "degree {p} needs at least {} control points, got {}",
-                p + 1,
-                control.len()
-            ),
-        ));
-    }
+    // Too few control points for the degree: the knot vector or the curve refuses them.
     let knots = match &request.knots {
         Some(k) if k.len() > MAX_POINTS + MAX_DEGREE => {
             return Err(Error::new(ErrorKind::InvalidLength, "too many knots"));
@@ -287,15 +265,23 @@ pub(crate) fn approximate(request: &ApproximateRequest) -> Result<Value> {
     if let Some(eps) = request.angle_tolerance {
         options.angle_tolerance = eps;
     }
-    let (curve, params, report) = if request.bezier {
-        let start = bezier_least_squares(&data, p, &param, (0.0, 1.0), None)?;
-        if request.correct == 0 {
-            (start.curve.to_bspline()?, start.params, None)
-        } else {
-            let (fit, report) =
-                correct_parameters_bezier(&data, &start.params, p, (0.0, 1.0), &options)?;
-            (fit.curve.to_bspline()?, fit.params, Some(report))
-        }
+    let correction = (request.correct > 0).then_some(options);
+    let (curve, params, fit, report) = if request.bezier {
+        let answer = fit_bezier_least_squares(
+            &data,
+            &BezierLeastSquaresRequest {
+                parametrization: param,
+                correction,
+                ..BezierLeastSquaresRequest::new(p)
+            },
+        )?;
+        let fit = answer.fit;
+        (
+            fit.curve.to_bspline()?,
+            fit.params,
+            fit.deviation,
+            answer.correction,
+        )
     } else {
         let knots = match (&request.knots, request.control_points) {
             (Some(k), _) if k.len() > MAX_POINTS + MAX_DEGREE => {
@@ -314,15 +300,15 @@ pub(crate) fn approximate(request: &ApproximateRequest) -> Result<Value> {
             &data,
             &LeastSquaresRequest {
                 parametrization: param,
-                correction: (request.correct > 0).then_some(options),
+                correction,
                 ..LeastSquaresRequest::new(p, knots)
             },
         )?;
-        (answer.fit.curve, answer.fit.params, answer.correction)
+        let fit = answer.fit;
+        (fit.curve, fit.params, fit.deviation, answer.correction)
     };
+    // The feet of the data on the curve: the points at the data's parameters.
     let feet = curve.eval_many(&params)?;
-    let fit = deviation(&curve, &params, &data)?;
-    let (max, rms) = (fit.max, fit.rms);
     let per = if request.bezier {
         (per_span * 8).min(MAX_SAMPLES)
     } else {
@@ -333,8 +319,8 @@ pub(crate) fn approximate(request: &ApproximateRequest) -> Result<Value> {
         "params": params,
         "samples": samples(&curve, per)?,
         "projections": xys(&feet),
-        "max_deviation": max,
-        "rms": rms,
+        "max_deviation": fit.max,
+        "rms": fit.rms,
     });
     if let Some(report) = report {
         answer["correction"] = json!({
@@ -373,24 +359,26 @@ fn marks(curve: &BSpline<f64, Point>, params: &[f64]) -> Result<Vec<Value>> {
 pub(crate) fn features(request: &FeaturesRequest) -> Result<Value> {
     let curve = planar(&request.curve)?;
     let per_span = count(request.per_span, MAX_SAMPLES, "per_span")?;
-    let (a, b) = curve.domain();
-    let found = curve.features(FEATURE_ACCURACY * (b - a))?;
+    let found = curve.features(default_feature_accuracy(curve.domain()))?;
     let params = curve.sample_params(per_span);
     if params.len() > MAX_POINTS {
         return Err(Error::new(ErrorKind::InvalidLength, "too many samples"));
     }
     // The comb: at each sample, the point, the signed curvature and the unit normal (where
     // the curve is regular; a cusp of the control polygon leaves a gap).
-    let mut comb = Vec::with_capacity(params.len());
-    for &u in &params {
-        if let (Ok(p), Ok(k), Ok(n)) = (
-            curve.eval(u),
-            curve.signed_curvature(u),
-            curve.unit_normal(u),
-        ) {
-            comb.push([u, p.x, p.y, k, n.x, n.y]);
-        }
-    }
+    let comb: Vec<[f64; 6]> = curvature_comb(&curve, &params)
+        .iter()
+        .map(|t| {
+            [
+                t.u,
+                t.point.x,
+                t.point.y,
+                t.curvature,
+                t.normal.x,
+                t.normal.y,
+            ]
+        })
+        .collect();
     Ok(json!({
         "curve": record(&curve),
         "samples": samples(&curve, per_span)?,

@@ -85,7 +85,8 @@ def _real_columns(c: np.ndarray) -> Tuple[FloatArray, bool]:
     cc = c.view(np.float64) if is_complex else c
     if is_complex and c.ndim == 1:
         cc = cc.reshape(c.shape[0], 2)
-    return np.ascontiguousarray(cc.reshape(cc.shape[0], -1)), is_complex
+    # (Not reshape(rows, -1): that fails for zero rows.)
+    return np.ascontiguousarray(cc.reshape(cc.shape[0], prod(cc.shape[1:]))), is_complex
 
 
 def _from_columns(flat: FloatArray, rows: int, tail: tuple, is_complex: bool) -> np.ndarray:
@@ -134,6 +135,8 @@ class BSpline:
         self.axis = axis
         if axis != 0:
             self._c = np.moveaxis(self._c, axis, 0)
+        # scipy raises at construction; the library's ColumnSpline is built lazily (at the
+        # first evaluation), so its checks of the knots and coefficients are repeated here.
         if k < 0:
             raise _core.SplineError("Spline order cannot be negative.")
         if self._t.ndim != 1:
@@ -227,6 +230,7 @@ class BSpline:
         x_shape, x_ndim = x.shape, x.ndim
         x = np.ascontiguousarray(x.ravel(), dtype=np.float64)
         nu = operator.index(nu)
+        # The binding takes an unsigned order.
         if nu < 0:
             raise _core.SplineError(f"Derivative order must be non-negative, got nu = {nu}.")
         tail = self._c.shape[1:]
@@ -277,9 +281,9 @@ class BSpline:
         """The same spline with the knot ``x`` inserted ``m`` times (Boehm); a periodic spline
         (``extrapolate='periodic'``) keeps its periodic form."""
         x = float(x)
-        if x < self._t[self.k] or x > self._t[-self.k - 1]:
-            raise _core.SplineError(f"Cannot insert a knot at {x}.")
-        if m <= 0:
+        # The binding takes an unsigned count (the library refuses x outside the base
+        # interval and m = 0 in scipy's words).
+        if m < 0:
             raise _core.SplineError(f"`m` must be positive, got {m = }.")
         columns, is_complex = self._columns()
         periodic = _mode(self.extrapolate) == "periodic"
@@ -302,16 +306,12 @@ class BSpline:
         t = _as_float_array(t, True)
         if not (isinstance(extrapolate, str) and extrapolate == "periodic"):
             extrapolate = bool(extrapolate)
+        # The binding takes an unsigned degree and a 1-D t (the library checks the order and
+        # number of the knots and, without extrapolation, the bounds in scipy's words).
         if k < 0:
             raise _core.SplineError("Spline order cannot be negative.")
-        if t.ndim != 1 or np.any(t[1:] < t[:-1]):
+        if t.ndim != 1:
             raise _core.SplineError(f"Expect t to be a 1-D sorted array_like, but got t={t}.")
-        if len(t) < 2 * k + 2:
-            raise _core.SplineError(f"Length t is not enough for k={k}.")
-        if extrapolate is False and x.size and (
-            (min(x) < t[k]) or (max(x) > t[t.shape[0] - k - 1])
-        ):
-            raise _core.SplineError(f"Out of bounds w/ x = {x}.")
         data, indices, indptr, shape = _core.design_matrix(
             np.ascontiguousarray(x.ravel()), t, int(k), _mode(extrapolate)
         )
@@ -368,10 +368,12 @@ class BSpline:
         matrix's rows; the rest of scipy's padded ``c`` is zero)."""
         return _csr(self._s.derivative_map(int(nu)))
 
-    def features(self, accuracy: float = 1e-12) -> Features:
+    def features(self, accuracy: Optional[float] = None) -> Features:
         """Inflections and curvature extrema of a planar curve, located exactly (root
         isolation of the curvature numerators) to ``accuracy`` in the parameter."""
-        return Features(*self._s.features(float(accuracy)))
+        return Features(
+            *self._s.features(None if accuracy is None else float(accuracy))
+        )
 
     def curvature(self, x: ArrayLike) -> FloatArray:
         """The signed curvature of a planar curve at ``x``."""

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import os
 import time
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from typing import Any, Dict, List, Optional, Sequence, Tuple, Union
 
 from . import _core
@@ -63,6 +63,11 @@ class CurvatureExtremum:
     kind: str
 
 
+#: The numbers of a ``summary.jsonl`` line, in the order of the library's record
+#: (``spline.shape.SmoothSummary``); ``error`` and ``warnings`` follow them.
+_SUMMARY_KEYS = ("control_points", "max_deviation", "max_deviation_to_data", "extrema")
+
+
 @dataclass(frozen=True)
 class SmoothedCurve:
     """The result of ``smooth`` (the fields of ``spline smooth``'s JSON output)."""
@@ -82,6 +87,11 @@ class SmoothedCurve:
     least_squares_curvature_extrema: int
     newton_steps: int
     opened_control_points: int
+    #: Sentences for the caller, empty when all is well (as ``spline smooth`` prints them).
+    warnings: List[str] = field(default_factory=list)
+    #: The fields of the line ``spline smooth DIR --out OUT`` writes for the result in
+    #: ``summary.jsonl``, but its name, input and seconds.
+    summary: Dict[str, Any] = field(default_factory=dict, repr=False)
 
 
 def smooth(
@@ -90,7 +100,7 @@ def smooth(
     *,
     max_deviation: Optional[float] = None,
     degree: int = 3,
-    curvature_extrema: Optional[int] = None,
+    curvature_extrema: Union[int, str, None] = None,
     extrema: Sequence[str] = (),
     objective: str = "max",
     thorough: bool = False,
@@ -105,6 +115,9 @@ def smooth(
     - ``degree`` (at least 3);
     - ``curvature_extrema`` (alternating max, min, …) or ``extrema``: ``"max"``, ``"min"``,
       ``"max@U"``, ``"min@U"`` in the order of the data (default: one maximum);
+      ``curvature_extrema="auto"``: the fewest (1, 2, …; closed 2, 4, …, up to 8) that bring
+      every point within ``max_deviation`` (default 0.2 % of the diagonal of the points'
+      bounding box), with ``control_points``;
     - ``objective``: ``"max"`` (largest deviation) or ``"least-squares"``;
     - ``thorough``: try every knot density; ``knot_exponents``: the exponents tried;
     - ``closed``: the data are a closed contour; the result is periodic, returned as its
@@ -113,12 +126,16 @@ def smooth(
     pts = _floats(points, "points")
     if pts.ndim != 2 or pts.shape[1] != 2:
         raise _core.SplineError(f"points: expected shape (m, 2), got {pts.shape}")
+    if curvature_extrema is None or isinstance(curvature_extrema, str):
+        extrema_count = curvature_extrema
+    else:
+        extrema_count = str(int(curvature_extrema))
     curve, r = _core.smooth(
         pts.reshape(-1),
         None if control_points is None else int(control_points),
         None if max_deviation is None else float(max_deviation),
         int(degree),
-        None if curvature_extrema is None else int(curvature_extrema),
+        extrema_count,
         [str(e) for e in extrema],
         objective,
         bool(thorough),
@@ -126,7 +143,11 @@ def smooth(
         None if knot_exponents is None else [float(b) for b in knot_exponents],
     )
     (closed_, first, count, opened), mx, imx, to_data, rms, ext, infl = r[:7]
-    refinements, conditions, start, newton = r[7:]
+    refinements, conditions, start, newton, line = r[7:]
+    summary = dict(zip(_SUMMARY_KEYS, line[:4]))
+    summary["error"] = line[4]
+    if line[5]:
+        summary["warnings"] = list(line[5])
     return SmoothedCurve(
         curve=BSpline._wrap(curve),
         closed=closed_,
@@ -143,6 +164,8 @@ def smooth(
         least_squares_curvature_extrema=start,
         newton_steps=newton,
         opened_control_points=opened,
+        warnings=list(line[5]),
+        summary=summary,
     )
 
 
@@ -165,30 +188,16 @@ def read_airfoil(source: Union[str, os.PathLike]) -> Tuple[FloatArray, Optional[
 def smooth_file(path: Union[str, os.PathLike], **options: Any) -> Dict[str, Any]:
     """Smooths one airfoil file and returns the line ``spline smooth DIR --out OUT`` writes
     for it in ``summary.jsonl``: ``name``, ``control_points``, ``max_deviation``,
-    ``max_deviation_to_data``, ``extrema``, ``seconds``, ``error`` (the message when it
-    failed, the other fields then ``None``). ``options`` are those of ``smooth``."""
+    ``max_deviation_to_data``, ``extrema``, ``warnings`` (only when there are any),
+    ``error`` (the message when it failed, the numbers then ``None``), ``seconds``.
+    ``options`` are those of ``smooth``."""
     name = os.path.splitext(os.path.basename(os.fspath(path)))[0]
     started = time.perf_counter()
     try:
         points, _ = read_airfoil(path)
-        r = smooth(points, **options)
-        line: Dict[str, Any] = {
-            "name": name,
-            "control_points": r.opened_control_points,
-            "max_deviation": r.max_deviation,
-            "max_deviation_to_data": r.max_deviation_to_data,
-            "extrema": len(r.extrema),
-            "error": None,
-        }
+        line: Dict[str, Any] = {"name": name, **smooth(points, **options).summary}
     except _core.SplineError as e:
-        line = {
-            "name": name,
-            "control_points": None,
-            "max_deviation": None,
-            "max_deviation_to_data": None,
-            "extrema": None,
-            "error": str(e),
-        }
+        line = {"name": name, **dict.fromkeys(_SUMMARY_KEYS), "error": str(e)}
     line["seconds"] = time.perf_counter() - started
     return line
 

@@ -41,7 +41,9 @@ def make_interp_spline(
 ) -> BSpline:
     """The interpolating B-spline of degree ``k`` (scipy's ``make_interp_spline``):
     ``f(x[j]) = y[j]`` along ``axis`` of ``y``, on the knots ``t`` or the not-a-knot knots;
-    ``bc_type``: ``None``/``'not-a-knot'``, or ``'natural'`` for cubics."""
+    ``bc_type``: ``None``/``'not-a-knot'``, ``'periodic'``, ``'clamped'``, ``'natural'`` or
+    a pair of lists of ``(order, value)``. The library checks the data, the knots and the
+    conditions with scipy's words."""
     if bc_type is None or bc_type == "not-a-knot" or bc_type == "periodic":
         deriv_l, deriv_r = None, None
     elif isinstance(bc_type, str):
@@ -53,61 +55,50 @@ def make_interp_spline(
             raise _core.SplineError(f"Unknown boundary condition: {bc_type}") from e
     x = _as_float_array(x, check_finite)
     y, axis = _fit_input(y, axis, check_finite)
-    if bc_type == "periodic" and not np.allclose(y[0], y[-1], atol=1e-15):
-        raise _core.SplineError(
-            "First and last points does not match while periodic case expected"
-        )
-    if x.size != y.shape[0]:
-        raise _core.SplineError(f"Shapes of x {x.shape} and y {y.shape} are incompatible")
-    if np.any(x[1:] == x[:-1]):
-        raise _core.SplineError("Expect x to not have duplicates")
-    if x.ndim != 1 or np.any(x[1:] < x[:-1]):
+    # The binding takes a 1-D x (the library checks its order, duplicates and length).
+    if x.ndim != 1:
         raise _core.SplineError("Expect x to be a 1D strictly increasing sequence.")
-    if k == 0:
-        if any(v is not None for v in (t, deriv_l, deriv_r)):
-            raise _core.SplineError("Too much info for k=0: t and bc_type can only be None.")
-        t = np.r_[x, x[-1]]
-        return BSpline.construct_fast(t, np.ascontiguousarray(y), k, axis=axis)
-    if k == 1 and t is None:
-        if not (deriv_l is None and deriv_r is None):
-            raise _core.SplineError("Too much info for k=1: bc_type can only be None.")
-        t = np.r_[x[0], x, x[-1]]
-        return BSpline.construct_fast(t, np.ascontiguousarray(y), k, axis=axis)
+    # scipy's cases k = 0 and k = 1 without t come before its operator.index(k): 0.0 and
+    # 1.0 are accepted there.
+    if k == 0 or (k == 1 and t is None):
+        k = int(k)
     k = operator.index(k)
-    if bc_type == "periodic" and t is not None:
+    # scipy raises NotImplementedError for a periodic t (the library a ValueError), after
+    # its first check, of the ends (the library's too), and not for k = 0 (t refused first).
+    if bc_type == "periodic" and t is not None and k != 0:
+        if not np.allclose(y[0], y[-1], atol=1e-15):
+            raise _core.SplineError(
+                "First and last points does not match while periodic case expected"
+            )
         raise NotImplementedError(
             "For periodic case t is constructed automatically and can not be passed manually"
         )
+    # The binding takes an unsigned degree.
     if k < 0:
         raise _core.SplineError("Expect non-negative k.")
     if t is not None:
         t = _as_float_array(t, check_finite)
-        if t.ndim != 1 or np.any(t[1:] < t[:-1]):
+        # The binding takes a 1-D t (the library checks its order, length and bounds).
+        if t.ndim != 1:
             raise _core.SplineError("Expect t to be a 1-D sorted array_like.")
-        if t.size < x.size + k + 1:
-            raise _core.SplineError(f"Got {t.size} knots, need at least {x.size + k + 1}.")
-        if (x[0] < t[k]) or (x[-1] > t[-k]):
-            raise _core.SplineError(f"Out of bounds w/ x = {x}.")
     if bc_type == "periodic":
         bc, left, right = "periodic", [], []
     elif deriv_l is None and deriv_r is None:
         bc, left, right = "not-a-knot", [], []
     else:
         bc = "ends"
-        left = _end_conditions(deriv_l, y, k, x[0])
-        right = _end_conditions(deriv_r, y, k, x[-1])
-        if t is not None:
-            nt = t.size - k - 1
-            if nt - x.size != len(left) + len(right):
-                raise _core.SplineError(
-                    "The number of derivatives at boundaries does not match: "
-                    f"expected {nt - x.size}, got {len(left)}+{len(right)}"
-                )
-    if y.size == 0:
-        if t is None:
-            t = _core.not_a_knot(np.ascontiguousarray(x), k)
-        c = np.zeros((t.size - k - 1,) + y.shape[1:], dtype=float)
-        return BSpline.construct_fast(t, c, k, axis=axis)
+        ends = (x[0], x[-1]) if x.size else (None, None)
+        left = _end_conditions(deriv_l, y, ends[0])
+        right = _end_conditions(deriv_r, y, ends[1])
+    if prod(y.shape[1:]) == 0:
+        # No value columns: the library fits one zero column for the knots (and checks the
+        # arguments as scipy does before it returns zeros; for k <= 1 scipy returns y).
+        zero = [(order, [0.0]) for order, _ in left], [(order, [0.0]) for order, _ in right]
+        core = _core.interp_spline(x, np.zeros(y.shape[0]), 1, k, t, bc, *zero)
+        rows = core.coefficients().size
+        dtype = y.dtype if k <= 1 and t is None else float
+        c = np.zeros((rows,) + y.shape[1:], dtype=dtype)
+        return BSpline.construct_fast(core.knots(), c, k, axis=axis)
     out = []
 
     def solve(flat, m):
@@ -119,7 +110,7 @@ def make_interp_spline(
     return BSpline.construct_fast(out[0].knots(), c, k, axis=axis)
 
 
-def _end_conditions(deriv, y: np.ndarray, k: int, where: float) -> list:
+def _end_conditions(deriv, y: np.ndarray, where: Optional[float]) -> list:
     """scipy's end conditions (``'clamped'``, ``'natural'``, ``None`` or a list of
     ``(order, value)``) as the library's: ``(order, values)`` with one real value per column
     of ``y`` (complex values are two)."""
@@ -141,7 +132,8 @@ def _end_conditions(deriv, y: np.ndarray, k: int, where: float) -> list:
             "of (order, value)."
         ) from e
     ords = np.atleast_1d(ords)
-    if not all(0 <= o <= k for o in ords):
+    # The binding takes unsigned orders (the library refuses orders above k in these words).
+    if not all(o >= 0 for o in ords):
         raise _core.SplineError(f"Bad boundary conditions at {where}.")
     dtype = np.result_type(y.dtype, *[np.asarray(v).dtype for v in vals])
     conditions = []
@@ -167,7 +159,8 @@ def make_lsq_spline(
 ) -> BSpline:
     """The least-squares B-spline on the knots ``t`` (scipy's ``make_lsq_spline``):
     minimises ``sum((w[j] * (y[j] - f(x[j])))**2)`` along ``axis``; ``method``: ``'qr'``
-    (Givens rotations) or ``'norm-eq'`` (banded normal equations)."""
+    (Givens rotations) or ``'norm-eq'`` (banded normal equations). The library checks the
+    data, the knots and the weights with scipy's words."""
     x = _as_float_array(x, check_finite)
     y = _as_float_array(y, check_finite)
     t = _as_float_array(t, check_finite)
@@ -178,33 +171,26 @@ def make_lsq_spline(
     k = operator.index(k)
     axis = normalize_axis_index(axis, y.ndim)
     y = np.moveaxis(y, axis, 0)
+    # The binding takes a 1-D x, an unsigned k and a 1-D t.
     if x.ndim != 1:
         raise _core.SplineError("Expect x to be a 1-D sequence.")
-    if x.shape[0] < k + 1:
-        raise _core.SplineError("Need more x points.")
     if k < 0:
         raise _core.SplineError("Expect non-negative k.")
-    if t.ndim != 1 or np.any(t[1:] - t[:-1] < 0):
+    if t.ndim != 1:
         raise _core.SplineError("Expect t to be a 1D strictly increasing sequence.")
-    if x.size != y.shape[0]:
-        raise _core.SplineError(f"Shapes of x {x.shape} and y {y.shape} are incompatible")
-    if k > 0 and np.any((x < t[k]) | (x > t[-k])):
-        raise _core.SplineError(f"Out of bounds w/ x = {x}.")
-    if x.size != w.size:
-        raise _core.SplineError(f"Shapes of x {x.shape} and w {w.shape} are incompatible")
-    if method == "norm-eq" and np.any(x[1:] - x[:-1] <= 0):
-        raise _core.SplineError("Expect x to be a 1D strictly increasing sequence.")
-    if method == "qr" and any(x[1:] - x[:-1] < 0):
-        raise _core.SplineError("Expect x to be a 1D non-decreasing sequence.")
+    # Any object is a method here (the binding takes a name).
     if method not in ("qr", "norm-eq"):
         raise _core.SplineError(f"Unknown {method = }.")
-    n = t.size - k - 1
-    if prod(y.shape[1:]) == 0:
-        return BSpline.construct_fast(t, np.zeros((n,) + y.shape[1:]), k, axis=axis)
     ww = np.ascontiguousarray(w, dtype=np.float64)
-    c = _solve_columns(
-        y, lambda flat, m: _core.lsq_spline(x, flat, m, t, k, ww, method).coefficients()
-    )
+
+    def fit(flat, m):
+        return _core.lsq_spline(x, flat, m, t, k, ww, method)
+
+    if prod(y.shape[1:]) == 0:
+        # No value columns: the library fits one zero column (and checks the arguments).
+        rows = fit(np.zeros(y.shape[0]), 1).coefficients().size
+        return BSpline.construct_fast(t, np.zeros((rows,) + y.shape[1:]), k, axis=axis)
+    c = _solve_columns(y, lambda flat, m: fit(flat, m).coefficients())
     return BSpline.construct_fast(t, np.ascontiguousarray(c), k, axis=axis)
 
 
@@ -213,29 +199,23 @@ def make_smoothing_spline(
 ) -> BSpline:
     """The cubic smoothing spline (scipy's ``make_smoothing_spline``): minimises
     ``sum(w_j (y_j - f(x_j))**2) + lam * integral(f''**2)``, ``lam`` chosen by generalised
-    cross-validation when ``None`` (per column)."""
+    cross-validation when ``None`` (per column). The library checks the data, the weights
+    and ``lam`` with scipy's words."""
     x = np.ascontiguousarray(x, dtype=float)
     y = np.ascontiguousarray(y, dtype=float)
-    if any(x[1:] - x[:-1] <= 0):
-        raise _core.SplineError("``x`` should be an ascending array")
-    if x.ndim != 1 or x.shape[0] != y.shape[axis]:
+    # The binding takes a 1-D x.
+    if x.ndim != 1:
         raise _core.SplineError(f"``x`` should be 1D and {x.shape = } == {y.shape = }")
     if w is not None:
         w = np.ascontiguousarray(w, dtype=float)
-        if any(w <= 0):
-            raise _core.SplineError("Invalid vector of weights")
-    if x.shape[0] <= 4:
-        raise _core.SplineError("``x`` and ``y`` length must be at least 5")
-    if lam is not None and lam < 0.0:
-        raise _core.SplineError("Regularization parameter should be non-negative")
     axis = normalize_axis_index(axis, y.ndim)
     y = np.moveaxis(y, axis, 0)
-    t_out = []
+    out = []
 
     def solve(flat, m):
-        t, c = _core.smoothing_columns(x, flat, m, w, None if lam is None else float(lam))
-        t_out.append(t)
-        return c
+        core = _core.smoothing_columns(x, flat, m, w, None if lam is None else float(lam))
+        out.append(core)
+        return core.coefficients()
 
     c = _solve_columns(y, solve)
-    return BSpline.construct_fast(t_out[0], c, 3, axis=axis)
+    return BSpline.construct_fast(out[0].knots(), c, 3, axis=axis)

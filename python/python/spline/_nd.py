@@ -15,7 +15,9 @@ from ._bspline import _float_dtype, _from_columns, _real_columns
 
 
 def _preprocess(k, t_tpl):
-    """scipy's checks of the degrees and knot vectors: ``(k as a list, t as float arrays)``."""
+    """scipy's checks of the degrees and knot vectors: ``(k as a list, t as float arrays)``.
+    scipy raises at construction; the library's NdSpline is built at each call, so its
+    checks of the knots are repeated here in scipy's words."""
     if not isinstance(t_tpl, tuple):
         raise _core.SplineError(f"Expect `t` to be a tuple of array-likes. Got {t_tpl} instead.")
     ndim = len(t_tpl)
@@ -63,6 +65,7 @@ class NdBSpline:
         self.extrapolate = True if extrapolate is None else bool(extrapolate)
         self._c = np.asarray(c)
         ndim = len(self._t)
+        # scipy raises at construction (the library's NdSpline is built at each call).
         if self._c.ndim < ndim:
             raise _core.SplineError(f"Coefficients must be at least {ndim}-dimensional.")
         for d in range(ndim):
@@ -112,6 +115,8 @@ class NdBSpline:
             nu = np.zeros((ndim,), dtype=np.int64)
         else:
             nu = np.asarray(nu, dtype=np.int64)
+            # scipy's words (the library accepts an empty nu and words the count otherwise);
+            # the binding takes unsigned orders.
             if nu.ndim != 1 or nu.shape[0] != ndim:
                 raise _core.SplineError(
                     f"invalid number of derivative orders {nu = } for ndim = {len(self.t)}."
@@ -121,6 +126,7 @@ class NdBSpline:
         xi = np.asarray(xi, dtype=float)
         xi_shape = xi.shape
         xi = np.ascontiguousarray(xi.reshape(-1, xi_shape[-1]))
+        # numpy shapes: the library sees the coordinates flat.
         if xi_shape[-1] != ndim:
             raise _core.SplineError(f"Shapes: xi.shape={xi_shape} and ndim={ndim}")
         core, is_complex, tail = self._core()
@@ -133,6 +139,7 @@ class NdBSpline:
         """The tensor-product collocation matrix at the points ``xvals`` (shape
         ``(npts, ndim)``) as a ``scipy.sparse.csr_array``."""
         xvals = np.asarray(xvals, dtype=float)
+        # numpy shapes: the library sees the coordinates flat.
         if xvals.ndim != 2:
             raise _core.SplineError(f"Expect xvals of shape (npts, ndim), got {xvals.shape}.")
         ndim = xvals.shape[-1]
@@ -154,6 +161,7 @@ class NdBSpline:
         """The partial derivative of orders ``nu`` (one per dimension) as an ``NdBSpline``."""
         nu_arr = np.asarray(nu, dtype=np.int64)
         ndim = len(self.t)
+        # As in __call__: scipy's words; the binding takes unsigned orders.
         if nu_arr.ndim != 1 or nu_arr.shape[0] != ndim:
             raise _core.SplineError(
                 f"invalid number of derivative orders {nu = } for ndim = {len(self.t)}."
@@ -201,13 +209,6 @@ def make_ndbspl(points, values, k=3, *, solver=None, **solver_args):
         len(k)
     except TypeError:
         k = (k,) * ndim
-    for d, point in enumerate(points):
-        numpts = len(np.atleast_1d(point))
-        if numpts <= k[d]:
-            raise _core.SplineError(
-                f"There are {numpts} points in dimension {d}, but order {k[d]} "
-                "requires at least  {k[d]+1} points per dimension."
-            )
     values = np.asarray(values)
     tail = values.shape[ndim:]
     cc, is_complex = _real_columns(values.reshape(prod(xi_shape), *tail))

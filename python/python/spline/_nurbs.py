@@ -108,9 +108,11 @@ class NurbsCurve:
         """The same curve with its degree raised by ``times`` (exact)."""
         return NurbsCurve._wrap(self._s.elevate_degree(int(times)))
 
-    def features(self, accuracy: float = 1e-12) -> Features:
+    def features(self, accuracy: Optional[float] = None) -> Features:
         """Inflections and curvature extrema of a planar NURBS curve."""
-        return Features(*self._s.features(float(accuracy)))
+        return Features(
+            *self._s.features(None if accuracy is None else float(accuracy))
+        )
 
     def to_json(self) -> str:
         """The curve in the exchange format."""

@@ -1,7 +1,8 @@
 """scipy's FITPACK replicas with their signatures: ``make_splrep``, ``make_splprep`` and
 ``generate_knots`` (``scipy.interpolate``, ``bc_type`` ``"not-a-knot"`` or ``"periodic"``).
 The fits run in the library (``spline_fit::make_splrep``: FITPACK's ``curfit`` and, periodic,
-``percur``); this module validates the arguments with scipy's words."""
+``percur``, with the defaults of ``xb``, ``xe`` and the checks of ``nest``); this module
+converts the arguments and validates them with scipy's words where the library's differ."""
 
 from __future__ import annotations
 
@@ -58,8 +59,9 @@ def _validate_inputs(x, y, w, k, s, xb, xe, parametric):
     k = operator.index(k)
     if s < 0:
         raise _core.SplineError(f"`s` must be non-negative. Got {s = }")
-    xb = float(min(x)) if xb is None else float(xb)
-    xe = float(max(x)) if xe is None else float(xe)
+    # xb, xe: None is scipy's min(x), max(x) in the library (x[0], x[-1] of the sorted x).
+    xb = None if xb is None else float(xb)
+    xe = None if xe is None else float(xe)
     return x, np.ascontiguousarray(y), w, k, float(s), xb, xe
 
 
@@ -80,13 +82,15 @@ def _fit(x, y, dim, w, xb, xe, k, s, t, nest, periodic):
     return knots, c
 
 
-def _check_nest(nest, k, t):
-    if nest is not None:
-        if nest < 2 * (k + 1):
-            raise _core.SplineError(f"`nest` too small: {nest = } < 2*(k+1) = {2 * (k + 1)}.")
-        if t is not None:
-            raise _core.SplineError("Either supply `t` or `nest`.")
-    return None if nest is None else int(nest)
+def _nest(nest, k):
+    """``nest`` for the binding; the library checks it (too small, or with ``t``) in
+    scipy's words."""
+    if nest is None:
+        return None
+    # The binding takes an unsigned count.
+    if nest < 0:
+        raise _core.SplineError(f"`nest` too small: {nest = } < 2*(k+1) = {2 * (k + 1)}.")
+    return int(nest)
 
 
 def generate_knots(x, y, *, w=None, xb=None, xe=None, k=3, s=0, nest=None, bc_type=None):
@@ -109,7 +113,7 @@ def generate_knots(x, y, *, w=None, xb=None, xe=None, k=3, s=0, nest=None, bc_ty
         return
     parametric = np.ndim(y) == 2
     x, y, w, k, s, xb, xe = _validate_inputs(x, y, w, k, s, xb, xe, parametric=parametric)
-    nest = _check_nest(nest, k, None)
+    nest = _nest(nest, k)
     dim = y.shape[1] if parametric else 0
     for t in _core.splrep_knots(x, y.reshape(-1), dim, w, xb, xe, k, s, nest, periodic):
         yield np.asarray(t)
@@ -126,7 +130,7 @@ def make_splrep(x, y, *, w=None, xb=None, xe=None, k=3, s=0, t=None, nest=None, 
         return make_interp_spline(x, y, k=k, bc_type=bc_type)
     x, y, w, k, s, xb, xe = _validate_inputs(x, y, w, k, s, xb, xe, parametric=False)
     tt = None if t is None else np.ascontiguousarray(t, dtype=float)
-    nest = _check_nest(nest, k, tt)
+    nest = _nest(nest, k)
     knots, c = _fit(x, y.reshape(-1), 0, w, xb, xe, k, s, tt, nest, bc_type == "periodic")
     return BSpline.construct_fast(knots, c, k)
 
@@ -146,7 +150,7 @@ def make_splprep(x, *, w=None, u=None, ub=None, ue=None, k=3, s=0, t=None, nest=
         return make_interp_spline(u, x.T, k=k, axis=1), u
     u, x, w, k, s, ub, ue = _validate_inputs(u, x, w, k, s, ub, ue, parametric=True)
     tt = None if t is None else np.ascontiguousarray(t, dtype=float)
-    nest = _check_nest(nest, k, tt)
+    nest = _nest(nest, k)
     knots, c = _fit(u, x.reshape(-1), x.shape[1], w, ub, ue, k, s, tt, nest, periodic)
     cc = c.reshape(-1, x.shape[1]).T
     return BSpline(knots, cc, k, axis=1), u

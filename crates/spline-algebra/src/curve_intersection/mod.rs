@@ -13,10 +13,15 @@ mod frame;
 mod overlap;
 mod piece;
 mod refine;
+mod results;
 mod search;
 
+pub use results::{
+    CurveEvent, CurveIntersection, CurveIntersections, CurveOverlap, TANGENTIAL_SINE,
+};
+pub use search::MAX_INTERSECTION_PAIRS;
+
 use frame::Frame;
-use nalgebra::Vector2;
 use overlap::{Setting, within};
 use piece::pieces_of;
 use refine::{deduplicate, refine};
@@ -26,61 +31,10 @@ use spline_core::ErrorKind;
 use spline_core::{Error, Result, Scalar, cast, to_f64};
 use spline_geom::PlanarCurve;
 
-/// The largest number of piece pairs examined before the search gives up: a safety net
-/// only (overlaps are found as such and the subdivision stops at flat pieces, so the work
-/// is bounded by the geometry, far below this).
-pub const MAX_INTERSECTION_PAIRS: usize = 1_000_000;
-
-/// An intersection of two curves, or a self-intersection of one (`u < v`).
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct CurveIntersection<T> {
-    /// The parameter on the first curve.
-    pub u: T,
-    /// The parameter on the second curve (on the same curve for a self-intersection).
-    pub v: T,
-    /// The point, the middle of $A(u)$ and $B(v)$.
-    pub point: Vector2<T>,
-    /// Whether the curves touch there with parallel tangents (the sine of the angle between
-    /// them below [`TANGENTIAL_SINE`]).
-    pub tangential: bool,
-    /// $|A(u) − B(v)|$: the rounding of floating point at a crossing; at a tangential
-    /// contact, the gap between the curves (up to the tolerance: two curves that come within
-    /// the tolerance of each other touch).
-    pub gap: T,
-}
-
-/// Intersections where the sine of the angle between the tangents is below this are
-/// tangential.
-pub const TANGENTIAL_SINE: f64 = 1e-6;
-
-/// Below this sine of the angle between the tangents, a tangency is tried as well.
-const NEAR_TANGENT_SINE: f64 = 1e-3;
-
-/// An arc along which two curves coincide within the tolerance (or a curve with itself:
-/// then `u` lies before `v`): `[u.0, u.1]` on the first curve (`u.0 < u.1`) and its image
-/// on the second, from `v.0` (where `A(u.0)` lies) to `v.1` (where `A(u.1)` lies), so
-/// `v.0 > v.1` when the curves run in opposite directions.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct CurveOverlap<T> {
-    /// The interval on the first curve.
-    pub u: (T, T),
-    /// Its image on the second curve (decreasing when `reversed`).
-    pub v: (T, T),
-    /// Whether the second curve runs the other way along the overlap.
-    pub reversed: bool,
-    /// The ends of the overlap, `A(u.0)` and `A(u.1)`.
-    pub points: (Vector2<T>, Vector2<T>),
-}
-
-/// The intersections of two curves (or the self-intersections of one): isolated points
-/// and overlaps.
-#[derive(Clone, Debug, Default, PartialEq)]
-pub struct CurveIntersections<T> {
-    /// The isolated intersections, in increasing `u`.
-    pub points: Vec<CurveIntersection<T>>,
-    /// The arcs along which the curves coincide, in increasing `u.0`.
-    pub overlaps: Vec<CurveOverlap<T>>,
-}
+/// The contact tolerance the front ends use when none is given, relative to the curves'
+/// size ([`intersect_curves_relative`], [`self_intersections_relative`]): the same answer
+/// at every scale.
+pub const DEFAULT_RELATIVE_CONTACT: f64 = 1e-9;
 
 /// [`ErrorKind::InvalidTolerance`] unless the tolerance is positive and finite.
 fn check_tolerance<T: Scalar>(tolerance: T) -> Result<()> {
@@ -93,13 +47,6 @@ fn check_tolerance<T: Scalar>(tolerance: T) -> Result<()> {
             to_f64(tolerance),
         ))
     }
-}
-
-/// A start for Newton's method.
-#[derive(Clone, Copy, Debug)]
-struct Candidate<T> {
-    u: T,
-    v: T,
 }
 
 /// All intersections of two planar curves of any kind: the points where they come within

@@ -5,8 +5,8 @@
 //! tolerance over a short arc) handed back to Newton's method as points.
 
 use super::piece::along;
-use super::refine::jet;
-use super::{Candidate, CurveOverlap};
+use super::refine::{Candidate, jet};
+use super::results::CurveOverlap;
 use nalgebra::Vector2;
 use spline_core::{Result, Scalar, cast, march_to_boundary};
 use spline_geom::PlanarCurve;

@@ -1,10 +1,20 @@
 //! Newton's method on a candidate: on `A(u) = B(v)`, on the regular system of a tangency,
 //! and the local foot point of a point on a curve; duplicates merged.
 
-use super::{Candidate, CurveIntersection, NEAR_TANGENT_SINE, TANGENTIAL_SINE};
+use super::results::{CurveIntersection, TANGENTIAL_SINE};
 use nalgebra::Vector2;
 use spline_core::{Result, Scalar, cast};
 use spline_geom::{PlanarCurve, wedge};
+
+/// Below this sine of the angle between the tangents, a tangency is tried as well.
+pub(super) const NEAR_TANGENT_SINE: f64 = 1e-3;
+
+/// A start for Newton's method.
+#[derive(Clone, Copy, Debug)]
+pub(super) struct Candidate<T> {
+    pub(super) u: T,
+    pub(super) v: T,
+}
 
 /// Value, first and second derivatives at `u` (clamped into the domain).
 pub(super) fn jet<T: Scalar, C: PlanarCurve<T>>(curve: &C, u: T) -> Result<(T, [Vector2<T>; 3])> {

@@ -9,10 +9,15 @@
 
 use super::overlap::{OverlapPiece, lies_on};
 use super::piece::{Piece, mid, segment_closest};
-use super::{Candidate, MAX_INTERSECTION_PAIRS};
+use super::refine::Candidate;
 use nalgebra::Vector2;
 use spline_core::{ControlPoint, Error, ErrorKind, Result, Scalar, cast};
 use spline_geom::PlanarCurve;
+
+/// The largest number of piece pairs examined before the search gives up: a safety net
+/// only (overlaps are found as such and the subdivision stops at flat pieces, so the work
+/// is bounded by the geometry, far below this).
+pub const MAX_INTERSECTION_PAIRS: usize = 1_000_000;
 
 /// What the subdivision found: starts for Newton's method and pieces of overlaps.
 pub(super) struct Found<T> {

@@ -12,12 +12,13 @@
 
 mod forms;
 
+use crate::curves::check_extremum_numerator_degree;
 use crate::maps::SplineMap;
 use forms::{
     Pairing, ProductSums, Quadratic, add_pair, product_hessians, product_weights, quartic_products,
 };
 use nalgebra::Vector2;
-use spline_core::{Error, ErrorKind, KnotVector, MAX_DEGREE, Result, Scalar, from_count};
+use spline_core::{Error, ErrorKind, KnotVector, Result, Scalar, from_count};
 
 /// The Bernstein coefficients of `g = h1 h2 − 3 h3 h4` (thesis (6.10)) on every non-empty knot
 /// span of a planar curve of a fixed knot vector, with their gradients and Hessians with
@@ -106,7 +107,7 @@ impl<T: Scalar> SegmentCurvature<T> {
     /// # Errors
     /// [`ErrorKind::InvalidArgument`] for degree below 3 (then `c‴ = 0` and `g` has no
     /// Bernstein form of degree `4p − 6`; use [`crate::PlanarInvariants`]);
-    /// [`ErrorKind::DegreeTooHigh`] if `4p − 6` exceeds [`MAX_DEGREE`].
+    /// [`ErrorKind::DegreeTooHigh`] if `4p − 6` exceeds [`spline_core::MAX_DEGREE`].
     ///
     /// # Panics
     /// Never: the `expect` only states that every segment of a valid knot vector's domain
@@ -121,15 +122,7 @@ impl<T: Scalar> SegmentCurvature<T> {
             .with_value(p as f64)
             .with_interval(3.0, f64::INFINITY));
         }
-        if 4 * p - 6 > MAX_DEGREE {
-            return Err(Error::new(
-                ErrorKind::DegreeTooHigh,
-                format!(
-                    "g of a degree-{p} curve has degree {}, above the supported maximum {MAX_DEGREE}",
-                    4 * p - 6
-                ),
-            ));
-        }
+        check_extremum_numerator_degree(p)?;
         let weights = ProductWeights {
             d1d1: product_weights(p - 1, p - 1),
             d1d2: product_weights(p - 1, p - 2),

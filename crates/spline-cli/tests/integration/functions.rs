@@ -194,6 +194,21 @@ fn nd_interpolation_and_evaluation_match_scipy() {
     let e = spline(&["nd-eval", &file, "--at", "[[5, 1]]", "--extrapolate", "off"])
         .assert_clean_error();
     assert!(e.contains("outside"), "{e}");
+    // scipy's NdBSpline has no periodic extrapolation: refused, not taken for `on`.
+    let e = spline(&[
+        "nd-eval",
+        &file,
+        "--at",
+        "[[5, 1]]",
+        "--extrapolate",
+        "periodic",
+    ]);
+    assert_eq!(e.status, 2, "{}", e.stderr);
+    assert!(
+        e.stdout.is_empty() && e.stderr.contains("periodic"),
+        "{}",
+        e.stderr
+    );
     let e = spline(&[
         "nd-interpolate",
         "--grid",

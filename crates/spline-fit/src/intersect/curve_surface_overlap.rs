@@ -6,7 +6,7 @@ use super::curve_surface::{CurveSurfaceHit, intersect_curve_surface};
 use super::{Tolerances, check_tolerance, scale_of_boxes};
 use crate::surface_project::{BoxTree, SurfaceProjector, bounding_box};
 use nalgebra::Vector3;
-use spline_core::{Result, Scalar, cast, march_to_boundary};
+use spline_core::{Result, Scalar, cast, march_to_boundary, to_f64};
 use spline_geom::{ParamCurve, ParamSurface};
 
 /// An arc of a curve that lies in a surface within the distance tolerance.
@@ -27,6 +27,37 @@ pub struct CurveSurfaceIntersections<T> {
     pub points: Vec<CurveSurfaceHit<T>>,
     /// The arcs of the curve in the surface, sorted.
     pub overlaps: Vec<CurveSurfaceOverlap<T>>,
+}
+
+/// One answer of [`CurveSurfaceIntersections::events`]: an isolated point or an arc of the
+/// curve in the surface.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum CurveSurfaceEvent<'a, T> {
+    /// An isolated intersection.
+    Point(&'a CurveSurfaceHit<T>),
+    /// An arc of the curve lying in the surface.
+    Overlap(&'a CurveSurfaceOverlap<T>),
+}
+
+impl<T: Scalar> CurveSurfaceIntersections<T> {
+    /// The points and the arcs in one list, in increasing curve parameter `t` (an arc at the
+    /// start of its interval; a point before an arc that starts where it lies): the order in
+    /// which a front end reports them.
+    #[must_use]
+    pub fn events(&self) -> Vec<CurveSurfaceEvent<'_, T>> {
+        let mut events: Vec<(T, CurveSurfaceEvent<'_, T>)> = self
+            .points
+            .iter()
+            .map(|p| (p.t, CurveSurfaceEvent::Point(p)))
+            .chain(
+                self.overlaps
+                    .iter()
+                    .map(|o| (o.t.0, CurveSurfaceEvent::Overlap(o))),
+            )
+            .collect();
+        events.sort_by(|x, y| to_f64(x.0).total_cmp(&to_f64(y.0)));
+        events.into_iter().map(|(_, event)| event).collect()
+    }
 }
 
 /// A curve parameter with the surface parameters of its point.

@@ -5,6 +5,7 @@ mod normal;
 #[cfg(feature = "parallel")]
 mod parallel;
 mod scattered;
+mod types;
 
 #[cfg(feature = "parallel")]
 pub use assemble::PARALLEL_MIN_POINTS;
@@ -13,75 +14,18 @@ pub use normal::{GridLeastSquares, GridNormalEquations, NormalEquations};
 #[cfg(feature = "parallel")]
 pub(crate) use parallel::chunk_len;
 pub(crate) use scattered::scattered_normal_equations;
+pub(crate) use types::Rows;
+pub use types::{LeastSquares, LsqMethod};
 
-use crate::params::check_degree;
 use crate::params::{
-    KnotChoice, Parametrization, check_control_count, check_points, knots_for, parametrize,
+    KnotChoice, Parametrization, check_control_count, check_points, check_weights, knots_for,
+    parametrize,
 };
+use crate::params::{check_degree, check_non_negative};
 use crate::report::CurveFit;
 use assemble::Sink;
-use spline_core::{
-    ControlPoint, Error, ErrorKind, KnotVector, Result, Scalar, cast, check_params, to_f64,
-};
+use spline_core::{ControlPoint, Error, ErrorKind, KnotVector, Result, Scalar, cast, check_params};
 use spline_geom::BSpline;
-
-/// The data rows of a curve fit as the assembly kernels take them: the knots, the data's
-/// parameters and points, and their weights (`None`: all ones).
-#[derive(Clone, Copy)]
-pub(crate) struct Rows<'a, T, P> {
-    pub(crate) knots: &'a KnotVector<T>,
-    pub(crate) params: &'a [T],
-    pub(crate) points: &'a [P],
-    pub(crate) weights: Option<&'a [T]>,
-}
-
-/// How the least-squares problem is solved.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
-pub enum LsqMethod {
-    /// Banded normal equations $A^T W^2 A\\, c = A^T W^2 Q$ solved by banded Cholesky: the
-    /// fastest, `O(m p² + n p²)`, accurate for the well-conditioned B-spline bases.
-    #[default]
-    NormalEquations,
-    /// Givens QR of the banded design matrix, one data row at a time (as FITPACK): about
-    /// twice the work, without squaring the condition number.
-    Qr,
-}
-
-/// A least-squares fit of a B-spline to data (seed 000 (10)–(13), seed 003 TD3, The NURBS
-/// Book §9.4.1): minimises
-///
-/// $$ \sum_k w_k^2 \lVert C(\bar u_k) - Q_k \rVert^2 + \lambda \int \lVert C''(u) \rVert^2 du $$
-///
-/// over the control points that are not fixed. Weights multiply the residuals, as in scipy's
-/// `make_lsq_spline` (weight `w` on a point counts like `w²` copies of it). Built with
-/// [`LeastSquares::new`], configured with the builder methods, run by
-/// [`LeastSquares::solve`].
-///
-/// ```
-/// use nalgebra::Vector2;
-/// use spline_core::KnotVector;
-/// use spline_fit::LeastSquares;
-/// // 50 points on a parabola, a quadratic Bézier reproduces it exactly.
-/// let params: Vec<f64> = (0..50).map(|k| k as f64 / 49.0).collect();
-/// let points: Vec<Vector2<f64>> = params.iter().map(|&t| Vector2::new(t, t * t)).collect();
-/// let knots = KnotVector::bezier(2, 0.0, 1.0)?;
-/// let fit = LeastSquares::new(&points, &params, knots).pin_ends().solve()?;
-/// assert!(fit.deviation.max < 1e-13);
-/// # Ok::<(), spline_core::Error>(())
-/// ```
-#[derive(Clone, Debug)]
-pub struct LeastSquares<'a, T, P> {
-    points: &'a [P],
-    params: &'a [T],
-    knots: KnotVector<T>,
-    weights: Option<&'a [T]>,
-    fixed_points: Vec<(usize, P)>,
-    fixed_coords: Vec<(usize, usize, T)>,
-    pin_ends: bool,
-    smoothing: T,
-    method: LsqMethod,
-    check_sw: bool,
-}
 
 impl<'a, T: Scalar, P: ControlPoint<T>> LeastSquares<'a, T, P> {
     /// The problem for the data `points` at `params` (non-decreasing, inside the domain of
@@ -301,33 +245,9 @@ impl<'a, T: Scalar, P: ControlPoint<T>> LeastSquares<'a, T, P> {
             }
         }
         if let Some(w) = self.weights {
-            if w.len() != m {
-                return Err(Error::new(
-                    ErrorKind::InvalidLength,
-                    format!("{} weights for {m} points", w.len()),
-                ));
-            }
-            if let Some(k) = w.iter().position(|&x| !(x > T::zero() && x.is_finite())) {
-                return Err(Error::new(
-                    ErrorKind::InvalidWeight,
-                    format!(
-                        "weight {k} is {}: weights must be positive and finite",
-                        to_f64(w[k])
-                    ),
-                ));
-            }
+            check_weights(w, m)?;
         }
-        if !(self.smoothing >= T::zero() && self.smoothing.is_finite()) {
-            return Err(Error::new(
-                ErrorKind::InvalidArgument,
-                format!(
-                    "the smoothing weight must be finite and non-negative, got {}",
-                    to_f64(self.smoothing)
-                ),
-            )
-            .with_value(to_f64(self.smoothing))
-            .with_interval(0.0, f64::INFINITY));
-        }
+        check_non_negative(self.smoothing, "the smoothing weight")?;
         let n = self.knots.num_basis();
         for &(i, v) in &self.fixed_points {
             if i >= n || !v.all_finite() {

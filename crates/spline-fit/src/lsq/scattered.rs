@@ -57,14 +57,15 @@ pub(crate) fn scattered_normal_equations<T: Scalar, P: ControlPoint<T>>(
                         knots_v.basis_derivatives(sv, v, 2, &mut bv[..3 * (q + 1)]);
                         let w = smoothing * wx * wy * ru * rv;
                         for (du, dv, factor) in [(2, 0, T::one()), (1, 1, two), (0, 2, T::one())] {
-                            idx.clear();
-                            val.clear();
-                            for a in 0..=p {
-                                for b in 0..=q {
-                                    idx.push((su - p + a) * nv + sv - q + b);
-                                    val.push(bu[du * (p + 1) + a] * bv[dv * (q + 1) + b]);
-                                }
-                            }
+                            tensor_row(
+                                (su - p, sv - q, nv),
+                                (
+                                    &bu[du * (p + 1)..=du * (p + 1) + p],
+                                    &bv[dv * (q + 1)..=dv * (q + 1) + q],
+                                ),
+                                &mut idx,
+                                &mut val,
+                            );
                             add_row(&mut matrix, &mut rhs, &idx, &val, P::origin(), w * factor);
                         }
                     }
@@ -115,14 +116,12 @@ fn add_points<T: Scalar, P: ControlPoint<T>>(
         let (su, sv) = (knots_u.span_in_domain(u), knots_v.span_in_domain(v));
         knots_u.basis_values(su, u, &mut bu);
         knots_v.basis_values(sv, v, &mut bv);
-        idx.clear();
-        val.clear();
-        for a in 0..=p {
-            for b in 0..=q {
-                idx.push((su - p + a) * nv + sv - q + b);
-                val.push(bu[a] * bv[b]);
-            }
-        }
+        tensor_row(
+            (su - p, sv - q, nv),
+            (&bu[..=p], &bv[..=q]),
+            &mut idx,
+            &mut val,
+        );
         add_row(matrix, rhs, &idx, &val, point, T::one());
     }
 }
@@ -230,6 +229,24 @@ mod tests {
         let rhs_scale = rhs1.iter().fold(0.0f64, |s, r| s.max(r.amax()));
         for (a, b) in rhs1.iter().zip(&rhs2) {
             assert!((a - b).amax() <= 1e-12 * rhs_scale);
+        }
+    }
+}
+
+/// The row of a tensor-product basis: control point `(first_u + a, first_v + b)` (index
+/// `(first_u + a)·nv + first_v + b`) with the value `bu[a]·bv[b]`, written into `idx`, `val`.
+fn tensor_row<T: Scalar>(
+    (first_u, first_v, nv): (usize, usize, usize),
+    (bu, bv): (&[T], &[T]),
+    idx: &mut Vec<usize>,
+    val: &mut Vec<T>,
+) {
+    idx.clear();
+    val.clear();
+    for (a, &x) in bu.iter().enumerate() {
+        for (b, &y) in bv.iter().enumerate() {
+            idx.push((first_u + a) * nv + first_v + b);
+            val.push(x * y);
         }
     }
 }

@@ -15,7 +15,9 @@
 use crate::banded::BandCholesky;
 use crate::interpolate::interpolate_with_knots;
 use crate::lsq::{LeastSquares, LsqMethod};
-use crate::params::{Parametrization, check_points, check_weights, parametrize};
+use crate::params::{
+    Parametrization, check_non_negative, check_points, check_weights, parametrize,
+};
 use spline_core::{
     ControlPoint, Error, ErrorKind, KnotVector, MAX_DEGREE, Result, Scalar, cast, check_params,
     from_count, to_f64,
@@ -152,17 +154,7 @@ pub(super) fn check_data<T: Scalar, P: ControlPoint<T>>(
     s: T,
     (min_points, who): (usize, &str),
 ) -> Result<()> {
-    if !(s >= T::zero() && s.is_finite()) {
-        return Err(Error::new(
-            ErrorKind::InvalidArgument,
-            format!(
-                "the residual target s must be finite and non-negative, got {}",
-                to_f64(s)
-            ),
-        )
-        .with_value(to_f64(s))
-        .with_interval(0.0, f64::INFINITY));
-    }
+    check_non_negative(s, "the residual target s")?;
     let m = x.len();
     check_lengths(m, y.len())?;
     if m < min_points {

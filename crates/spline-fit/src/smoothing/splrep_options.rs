@@ -99,7 +99,7 @@ impl<T: Scalar> SplrepOptions<'_, T> {
             let k = self.k;
             if nest < 2 * (k + 1) {
                 return Err(invalid(format!(
-                    "`nest` too small: nest = {nest} < 2*(k+1) = {}",
+                    "`nest` too small: nest = {nest} < 2*(k+1) = {}.",
                     2 * (k + 1)
                 ))
                 .with_counts(2 * (k + 1), nest));

@@ -2,7 +2,9 @@
 //! any sweep, and the full circle both ways of the notes ((6.9)–(6.10) and the equilateral
 //! triangle).
 
-use super::{Frame, check_positive, check_vector, degenerate, safe_norm};
+use super::checks::{check_positive, check_vector, degenerate};
+use super::placement::Frame;
+use super::vectors::safe_norm;
 use crate::bspline::BSpline;
 use crate::homogeneous::{Homogeneous, check_weight};
 use crate::nurbs::NurbsCurve;

@@ -2,7 +2,8 @@
 //! Jüttler, Zheng and Liu, *Computation of rotation minimizing frames*, ACM TOG 27, 2008):
 //! the frames that sweeps carry along their path.
 
-use super::{degenerate, perpendicular, safe_norm};
+use super::checks::degenerate;
+use super::vectors::{perpendicular, safe_norm};
 use crate::param::ParamCurve;
 use nalgebra::Vector3;
 use spline_core::{Error, ErrorKind, Result, Scalar, from_count, to_f64};
@@ -87,7 +88,7 @@ pub fn rotation_minimizing_frames<T: Scalar, C: ParamCurve<T, Point = Vector3<T>
     let (x0, t0) = tangent_at(params[0])?;
     let r0 = match normal {
         Some(n) => {
-            super::check_vector(&n, "the initial normal")?;
+            super::checks::check_vector(&n, "the initial normal")?;
             let r = n - t0 * t0.dot(&n);
             let len = safe_norm(&r);
             if !(len > safe_norm(&n) * spline_core::cast::<T>(1e-12)) {

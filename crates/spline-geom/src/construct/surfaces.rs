@@ -4,8 +4,10 @@
 use super::arcs::{
     CircleConstruction, arc_pieces, arc_template, full_circle_template, is_full_turn,
 };
+use super::checks::{check_positive, check_vector, degenerate};
 use super::compatible::compatible_curves;
-use super::{Axis, Frame, check_positive, check_vector, degenerate, perpendicular, safe_norm};
+use super::placement::{Axis, Frame};
+use super::vectors::{perpendicular, safe_norm};
 use crate::bspline::BSpline;
 use crate::homogeneous::Homogeneous;
 use crate::nurbs::{NurbsCurve, NurbsSurface};

@@ -1,9 +1,9 @@
 //! NURBS curves: the rational view over a B-spline of homogeneous points.
 
-use super::{
-    Rational, cartesian_scale, check_rational_removal, check_result_weights, mapped,
-    rational_curve_derivatives, weighted_points,
-};
+use super::derivatives::rational_curve_derivatives;
+use super::rational::Rational;
+use super::removal::check_rational_removal;
+use super::weighted::{cartesian_scale, check_result_weights, mapped, weighted_points};
 use crate::bezier::bezier_as_bspline;
 use crate::bspline::BSpline;
 use crate::homogeneous::Homogeneous;

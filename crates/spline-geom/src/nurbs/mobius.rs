@@ -1,7 +1,7 @@
 //! The rational linear (Möbius) reparametrization of a NURBS curve: the same points along
 //! the same domain at other parameters, with other end weights.
 
-use super::NurbsCurve;
+use super::curve::NurbsCurve;
 use crate::homogeneous::Homogeneous;
 use spline_core::{Error, ErrorKind, KnotVector, Result, Scalar, to_f64};
 

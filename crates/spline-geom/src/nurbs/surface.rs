@@ -1,9 +1,10 @@
 //! NURBS surfaces: the rational view over a tensor-product surface of homogeneous points.
 
-use super::{
-    NurbsCurve, Rational, cartesian_scale, check_rational_removal, homogeneous_square, mapped,
-    rational_surface_derivatives, unbounded, weighted_points,
-};
+use super::curve::NurbsCurve;
+use super::derivatives::{homogeneous_square, rational_surface_derivatives};
+use super::rational::Rational;
+use super::removal::{check_rational_removal, unbounded};
+use super::weighted::{cartesian_scale, mapped, weighted_points};
 use crate::homogeneous::Homogeneous;
 use crate::operations::StructuralSurface;
 use crate::structural::check_tolerance;

@@ -1,7 +1,8 @@
 //! One-point evaluation of a NURBS surface: the [`SurfaceEvaluator`] of its homogeneous
 //! surface, then the projection (points) or The NURBS Book A4.4 (derivatives).
 
-use super::{NurbsSurface, homogeneous_square, rational_surface_derivatives};
+use super::derivatives::{homogeneous_square, rational_surface_derivatives};
+use super::surface::NurbsSurface;
 use crate::homogeneous::Homogeneous;
 use crate::surface::{SMALL_SQUARE, SurfaceEvaluator};
 use nalgebra::SVector;

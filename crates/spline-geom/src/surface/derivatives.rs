@@ -1,7 +1,8 @@
 //! Partial derivatives of surfaces (all orders up to a bound, or one) and evaluation on
 //! grids by the tensor fast path.
 
-use super::{BasisTable, SMALL_DEGREE, SMALL_TABLE, Surface, basis_into};
+use super::basis::{BasisTable, SMALL_DEGREE, SMALL_TABLE, basis_into};
+use super::container::Surface;
 #[cfg(doc)]
 use spline_core::ErrorKind;
 use spline_core::{ControlPoint, MAX_ORDER, Result, Scalar};

@@ -12,7 +12,7 @@
 //! lookups and `(p + 1)(q + 1) − 1` multiply-adds (Horner's scheme in `v` on each of the
 //! `p + 1` rows, then in `u`): no division, no basis functions, no search.
 
-use super::Surface;
+use super::container::Surface;
 use super::derivatives::check_finite;
 use crate::bspline::{check_same_len, square_len};
 use spline_core::{ControlPoint, KnotVector, Result, Scalar, SpanTable, from_count};

@@ -3,7 +3,8 @@
 //! the rows $(P_{i0}, …, P_{i,n_v-1})$ of the net ([`Line`], a vector space of its own), so
 //! every algorithm computes its weights once for all columns.
 
-use super::{Direction, Surface};
+use super::container::Surface;
+use super::direction::Direction;
 use crate::bezier::bezier_as_bspline;
 use crate::bspline::BSpline;
 use crate::structural::{checked_removal, relative_scale};

@@ -3,7 +3,7 @@
 //! "coefficients": …}` with the coefficients nested one array level per dimension, the
 //! leaves numbers or points.
 
-use super::{deserialize, json_kind};
+use super::decode::{deserialize, json_kind};
 use serde_json::{Value, json};
 use spline_core::{Error, ErrorKind, Result};
 use spline_geom::{ColumnSpline, NdSpline};

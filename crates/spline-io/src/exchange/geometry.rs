@@ -1,7 +1,7 @@
 //! [`Geometry`] in the JSON exchange format, the form in which the tool and the Python
 //! package pass CAD items on.
 
-use super::{CurveRecord, SurfaceRecord};
+use super::records::{CurveRecord, Record, SurfaceRecord};
 use crate::Geometry;
 use nalgebra::{Vector2, Vector3};
 use serde_json::Value;
@@ -39,37 +39,56 @@ impl Geometry {
                 format!("not an object of the exchange format: {e}"),
             )
         };
-        if value.get("degree").is_some_and(Value::is_array) {
-            let record: SurfaceRecord = serde_json::from_value(value.clone()).map_err(parse)?;
-            if record.dimension()? != 3 {
-                return Err(Error::new(
-                    ErrorKind::DimensionMismatch,
-                    format!(
-                        "CAD files hold surfaces in 3-D, got points of dimension {}",
-                        record.dimension()?
-                    ),
-                ));
+        let record = if value.get("degree").is_some_and(Value::is_array) {
+            Record::Surface(serde_json::from_value(value.clone()).map_err(parse)?)
+        } else {
+            Record::Curve(serde_json::from_value(value.clone()).map_err(parse)?)
+        };
+        Self::from_record(&record)
+    }
+
+    /// Geometry from a record already read ([`Record::from_value`], which also takes the
+    /// tool's reports): curves in 2-D or 3-D (with weights: a NURBS curve), surfaces in 3-D.
+    ///
+    /// # Errors
+    /// [`ErrorKind::DimensionMismatch`] for curves outside 2-D and 3-D or surfaces outside
+    /// 3-D; the containers' validation errors (knots, weights, counts).
+    pub fn from_record(record: &Record) -> Result<Self> {
+        match record {
+            Record::Surface(record) => {
+                if record.dimension()? != 3 {
+                    return Err(Error::new(
+                        ErrorKind::DimensionMismatch,
+                        format!(
+                            "CAD files hold surfaces in 3-D, got points of dimension {}",
+                            record.dimension()?
+                        ),
+                    ));
+                }
+                Ok(if record.is_rational() {
+                    Self::NurbsSurface(record.to_nurbs_surface::<f64, 3>()?)
+                } else {
+                    Self::Surface(record.to_surface::<f64, Vector3<f64>>()?)
+                })
             }
-            return Ok(if record.is_rational() {
-                Self::NurbsSurface(record.to_nurbs_surface::<f64, 3>()?)
-            } else {
-                Self::Surface(record.to_surface::<f64, Vector3<f64>>()?)
-            });
+            Record::Curve(record) => {
+                let rational = record.weights.is_some();
+                Ok(match (record.dimension()?, rational) {
+                    (2, false) => Self::Curve2(record.to_bspline::<f64, Vector2<f64>>()?),
+                    (3, false) => Self::Curve3(record.to_bspline::<f64, Vector3<f64>>()?),
+                    (2, true) => Self::NurbsCurve2(record.to_nurbs::<f64, 2>()?),
+                    (3, true) => Self::NurbsCurve3(record.to_nurbs::<f64, 3>()?),
+                    (d, _) => {
+                        return Err(Error::new(
+                            ErrorKind::DimensionMismatch,
+                            format!(
+                                "CAD files hold curves in 2-D or 3-D, got points of dimension {d}"
+                            ),
+                        ));
+                    }
+                })
+            }
         }
-        let record: CurveRecord = serde_json::from_value(value.clone()).map_err(parse)?;
-        let rational = record.weights.is_some();
-        Ok(match (record.dimension()?, rational) {
-            (2, false) => Self::Curve2(record.to_bspline::<f64, Vector2<f64>>()?),
-            (3, false) => Self::Curve3(record.to_bspline::<f64, Vector3<f64>>()?),
-            (2, true) => Self::NurbsCurve2(record.to_nurbs::<f64, 2>()?),
-            (3, true) => Self::NurbsCurve3(record.to_nurbs::<f64, 3>()?),
-            (d, _) => {
-                return Err(Error::new(
-                    ErrorKind::DimensionMismatch,
-                    format!("CAD files hold curves in 2-D or 3-D, got points of dimension {d}"),
-                ));
-            }
-        })
     }
 }
 

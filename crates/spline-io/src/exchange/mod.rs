@@ -31,12 +31,15 @@
 //! ```
 
 mod columns;
+mod decode;
 mod geometry;
 mod records;
 
 pub use columns::{columns_to_value, nd_from_value, nd_to_value, nest, nested_array};
-pub use records::{CurveRecord, SurfaceRecord, points_from_rows};
+pub use decode::serde_message;
+pub use records::{CurveRecord, Record, SurfaceRecord, points_from_rows};
 
+use decode::deserialize;
 use serde::Serialize;
 use serde::de::DeserializeOwned;
 use serde_json::Value;
@@ -181,123 +184,4 @@ pub fn from_json<X: Exchange>(text: &str) -> Result<X> {
 pub fn parse_json(text: &str) -> Result<Value> {
     serde_json::from_str(text)
         .map_err(|e| Error::new(ErrorKind::Parse, e.to_string()).with_line(e.line()))
-}
-
-/// An object of the exchange format, curve or surface, before validation.
-#[derive(Clone, Debug, PartialEq)]
-pub enum Record {
-    /// A curve (a NURBS curve if it has weights).
-    Curve(CurveRecord),
-    /// A tensor-product surface (a NURBS surface if it has weights).
-    Surface(SurfaceRecord),
-}
-
-impl Record {
-    /// Reads an object of the exchange format: a surface has a pair of degrees, anything
-    /// else is read as a curve. The reports of the tool (`spline smooth`, `offset`,
-    /// `reduce`, …) hold their object under `"curve"` or `"surface"`: an object without
-    /// `"knots"` that has one of these fields is read as that field, so every reader accepts
-    /// what the tool writes.
-    ///
-    /// # Errors
-    /// [`ErrorKind::Parse`] for a value that is not a JSON object
-    /// (`expected a JSON object with degree, knots and control_points, got an array`) or not
-    /// a record (the message names the field: `malformed curve: field knots: …`).
-    pub fn from_value(value: Value) -> Result<Self> {
-        if !value.is_object() {
-            return Err(Error::new(
-                ErrorKind::Parse,
-                format!(
-                    "expected a JSON object with degree, knots and control_points, got {}",
-                    json_kind(&value)
-                ),
-            ));
-        }
-        if value.get("knots").is_none() {
-            for key in ["curve", "surface"] {
-                if let Some(inner) = value.get(key).filter(|v| v.is_object()) {
-                    return Self::from_value(inner.clone());
-                }
-            }
-        }
-        if value.get("degree").is_some_and(Value::is_array) {
-            Ok(Self::Surface(deserialize("surface", value)?))
-        } else {
-            Ok(Self::Curve(deserialize("curve", value)?))
-        }
-    }
-}
-
-/// What kind of JSON value this is, for messages.
-fn json_kind(value: &Value) -> &'static str {
-    match value {
-        Value::Null => "null",
-        Value::Bool(_) => "a boolean",
-        Value::Number(_) => "a number",
-        Value::String(_) => "a string",
-        Value::Array(_) => "an array",
-        Value::Object(_) => "an object",
-    }
-}
-
-/// Deserialises a JSON value into a record; the message names the field
-/// (`malformed curve: field control_points[0]: …`).
-fn deserialize<R: DeserializeOwned>(what: &str, value: Value) -> Result<R> {
-    serde_path_to_error::deserialize(value).map_err(|e| {
-        let path = e.path().to_string();
-        let what_went_wrong = serde_message(&e.inner().to_string());
-        let message = if path == "." {
-            format!("malformed {what}: {what_went_wrong}")
-        } else {
-            format!("malformed {what}: field {path}: {what_went_wrong}")
-        };
-        Error::new(ErrorKind::Parse, message)
-    })
-}
-
-/// serde's words for JSON people: "expected an array, got the number 0" rather than
-/// "invalid type: floating point `0`, expected a sequence", and no line and column for
-/// one-line values.
-///
-/// ```
-/// use spline_io::exchange::serde_message;
-/// assert_eq!(
-///     serde_message("invalid type: floating point `0`, expected a sequence at line 1 column 1"),
-///     "expected an array, got the number 0"
-/// );
-/// ```
-#[must_use]
-pub fn serde_message(message: &str) -> String {
-    let mut m = message.to_string();
-    if let Some(at) = m.find(" at line 1 column") {
-        m.truncate(at);
-    }
-    let words = |text: &str| {
-        text.replace("a sequence", "an array")
-            .replace("sequence", "array")
-            .replace("a map", "an object")
-            .replace("usize", "a non-negative integer")
-            .replace("u64", "a non-negative integer")
-            .replace("f64", "a number")
-            .replace("floating point `", "the number `")
-            .replace("integer `", "the number `")
-            .replace('`', "")
-    };
-    for prefix in ["invalid type: ", "invalid value: "] {
-        if let Some(rest) = m.strip_prefix(prefix) {
-            if let Some((got, expected)) = rest.split_once(", expected ") {
-                let got = match got {
-                    "map" => "an object".to_string(),
-                    "sequence" => "an array".to_string(),
-                    "null" => "null".to_string(),
-                    other if other.starts_with("string ") || other.starts_with("boolean ") => {
-                        format!("the {}", words(other))
-                    }
-                    other => words(other),
-                };
-                return format!("expected {}, got {got}", words(expected));
-            }
-        }
-    }
-    words(&m)
 }

@@ -1,9 +1,11 @@
 //! The records of the exchange format: curves and surfaces as they appear in the JSON, before
 //! validation, and their conversions to and from the containers.
 
+use super::decode::{deserialize, json_kind};
 use nalgebra::SVector;
 use serde::de::DeserializeOwned;
 use serde::{Deserialize, Serialize};
+use serde_json::Value;
 use spline_core::{ControlPoint, Error, ErrorKind, KnotVector, Result, Scalar, cast, to_f64};
 use spline_geom::{BSpline, Bezier, Homogeneous, NurbsCurve, NurbsSurface, Surface};
 
@@ -410,5 +412,50 @@ impl SurfaceRecord {
     #[must_use]
     pub fn to_json(&self) -> String {
         to_json(self)
+    }
+}
+
+/// An object of the exchange format, curve or surface, before validation.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Record {
+    /// A curve (a NURBS curve if it has weights).
+    Curve(CurveRecord),
+    /// A tensor-product surface (a NURBS surface if it has weights).
+    Surface(SurfaceRecord),
+}
+
+impl Record {
+    /// Reads an object of the exchange format: a surface has a pair of degrees, anything
+    /// else is read as a curve. The reports of the tool (`spline smooth`, `offset`,
+    /// `reduce`, …) hold their object under `"curve"` or `"surface"`: an object without
+    /// `"knots"` that has one of these fields is read as that field, so every reader accepts
+    /// what the tool writes.
+    ///
+    /// # Errors
+    /// [`ErrorKind::Parse`] for a value that is not a JSON object
+    /// (`expected a JSON object with degree, knots and control_points, got an array`) or not
+    /// a record (the message names the field: `malformed curve: field knots: …`).
+    pub fn from_value(value: Value) -> Result<Self> {
+        if !value.is_object() {
+            return Err(Error::new(
+                ErrorKind::Parse,
+                format!(
+                    "expected a JSON object with degree, knots and control_points, got {}",
+                    json_kind(&value)
+                ),
+            ));
+        }
+        if value.get("knots").is_none() {
+            for key in ["curve", "surface"] {
+                if let Some(inner) = value.get(key).filter(|v| v.is_object()) {
+                    return Self::from_value(inner.clone());
+                }
+            }
+        }
+        if value.get("degree").is_some_and(Value::is_array) {
+            Ok(Self::Surface(deserialize("surface", value)?))
+        } else {
+            Ok(Self::Curve(deserialize("curve", value)?))
+        }
     }
 }

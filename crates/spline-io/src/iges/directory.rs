@@ -2,8 +2,8 @@
 //! matrices (124) with their chains, name properties (406 form 15).
 
 use super::affine::Affine;
+use super::layout::{PARAM_WIDTH, Section, parse_error};
 use super::tokens::{Token, integer_text, parse_int, parse_real, tokenize};
-use super::{PARAM_WIDTH, Section, parse_error};
 use nalgebra::{Matrix3, Vector3};
 use spline_core::Result;
 use std::fmt;

@@ -4,7 +4,7 @@
 
 use super::affine::Affine;
 use super::directory::{Entry, File, Params};
-use super::{Section, at, parse_error};
+use super::layout::{Section, at, parse_error};
 use crate::Geometry;
 use nalgebra::{Rotation3, Unit, Vector2, Vector3};
 use spline_core::{ControlPoint, KnotVector, Result};

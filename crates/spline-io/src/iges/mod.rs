@@ -65,6 +65,7 @@
 mod affine;
 mod directory;
 mod entities;
+mod layout;
 mod sections;
 mod tokens;
 mod write;
@@ -76,57 +77,7 @@ use directory::{File, parse_entries};
 use entities::Read;
 use sections::{check_ascii, split_sections};
 use spline_core::{Error, ErrorKind, Result};
-use std::fmt;
 use tokens::parse_global;
-
-/// Columns of a record (without the line break).
-const RECORD: usize = 80;
-/// Columns of data in the Start and Global sections.
-const GLOBAL_WIDTH: usize = 72;
-/// Columns of parameters in a Parameter Data record.
-const PARAM_WIDTH: usize = 64;
-
-/// The section of a record, for messages.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-enum Section {
-    Start,
-    Global,
-    Directory,
-    Parameter,
-    Terminate,
-}
-
-impl Section {
-    fn letter(self) -> char {
-        match self {
-            Self::Start => 'S',
-            Self::Global => 'G',
-            Self::Directory => 'D',
-            Self::Parameter => 'P',
-            Self::Terminate => 'T',
-        }
-    }
-}
-
-impl fmt::Display for Section {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        write!(f, "{}", self.letter())
-    }
-}
-
-/// `IGES line {line} ({section}): {message}`, a parse error.
-fn parse_error(section: Section, line: usize, message: impl fmt::Display) -> Error {
-    Error::new(
-        ErrorKind::Parse,
-        format!("IGES line {line} ({section}): {message}"),
-    )
-    .with_line(line)
-}
-
-/// Prefixes an error of the geometry layer with the record it comes from.
-fn at(section: Section, line: usize) -> impl FnOnce(Error) -> Error {
-    move |e| e.context(format_args!("IGES line {line} ({section})"))
-}
 
 /// Reads an IGES 5.3 file from bytes: as [`read_iges`], after checking that every byte is
 /// ASCII.

@@ -2,7 +2,7 @@
 //! sequence number in columns 74–80; the five sections in order, checked against the
 //! Terminate record.
 
-use super::{RECORD, Section, parse_error};
+use super::layout::{RECORD, Section, parse_error};
 use spline_core::{Error, ErrorKind, Result};
 
 /// The first byte that is not ASCII (or is a control character other than line breaks,

@@ -1,7 +1,7 @@
 //! Free-format parameters (the Global and Parameter Data sections): Hollerith strings,
 //! integers and reals between the file's delimiters.
 
-use super::{GLOBAL_WIDTH, Section, parse_error};
+use super::layout::{GLOBAL_WIDTH, Section, parse_error};
 use spline_core::Result;
 
 /// One parameter: a Hollerith string or the raw text of a number (empty when defaulted),

@@ -2,7 +2,7 @@
 //! per surface, names as labels and name properties, numbers that read back to the same
 //! `f64`.
 
-use super::{GLOBAL_WIDTH, PARAM_WIDTH};
+use super::layout::{GLOBAL_WIDTH, PARAM_WIDTH};
 use crate::real::real;
 use crate::{Geometry, Item};
 use nalgebra::{Vector2, Vector3};

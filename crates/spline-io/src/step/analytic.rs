@@ -14,8 +14,9 @@
 //! B-rep (an analytic entity no edge or face bounds), a line spans its vector's magnitude,
 //! a plane the square `[−1, 1]²` of its placement, a cylinder or cone the heights `[0, 1]`.
 
+use super::instance::{Instance, Param, error_at, number, text, underlying};
+use super::reader::Reader;
 use super::splines::{curve_parts, read_curve};
-use super::{Instance, Param, Reader, error_at, number, text, underlying};
 use crate::{Geometry, Item};
 use nalgebra::{Vector2, Vector3};
 use spline_core::{KnotVector, Result};

@@ -2,7 +2,7 @@
 //! numbers, strings with their encodings, enumerations, punctuation, comments skipped; each
 //! error names its line.
 
-use super::error_at;
+use super::instance::error_at;
 use spline_core::Result;
 
 /// The tokens of the exchange structure.

@@ -61,168 +61,20 @@
 //! ```
 
 mod analytic;
+mod instance;
 mod lexer;
 mod parser;
+mod reader;
 mod splines;
 mod write;
 
 pub use write::write_step;
 
 use crate::Item;
-use spline_core::{Error, ErrorKind, Result};
+use instance::{Instance, Param, underlying};
+use reader::Reader;
+use spline_core::{Error, Result};
 use std::collections::{BTreeMap, HashMap};
-
-/// Lists nest at most this deep (a B-spline surface's points are two levels down).
-const MAX_NESTING: usize = 32;
-
-/// A parameter of an entity instance.
-#[derive(Clone, Debug, PartialEq)]
-enum Param {
-    Integer(i64),
-    Real(f64),
-    Text(String),
-    Enumeration(String),
-    Reference(u64),
-    List(Vec<Param>),
-    /// `$`: no value.
-    Unset,
-    /// `*`: a value derived from others.
-    Derived,
-    /// A typed parameter, `LENGTH_MEASURE(1.)`.
-    Typed(String, Box<Param>),
-}
-
-/// One instance: its line and its record(s) (one for a simple instance, several for a
-/// complex one), each an entity name with its parameters.
-#[derive(Debug)]
-struct Instance {
-    line: usize,
-    records: Vec<(String, Vec<Param>)>,
-}
-
-impl Instance {
-    fn record(&self, name: &str) -> Option<&[Param]> {
-        self.records
-            .iter()
-            .find(|(n, _)| n == name)
-            .map(|(_, p)| p.as_slice())
-    }
-}
-
-fn error_at(line: usize, message: impl std::fmt::Display) -> Error {
-    Error::new(ErrorKind::Parse, format!("STEP line {line}: {message}")).with_line(line)
-}
-
-/// Reading context: the instances and the names given to geometry by faces and edges.
-struct Reader<'a> {
-    instances: &'a HashMap<u64, Instance>,
-}
-
-impl Reader<'_> {
-    fn get(&self, id: u64, from: usize) -> Result<&Instance> {
-        self.instances
-            .get(&id)
-            .ok_or_else(|| error_at(from, format!("#{id} is referenced but not defined")))
-    }
-
-    fn point(&self, param: &Param, from: usize) -> Result<Vec<f64>> {
-        let Param::Reference(id) = param else {
-            return Err(error_at(from, "expected a reference to a CARTESIAN_POINT"));
-        };
-        let instance = self.get(*id, from)?;
-        let Some(p) = instance.record("CARTESIAN_POINT") else {
-            return Err(error_at(
-                instance.line,
-                format!("#{id} is not a CARTESIAN_POINT"),
-            ));
-        };
-        let coords = match p {
-            [_, Param::List(c)] => c,
-            _ => {
-                return Err(error_at(
-                    instance.line,
-                    format!("#{id}: CARTESIAN_POINT needs a name and a list of coordinates"),
-                ));
-            }
-        };
-        let out: Vec<f64> = coords
-            .iter()
-            .map(|c| {
-                number(c).ok_or_else(|| {
-                    error_at(
-                        instance.line,
-                        format!("#{id}: a coordinate is not a number"),
-                    )
-                })
-            })
-            .collect::<Result<_>>()?;
-        if !(2..=3).contains(&out.len()) {
-            return Err(error_at(
-                instance.line,
-                format!("#{id}: a point needs 2 or 3 coordinates, got {}", out.len()),
-            ));
-        }
-        Ok(out)
-    }
-}
-
-fn number(p: &Param) -> Option<f64> {
-    match p {
-        Param::Real(x) => Some(*x),
-        #[allow(clippy::cast_precision_loss)]
-        Param::Integer(i) => Some(*i as f64),
-        Param::Typed(_, inner) => number(inner),
-        _ => None,
-    }
-}
-
-fn integer(p: &Param) -> Option<i64> {
-    match p {
-        Param::Integer(i) => Some(*i),
-        Param::Typed(_, inner) => integer(inner),
-        _ => None,
-    }
-}
-
-fn list(p: &Param) -> Option<&[Param]> {
-    match p {
-        Param::List(l) => Some(l),
-        _ => None,
-    }
-}
-
-fn text(p: &Param) -> String {
-    match p {
-        Param::Text(s) => s.clone(),
-        _ => String::new(),
-    }
-}
-
-/// Follows the wrappers between topology and geometry (`TRIMMED_CURVE`'s basis curve,
-/// `SURFACE_CURVE`/`SEAM_CURVE`'s 3-D curve, `RECTANGULAR_TRIMMED_SURFACE`'s basis surface)
-/// to the instance that holds the geometry.
-fn underlying(instances: &HashMap<u64, Instance>, mut id: u64) -> Option<u64> {
-    for _ in 0..MAX_NESTING {
-        let instance = instances.get(&id)?;
-        let next = [
-            "TRIMMED_CURVE",
-            "SURFACE_CURVE",
-            "SEAM_CURVE",
-            "RECTANGULAR_TRIMMED_SURFACE",
-        ]
-        .iter()
-        .find_map(|name| instance.record(name))
-        .and_then(|p| match p.get(1) {
-            Some(Param::Reference(r)) => Some(*r),
-            _ => None,
-        });
-        match next {
-            Some(next) => id = next,
-            None => return Some(id),
-        }
-    }
-    None
-}
 
 /// Every B-spline curve and surface of a STEP file; see the [module](self) documentation.
 ///
@@ -230,6 +82,8 @@ fn underlying(instances: &HashMap<u64, Instance>, mut id: u64) -> Option<u64> {
 /// [`ErrorKind::Parse`] with the line (and instance) for what cannot be read: broken syntax,
 /// a truncated file, a reference to an undefined instance, B-spline data that do not form a
 /// valid spline (wrong counts, bad knots, non-positive weights).
+///
+/// [`ErrorKind::Parse`]: spline_core::ErrorKind::Parse
 pub fn read_step(text: &str) -> Result<Vec<Item>> {
     read_step_bytes(text.as_bytes())
 }

@@ -1,8 +1,8 @@
 //! The parser of the exchange structure: the header skipped, the instances of the `DATA`
 //! sections kept by `#id` with their line and records, in one pass.
 
+use super::instance::{Instance, MAX_NESTING, Param, error_at};
 use super::lexer::{Lexer, Token};
-use super::{Instance, MAX_NESTING, Param, error_at};
 use spline_core::Result;
 use std::collections::HashMap;
 

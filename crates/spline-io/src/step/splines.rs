@@ -1,7 +1,8 @@
 //! B-spline curves and surfaces of every form (`_WITH_KNOTS`, `UNIFORM_`, `QUASI_UNIFORM_`,
 //! `BEZIER_`), simple or complex instances, rational or not, turned into containers.
 
-use super::{Instance, Param, Reader, error_at, integer, list, number, text};
+use super::instance::{Instance, Param, error_at, integer, list, number, text};
+use super::reader::Reader;
 use crate::Geometry;
 use nalgebra::{SVector, Vector3};
 use spline_core::{Error, KnotVector, Result};

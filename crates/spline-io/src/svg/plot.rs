@@ -2,7 +2,7 @@
 //! points.
 
 use nalgebra::Vector2;
-use spline_geom::PlanarCurve;
+use spline_geom::{PlanarCurve, comb_segments, curvature_comb, evenly_spaced_params};
 use std::fmt::Write;
 
 #[derive(Clone, Debug)]
@@ -111,33 +111,14 @@ impl SvgPlot {
     /// tooth along the normal of length proportional to the signed curvature, scaled so the
     /// longest tooth is a fifth of the picture; the teeth's ends are joined.
     pub fn add_curvature_comb<C: PlanarCurve<f64>>(&mut self, curve: &C, samples: usize) {
-        let (a, b) = curve.domain();
-        let mut teeth = Vec::new();
-        for j in 0..=samples.max(1) {
-            #[allow(clippy::cast_precision_loss)]
-            let u = a + (b - a) * j as f64 / samples.max(1) as f64;
-            if let (Ok(p), Ok(n), Ok(k)) = (
-                curve.eval(u),
-                curve.unit_normal(u),
-                curve.signed_curvature(u),
-            ) {
-                teeth.push((p, n, k));
-            }
-        }
-        // |n κ| = |κ|: the curvature itself, not a norm that would underflow for tiny κ.
-        let max = teeth.iter().fold(0.0f64, |m, (_, _, k)| m.max(k.abs()));
-        if max == 0.0 || teeth.is_empty() {
-            return;
-        }
+        let teeth = curvature_comb(curve, &evenly_spaced_params(curve.domain(), samples));
         let (lo, hi) = bounds(&curve.control_polygon());
         // A tooth of length 0.2 · size · |κ| / max|κ|, formed without overflow.
         let size = (hi * 0.5 - lo * 0.5).amax() * 2.0;
-        // Teeth point away from the centre of curvature.
-        let segments: Vec<_> = teeth
-            .iter()
-            .map(|(p, n, k)| (*p, p - n * ((k / max) * (0.2 * size))))
-            .filter(|(_, q)| q.x.is_finite() && q.y.is_finite())
-            .collect();
+        let segments = comb_segments(&teeth, 0.2 * size);
+        if segments.is_empty() {
+            return;
+        }
         let ends: Vec<_> = segments.iter().map(|s| s.1).collect();
         self.add_segments(&segments, "comb");
         self.add_polyline(&ends, "comb");

@@ -1,7 +1,9 @@
 //! Phase I: a strictly feasible start.
 
-use super::SparseRows;
-use super::{BarrierOptions, BarrierProblem, centre};
+use super::centring::centre;
+use super::options::BarrierOptions;
+use super::problem::BarrierProblem;
+use super::workspace::{SparseRows, add_sparse};
 use nalgebra::{DMatrix, DVector};
 use nalgebra_sparse::{CooMatrix, CsrMatrix};
 use spline_core::{Error, ErrorKind, Result};
@@ -416,9 +418,7 @@ impl<P: BarrierProblem> BarrierProblem for PhaseOne<'_, P> {
             .weighted_constraint_hessian_into(&s.x, &s.weights, &mut s.sparse)
         {
             if let Some(h) = &s.sparse {
-                for (i, j, v) in h.triplet_iter() {
-                    out[(i, j)] += v;
-                }
+                add_sparse(out, h, 1.0);
             }
         }
         true

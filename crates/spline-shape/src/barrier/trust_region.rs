@@ -1,9 +1,9 @@
 //! The dense path: Newton's method with a trust region in the barrier's local metric.
 
-use super::{
-    BarrierOptions, BarrierProblem, StallWatch, StopRule, Workspace, barrier_gradient,
-    barrier_value, iterate_value,
-};
+use super::objective::{barrier_gradient, barrier_value, iterate_value};
+use super::options::{BarrierOptions, StallWatch, StopRule};
+use super::problem::BarrierProblem;
+use super::workspace::{Workspace, add_sparse};
 use nalgebra::{Cholesky, DMatrix, DVector, Dyn};
 use spline_core::{Error, ErrorKind, Result};
 
@@ -42,9 +42,7 @@ pub(super) fn centre_trust_region(
             && problem.weighted_constraint_hessian_into(x, &ws.inv, &mut ws.curvature)
         {
             if let Some(h) = &ws.curvature {
-                for (i, j, v) in h.triplet_iter() {
-                    ws.hessian[(i, j)] += v;
-                }
+                add_sparse(&mut ws.hessian, h, 1.0);
             }
         }
         if !positive_definite_factor(&ws.metric, &mut ws.factor_storage, &mut ws.l) {
@@ -171,7 +169,7 @@ pub(super) fn centre_trust_region(
 /// gains `(w² ∂_a f_i) ∂_b f_i` row after row, the same sums as an entry-by-entry loop.
 fn add_weighted_outer_products(
     metric: &mut DMatrix<f64>,
-    jacobian: &super::SparseRows,
+    jacobian: &super::workspace::SparseRows,
     weights: &DVector<f64>,
 ) {
     const SHORT_ROW: usize = 32;

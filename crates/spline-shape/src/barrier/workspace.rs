@@ -334,3 +334,10 @@ pub(crate) fn with_workspace<R>(f: impl FnOnce(&mut Workspace) -> R) -> R {
         Err(_) => f(&mut Workspace::default()),
     })
 }
+
+/// Adds `scale · h` to the dense matrix `out` (the same shape).
+pub(crate) fn add_sparse(out: &mut DMatrix<f64>, h: &CsrMatrix<f64>, scale: f64) {
+    for (i, j, v) in h.triplet_iter() {
+        out[(i, j)] += scale * v;
+    }
+}

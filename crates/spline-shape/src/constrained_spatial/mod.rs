@@ -25,8 +25,8 @@
 
 use crate::barrier::{BarrierOptions, BarrierProblem, BarrierReport, find_feasible_near, minimize};
 use crate::constrained_parametric::ParametricConvexity;
-use crate::problem::check_grid;
 use crate::problem::{LeastSquaresObjective, Sign};
+use crate::problem::{check_convexity_degrees, check_grid};
 use nalgebra::{DMatrix, DVector, SymmetricEigen, Vector2, Vector3};
 use nalgebra_sparse::{CooMatrix, CsrMatrix};
 use num_dual::DualSVec64;
@@ -100,16 +100,7 @@ impl SpatialConvexity {
     /// control) or for more than [`MAX_SPATIAL_CONTROL_POINTS`] control points.
     pub fn new(knots_u: KnotVector<f64>, knots_v: KnotVector<f64>, sign: Sign) -> Result<Self> {
         let (p, q) = (knots_u.degree(), knots_v.degree());
-        if p < 2 || q < 2 {
-            return Err(Error::new(
-                ErrorKind::InvalidArgument,
-                format!(
-                    "convexity of a patch needs degree 2 or more in both directions, got ({p}, {q})"
-                ),
-            )
-            .with_value(p.min(q) as f64)
-            .with_interval(2.0, f64::INFINITY));
-        }
+        check_convexity_degrees(p, q)?;
         let n = knots_u.num_basis() * knots_v.num_basis();
         if n > MAX_SPATIAL_CONTROL_POINTS {
             return Err(Error::new(

@@ -1,6 +1,6 @@
 //! The fewest curvature extrema within a tolerance (`spline smooth --curvature-extrema auto`).
 
-use super::input::{distinct, frame};
+use super::input::{check_max_deviation, distinct, frame};
 use super::smooth::smooth;
 use super::types::{Extremum, SmoothedCurve, SmoothingOptions, extrema_words};
 use nalgebra::Vector2;
@@ -32,15 +32,7 @@ pub fn smooth_fewest_extrema(
     options: &SmoothingOptions,
 ) -> Result<SmoothedCurve> {
     let tolerance = match tolerance {
-        Some(t) if t > 0.0 && t.is_finite() => t,
-        Some(t) => {
-            return Err(Error::new(
-                ErrorKind::InvalidTolerance,
-                format!("the maximum deviation must be positive and finite, got {t}"),
-            )
-            .with_value(t)
-            .with_interval(0.0, f64::INFINITY));
-        }
+        Some(t) => check_max_deviation(t)?,
         None => AUTO_EXTREMA_TOLERANCE * frame(&distinct(points)?).1,
     };
     let p = options.degree;

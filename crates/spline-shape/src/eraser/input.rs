@@ -164,3 +164,18 @@ pub(crate) fn polygon_area(points: &[Vector2<f64>]) -> f64 {
     }
     sum
 }
+
+/// The maximum deviation `tolerance` itself, or [`ErrorKind::InvalidTolerance`] unless it is
+/// positive and finite.
+pub(crate) fn check_max_deviation(tolerance: f64) -> Result<f64> {
+    if tolerance > 0.0 && tolerance.is_finite() {
+        Ok(tolerance)
+    } else {
+        Err(Error::new(
+            ErrorKind::InvalidTolerance,
+            format!("the maximum deviation must be positive and finite, got {tolerance}"),
+        )
+        .with_value(tolerance)
+        .with_interval(0.0, f64::INFINITY))
+    }
+}

@@ -37,16 +37,19 @@ mod problem;
 mod request;
 mod screening;
 mod smooth;
+mod smooth_request;
 mod tolerance;
 mod topology;
 mod types;
 mod verify;
 
 pub use fewest_extrema::{AUTO_EXTREMA_TOLERANCE, smooth_fewest_extrema};
+pub use request::{ExtremaCount, OptionSpelling, SmoothWords};
 pub use smooth::{smooth, smooth_from};
+pub use smooth_request::{AllowedExtrema, ControlPoints, SmoothRequest};
 pub use tolerance::smooth_to_tolerance;
 pub use types::{
     CurvatureExtremum, DEVIATION_WARNING_FACTOR, DEVIATION_WARNING_FLOOR, Extremum, ExtremumKind,
-    MAX_CURVATURE_EXTREMA, Objective, SmoothedCurve, SmoothingOptions, WarmStart,
+    MAX_CURVATURE_EXTREMA, Objective, SmoothSummary, SmoothedCurve, SmoothingOptions, WarmStart,
 };
 pub use verify::{SampledExtremum, sampled_curvature_extrema};

@@ -27,8 +27,6 @@ use std::cell::RefCell;
 mod barrier_form;
 mod excursions;
 
-use excursions::Excursion;
-
 /// Scratch memory of the segment kernel.
 /// Scratch memory of the segment kernel and of the conditions, reused by every evaluation
 /// (no allocation inside the solver's iterations once the buffers have their sizes).
@@ -51,6 +49,14 @@ struct Scratch {
     dense: DMatrix<f64>,
     /// One row of the Jacobian while its entries are sorted by column.
     sorted_row: Vec<(usize, f64)>,
+}
+
+/// `‖C(u) − centre‖² < radius²` (the bounds of `excursions.rs`).
+#[derive(Clone, Debug)]
+struct Excursion {
+    param: f64,
+    centre: Vector2<f64>,
+    radius2: f64,
 }
 
 /// `min z` (or `min Σ d_j²`) over the control points subject to the distance bounds and the

@@ -1,6 +1,6 @@
 //! The fewest control points within a tolerance.
 
-use super::input::distinct;
+use super::input::{check_max_deviation, distinct};
 use super::smooth::smooth;
 use super::types::{SmoothedCurve, SmoothingOptions, extrema_words};
 use nalgebra::Vector2;
@@ -22,14 +22,7 @@ pub fn smooth_to_tolerance(
     tolerance: f64,
     options: &SmoothingOptions,
 ) -> Result<SmoothedCurve> {
-    if !(tolerance > 0.0 && tolerance.is_finite()) {
-        return Err(Error::new(
-            ErrorKind::InvalidTolerance,
-            format!("the maximum deviation must be positive and finite, got {tolerance}"),
-        )
-        .with_value(tolerance)
-        .with_interval(0.0, f64::INFINITY));
-    }
+    check_max_deviation(tolerance)?;
     let p = options.degree;
     let smallest = p + 1 + options.extrema.len() * p.saturating_sub(2);
     let largest = distinct(points)?.len().saturating_sub(1);

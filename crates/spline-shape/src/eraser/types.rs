@@ -271,6 +271,39 @@ pub struct SmoothedCurve {
 }
 
 impl SmoothedCurve {
+    /// The curve as the front ends hand it out: for closed data, the wrapped container of
+    /// [`SmoothedCurve::periodic`] (the same points on `[0, 1]` as an unclamped curve whose
+    /// last `p` control points repeat the first `p`); otherwise [`SmoothedCurve::curve`].
+    #[must_use]
+    pub fn output_curve(&self) -> &Curve2<f64> {
+        self.periodic
+            .as_ref()
+            .map_or(&self.curve, PeriodicBSpline::wrapped)
+    }
+
+    /// The number of control points of the result: the distinct ones of a closed curve
+    /// ([`PeriodicBSpline::len`]), otherwise those of [`SmoothedCurve::curve`] (the number
+    /// asked for, or found by [`smooth_to_tolerance`](super::smooth_to_tolerance)).
+    #[must_use]
+    pub fn control_point_count(&self) -> usize {
+        self.periodic
+            .as_ref()
+            .map_or(self.curve.control_points().len(), PeriodicBSpline::len)
+    }
+
+    /// The result's line of a batch summary ([`SmoothSummary::new`]).
+    #[must_use]
+    pub fn summary(&self) -> SmoothSummary {
+        SmoothSummary {
+            control_points: Some(self.curve.control_points().len()),
+            max_deviation: Some(self.deviation.to_curve.max),
+            max_deviation_to_data: Some(self.deviation.to_data),
+            extrema: Some(self.extrema.len()),
+            error: None,
+            warnings: self.warnings.clone(),
+        }
+    }
+
     /// What [`smooth_from`](super::smooth_from) needs to start from this result.
     #[must_use]
     pub fn warm_start(&self) -> WarmStart {
@@ -280,6 +313,48 @@ impl SmoothedCurve {
             first_sign: self.first_sign,
             knot_exponent: self.knot_exponent,
             closed: self.periodic.is_some(),
+        }
+    }
+}
+
+/// One smoothing of a batch in a line, the same for every front end (the line of
+/// `summary.jsonl` that `spline smooth DIR --out OUT` writes for each input, and the Python
+/// package's `smooth_file`): a few numbers of the result, or the error. The front end adds the
+/// input's name and the time taken.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct SmoothSummary {
+    /// The number of control points of [`SmoothedCurve::curve`] (a closed result opened at
+    /// its closing point: `p` more than [`SmoothedCurve::control_point_count`]).
+    pub control_points: Option<usize>,
+    /// The largest data → curve distance ([`TwoSidedDeviation::to_curve`]).
+    pub max_deviation: Option<f64>,
+    /// The largest curve → data polyline distance ([`TwoSidedDeviation::to_data`]).
+    pub max_deviation_to_data: Option<f64>,
+    /// The number of curvature extrema of the result.
+    pub extrema: Option<usize>,
+    /// The error's message when the smoothing (or reading the input) failed; the fields above
+    /// are then `None`.
+    pub error: Option<String>,
+    /// [`SmoothedCurve::warnings`] (empty on failure).
+    pub warnings: Vec<String>,
+}
+
+impl SmoothSummary {
+    /// The line of an outcome: [`SmoothedCurve::summary`], or the error's message alone.
+    #[must_use]
+    pub fn new(outcome: &Result<SmoothedCurve>) -> Self {
+        match outcome {
+            Ok(result) => result.summary(),
+            Err(e) => Self::failed(e),
+        }
+    }
+
+    /// The line of a failure: its message and no numbers.
+    #[must_use]
+    pub fn failed(error: impl fmt::Display) -> Self {
+        Self {
+            error: Some(error.to_string()),
+            ..Self::default()
         }
     }
 }

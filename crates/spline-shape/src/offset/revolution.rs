@@ -4,7 +4,8 @@
 //! offset (a line or a circular arc moved along its normal), and any other meridian's offset
 //! is a planar curve offset within the tolerance, revolved exactly.
 
-use super::{OffsetOptions, OffsetShape, offset_planar_curve};
+use super::curve_offset::{OffsetShape, offset_planar_curve};
+use super::options::OffsetOptions;
 use nalgebra::{Vector2, Vector3};
 use spline_core::{KnotVector, Result, Scalar, cast};
 use spline_geom::{NurbsCurve, NurbsSurface};

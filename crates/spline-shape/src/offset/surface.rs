@@ -2,7 +2,7 @@
 //! map of the control net), otherwise a B-spline within a tolerance
 //! (`spline_fit::AdaptiveSurfaceApproximation`), refused where the offset folds.
 
-use super::OffsetOptions;
+use super::options::OffsetOptions;
 use super::revolution::Revolution;
 use nalgebra::{Matrix4, Vector3, Vector4};
 use spline_core::{Error, ErrorKind, Result, Scalar, cast, from_count, to_f64};

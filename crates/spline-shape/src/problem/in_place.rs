@@ -2,57 +2,11 @@
 //! patterns of the Jacobian of the quadratic constraints and of their weighted Hessian are
 //! fixed, so each evaluation rewrites values only (the same sums as the owned forms).
 
-use super::{ApproximationProblem, HessianPattern};
+use super::approximation::ApproximationProblem;
+use super::patterns::HessianPattern;
 use crate::barrier::{BarrierProblem, SparseRows};
 use nalgebra::DVector;
 use nalgebra_sparse::CsrMatrix;
-use spline_algebra::SparseBilinear;
-
-/// The pattern of `∂B(x, x)/∂x` (first argument) of the quadratic forms: per form, its
-/// sorted columns, and per entry `(j, l, v)` its slot.
-#[derive(Clone, Debug)]
-pub(super) struct JacobianPattern {
-    offsets: Vec<usize>,
-    columns: Vec<usize>,
-    /// `(slot, l, v)` in the order of the forms' entries, `entries[k]..entries[k + 1]` of
-    /// form `k`.
-    scatter: Vec<(usize, usize, f64)>,
-    entries: Vec<usize>,
-}
-
-impl JacobianPattern {
-    pub(super) fn new(forms: &SparseBilinear<f64>) -> Self {
-        let mut offsets = vec![0];
-        let mut columns = Vec::new();
-        let mut scatter = Vec::with_capacity(forms.nnz());
-        let mut entries = vec![0];
-        for k in 0..forms.nrows() {
-            let start = columns.len();
-            columns.extend(forms.row(k).iter().map(|&(j, _, _)| j));
-            columns[start..].sort_unstable();
-            let mut kept = start;
-            for r in start..columns.len() {
-                if kept == start || columns[kept - 1] != columns[r] {
-                    columns[kept] = columns[r];
-                    kept += 1;
-                }
-            }
-            columns.truncate(kept);
-            let row = &columns[start..];
-            for &(j, l, v) in forms.row(k) {
-                scatter.push((row.partition_point(|&c| c < j), l, v));
-            }
-            offsets.push(columns.len());
-            entries.push(scatter.len());
-        }
-        Self {
-            offsets,
-            columns,
-            scatter,
-            entries,
-        }
-    }
-}
 
 impl HessianPattern {
     /// [`HessianPattern::weighted`] into `out`, in place when `out` has this pattern.

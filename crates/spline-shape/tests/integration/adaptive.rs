@@ -127,3 +127,23 @@ fn bad_options_say_what_failed() {
     );
     assert_eq!(err.value(), Some(-1.0));
 }
+
+#[test]
+fn the_limits_are_the_librarys() {
+    use spline_core::ErrorKind;
+    use spline_shape::{MAX_ADAPTIVE_ITERATIONS, default_initial_shape};
+    for iterations in [0, MAX_ADAPTIVE_ITERATIONS + 1] {
+        let options = AdaptiveOptions {
+            iterations,
+            ..AdaptiveOptions::default()
+        };
+        let e = optimise_perimeter_over_area(&default_initial_shape(), &options).unwrap_err();
+        assert_eq!(e.kind(), ErrorKind::InvalidArgument);
+        assert_eq!(e.value(), Some(iterations as f64));
+    }
+    let options = AdaptiveOptions {
+        samples: spline_shape::MAX_ADAPTIVE_SAMPLES + 1,
+        ..AdaptiveOptions::default()
+    };
+    assert!(optimise_perimeter_over_area(&default_initial_shape(), &options).is_err());
+}

@@ -2,27 +2,14 @@
 //! dense sampling of the curvature (independently of the constraint algebra) and by
 //! closest-point distances.
 
+use crate::airfoils::airfoil;
 use nalgebra::Vector2;
 use spline_core::ErrorKind;
 use spline_geom::Curve2;
-use spline_io::points::parse_points;
 use spline_shape::{
     Extremum, ExtremumKind, MAX_CURVATURE_EXTREMA, Objective, SmoothingOptions,
     sampled_curvature_extrema, smooth, smooth_to_tolerance,
 };
-
-fn airfoil(path: &str) -> Vec<Vector2<f64>> {
-    let path = format!(
-        "{}/../../data/airfoils/{path}.dat",
-        env!("CARGO_MANIFEST_DIR")
-    );
-    let text = std::fs::read_to_string(&path).unwrap();
-    parse_points(&text)
-        .unwrap()
-        .into_iter()
-        .map(|p| Vector2::new(p[0], p[1]))
-        .collect()
-}
 
 /// Turning points of the sampled oriented curvature (one-sided limits at knots included).
 fn sampled(curve: &Curve2<f64>, orientation: f64) -> Vec<(f64, bool)> {

@@ -2,26 +2,13 @@
 //! allowed extrema cost more than `DEVIATION_WARNING_FACTOR` times the least-squares fit's
 //! deviation, and the fewest extrema within a tolerance.
 
+use crate::airfoils::airfoil;
 use nalgebra::Vector2;
 use spline_core::ErrorKind;
-use spline_io::points::parse_points;
 use spline_shape::{
     AUTO_EXTREMA_TOLERANCE, DEVIATION_WARNING_FACTOR, DEVIATION_WARNING_FLOOR, SmoothingOptions,
     smooth, smooth_fewest_extrema,
 };
-
-fn airfoil(path: &str) -> Vec<Vector2<f64>> {
-    let path = format!(
-        "{}/../../data/airfoils/{path}.dat",
-        env!("CARGO_MANIFEST_DIR")
-    );
-    let text = std::fs::read_to_string(&path).unwrap();
-    parse_points(&text)
-        .unwrap()
-        .into_iter()
-        .map(|p| Vector2::new(p[0], p[1]))
-        .collect()
-}
 
 /// The largest distance from `points` to the curve, by dense sampling of the curve (an
 /// upper bound of the closest-point distance, independent of the library's projection).

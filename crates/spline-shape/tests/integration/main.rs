@@ -4,11 +4,13 @@
 #![allow(unreachable_pub)]
 
 mod adaptive;
+mod airfoils;
 mod barrier;
 mod clarabel;
 mod eraser;
 mod eraser_closed;
 mod eraser_many_points;
+mod eraser_request;
 mod eraser_warnings;
 mod flecnodal;
 mod functions;

@@ -1,15 +1,7 @@
 //! The bounds that keep the curve near the data between data points.
 
-use super::EraserProblem;
+use super::{EraserProblem, Excursion};
 use nalgebra::{DVector, Vector2};
-
-/// `‖C(u) − centre‖² < radius²`.
-#[derive(Clone, Debug)]
-pub(super) struct Excursion {
-    pub(super) param: f64,
-    pub(super) centre: Vector2<f64>,
-    pub(super) radius2: f64,
-}
 
 impl EraserProblem {
     /// Sets the excursion bounds from the anchors and the curve of `x`: the curve point halfway
