@@ -14,14 +14,7 @@ const PARALLEL_MIN_VALUES: usize = 1 << 16;
 
 /// scipy's `extrapolate` argument by name: `"on"`, `"off"` or `"periodic"`.
 fn mode(name: &str) -> PyResult<Extrapolate> {
-    match name {
-        "on" => Ok(Extrapolate::On),
-        "off" => Ok(Extrapolate::Off),
-        "periodic" => Ok(Extrapolate::Periodic),
-        other => Err(bad_input(format!(
-            "extrapolate: expected \"on\", \"off\" or \"periodic\", got {other:?}"
-        ))),
-    }
+    Extrapolate::from_name(name).py()
 }
 
 /// A spline with `columns` coefficient columns (see `spline.BSpline`).

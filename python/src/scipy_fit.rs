@@ -103,11 +103,8 @@ fn lsq_spline(
 
 /// scipy's `method` of `make_lsq_spline`.
 fn lsq_method(name: &str) -> PyResult<LsqMethod> {
-    match name {
-        "qr" => Ok(LsqMethod::Qr),
-        "norm-eq" => Ok(LsqMethod::NormalEquations),
-        other => Err(bad_input(format!("Unknown method = {other:?}."))),
-    }
+    // scipy's words for scipy's test of an unknown method.
+    LsqMethod::from_name(name).map_err(|_| bad_input(format!("Unknown method = {name:?}.")))
 }
 
 /// scipy's `make_ndbspl` (the library's): the tensor-product interpolant of values on the

@@ -34,8 +34,8 @@ pub struct EvalArgs {
     derivatives: usize,
     /// Curves: evaluate outside the domain as scipy does (on: the end pieces continue; off:
     /// NaN there; periodic: the spline repeats). Without it, parameters outside are an error.
-    #[arg(long, value_enum)]
-    extrapolate: Option<crate::functions::Mode>,
+    #[arg(long, value_parser = crate::functions::extrapolate_parser())]
+    extrapolate: Option<spline_geom::Extrapolate>,
 }
 
 pub fn basis(args: &BasisArgs) -> Result<()> {

@@ -3,7 +3,8 @@
 
 use crate::io::{Pt, pad, parse_arg, print_json, read_points, write_stdout};
 use crate::objects::Sized;
-use clap::{Args, ValueEnum};
+use clap::Args;
+use clap::builder::{PossibleValuesParser, TypedValueParser};
 use serde_json::{Value, json};
 use spline_core::{Error, ErrorKind, KnotVector, Result};
 use spline_fit::{
@@ -58,13 +59,9 @@ pub struct NaturalArgs {
     order: usize,
 }
 
-/// How the least-squares system is solved.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
-pub enum Method {
-    /// Banded normal equations and Cholesky (fastest).
-    Normal,
-    /// Givens QR of the banded design matrix.
-    Qr,
+/// `--method`: the library's names ([`LsqMethod::NAMES`]).
+fn method_parser() -> impl TypedValueParser<Value = LsqMethod> {
+    PossibleValuesParser::new(LsqMethod::NAMES).try_map(|name| LsqMethod::from_name(&name))
 }
 
 #[derive(Args)]
@@ -105,9 +102,10 @@ pub struct ApproximateArgs {
     /// Weight λ of the smoothing term λ ∫ ‖C''‖².
     #[arg(long, default_value_t = 0.0, value_name = "LAMBDA")]
     smoothing: f64,
-    /// Solver for the least-squares system.
-    #[arg(long, value_enum, default_value_t = Method::Normal)]
-    method: Method,
+    /// Solver for the least-squares system: normal (banded normal equations and Cholesky,
+    /// fastest) or qr (Givens QR of the banded design matrix).
+    #[arg(long, default_value = "normal", value_parser = method_parser())]
+    method: LsqMethod,
     /// Print {"curve", "params", "max_deviation", "max_index", "rms"} (and "correction")
     /// instead of the curve.
     #[arg(long)]
@@ -294,10 +292,7 @@ pub fn approximate(args: &ApproximateArgs) -> Result<()> {
             .as_deref()
             .map_or(Ok(Vec::new()), |t| fixes(t, dim))?,
         smoothing: args.smoothing,
-        method: match args.method {
-            Method::Normal => LsqMethod::NormalEquations,
-            Method::Qr => LsqMethod::Qr,
-        },
+        method: args.method,
         correction: args.correct_parameters.map(|iterations| CorrectionOptions {
             max_iterations: iterations,
             angle_tolerance: args.angle_tolerance,

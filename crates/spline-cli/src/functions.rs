@@ -5,6 +5,7 @@
 
 use crate::io::{self, Pt};
 use crate::objects::{Curve, Object, Sized, read_object};
+use clap::builder::{PossibleValuesParser, TypedValueParser};
 use clap::{Args, ValueEnum};
 use serde_json::Value;
 use spline_core::{Error, ErrorKind, Result};
@@ -12,25 +13,9 @@ use spline_fit::make_ndbspl;
 use spline_geom::{ColumnSpline, Extrapolate, NdSpline};
 use spline_io::exchange::{columns_to_value, nd_from_value, nd_to_value, nested_array};
 
-/// scipy's `extrapolate`.
-#[derive(Clone, Copy, Debug, ValueEnum)]
-pub enum Mode {
-    /// The end pieces' polynomials continue outside the base interval.
-    On,
-    /// NaN outside the base interval (zero for integrals).
-    Off,
-    /// The spline repeats with the period of the base interval.
-    Periodic,
-}
-
-impl From<Mode> for Extrapolate {
-    fn from(mode: Mode) -> Self {
-        match mode {
-            Mode::On => Self::On,
-            Mode::Off => Self::Off,
-            Mode::Periodic => Self::Periodic,
-        }
-    }
+/// `--extrapolate` (scipy's `extrapolate`): the library's names ([`Extrapolate::NAMES`]).
+pub fn extrapolate_parser() -> impl TypedValueParser<Value = Extrapolate> {
+    PossibleValuesParser::new(Extrapolate::NAMES).try_map(|name| Extrapolate::from_name(&name))
 }
 
 #[derive(Args)]
@@ -54,8 +39,8 @@ pub struct IntegrateArgs {
     to: f64,
     /// Outside the domain: continue the end pieces (on), take zero (off) or repeat the
     /// spline (periodic). Without it the limits must lie in the domain.
-    #[arg(long, value_enum)]
-    extrapolate: Option<Mode>,
+    #[arg(long, value_parser = extrapolate_parser())]
+    extrapolate: Option<Extrapolate>,
 }
 
 #[derive(Args)]
@@ -136,7 +121,7 @@ pub fn antiderivative(args: &AntiderivativeArgs) -> Result<()> {
 pub fn integrate(args: &IntegrateArgs) -> Result<()> {
     let s = columns_of(read_object(&args.object)?, "integrate")?;
     let mode = match args.extrapolate {
-        Some(mode) => mode.into(),
+        Some(mode) => mode,
         None => {
             let (a, b) = s.domain();
             for (name, v) in [("--from", args.from), ("--to", args.to)] {
@@ -171,12 +156,17 @@ pub fn roots(args: &RootsArgs) -> Result<()> {
 }
 
 /// Evaluation with scipy's extrapolation (`eval --extrapolate`): `[param][k][coord]`.
-pub fn eval_extrapolated(object: Object, at: &[f64], order: usize, mode: Mode) -> Result<()> {
+pub fn eval_extrapolated(
+    object: Object,
+    at: &[f64],
+    order: usize,
+    mode: Extrapolate,
+) -> Result<()> {
     let s = columns_of(object, "eval --extrapolate")?;
     let m = s.columns();
     io::check_output_size("eval", &[at.len(), order + 1, m])?;
     let by_order = (0..=order)
-        .map(|nu| s.eval(at, nu, mode.into()))
+        .map(|nu| s.eval(at, nu, mode))
         .collect::<Result<Vec<_>>>()?;
     if let Some(i) = (0..at.len()).find(|&i| by_order[0][i * m].is_nan()) {
         let (a, b) = s.domain();

@@ -50,6 +50,24 @@ pub struct CorrectionReport<T> {
     pub errors: Vec<T>,
 }
 
+impl<T: Scalar> CorrectionReport<T> {
+    /// The angle criterion after the last sweep: $\lvert \pi/2 - \alpha \rvert$, how far
+    /// the residuals are from normal to the curve; `None` before any sweep.
+    ///
+    /// ```
+    /// use spline_fit::CorrectionReport;
+    /// let report = CorrectionReport { iterations: 2, converged: true,
+    ///     angles: vec![1.2f64, 1.5707], errors: vec![1.0, 0.5, 0.4] };
+    /// assert!((report.angle_error().unwrap() - 9.63267948966e-5).abs() < 1e-15);
+    /// ```
+    #[must_use]
+    pub fn angle_error(&self) -> Option<T> {
+        self.angles
+            .last()
+            .map(|&alpha| (T::frac_pi_2() - alpha).abs())
+    }
+}
+
 /// Evaluates a fitted curve: point and first derivative at a parameter.
 type Evaluator<'a, T, P, C> = &'a dyn Fn(&C, T) -> Result<(P, P)>;
 

@@ -73,7 +73,7 @@ impl<T> Parametrization<T> {
 
 /// The error for a name that is none of `names`: the text (at most 40 characters) and the
 /// choices.
-fn unknown_name(what: &str, text: &str, names: &[&str]) -> Error {
+pub(crate) fn unknown_name(what: &str, text: &str, names: &[&str]) -> Error {
     Error::new(
         ErrorKind::InvalidArgument,
         format!(

@@ -271,7 +271,7 @@ async function approximate() {
     `max deviation ${a.max_deviation.toExponential(3)}, rms ${a.rms.toExponential(3)}`,
     S.params ? "parameters: corrected" : `parameters: ${$("approx-param").value}`,
     c ? `correction: ${c.iterations} sweep(s), converged: ${c.converged}` : "",
-    c && c.angles.length ? `max angle error |π/2 − α| = ${Math.abs(Math.PI / 2 - c.angles[c.angles.length - 1]).toExponential(2)}` : "",
+    c && c.angle_error !== null ? `max angle error |π/2 − α| = ${c.angle_error.toExponential(2)}` : "",
     c && c.errors.length ? `Σ‖D‖²: ${c.errors[0].toExponential(4)} → ${c.errors[c.errors.length - 1].toExponential(4)}` : ""]);
 }
 

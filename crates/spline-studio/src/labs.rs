@@ -326,6 +326,7 @@ pub(crate) fn approximate(request: &ApproximateRequest) -> Result<Value> {
         answer["correction"] = json!({
             "iterations": report.iterations,
             "converged": report.converged,
+            "angle_error": report.angle_error(),
             "angles": report.angles,
             "errors": report.errors,
         });

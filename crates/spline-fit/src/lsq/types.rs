@@ -26,6 +26,37 @@ pub enum LsqMethod {
     Qr,
 }
 
+impl LsqMethod {
+    /// The names every front end spells (the tool's `--method`); scipy's `"norm-eq"` is
+    /// read as `"normal"`.
+    pub const NAMES: [&'static str; 2] = ["normal", "qr"];
+
+    /// The method called `name` (one of [`Self::NAMES`], or scipy's `"norm-eq"`).
+    ///
+    /// # Errors
+    /// [`ErrorKind::InvalidArgument`](spline_core::ErrorKind::InvalidArgument) naming the
+    /// choices for any other text.
+    ///
+    /// ```
+    /// use spline_fit::LsqMethod;
+    /// assert_eq!(LsqMethod::from_name("norm-eq")?, LsqMethod::NormalEquations);
+    /// assert_eq!(LsqMethod::from_name("qr")?, LsqMethod::Qr);
+    /// assert!(LsqMethod::from_name("svd").is_err());
+    /// # Ok::<(), spline_core::Error>(())
+    /// ```
+    pub fn from_name(name: &str) -> spline_core::Result<Self> {
+        match name.trim() {
+            "normal" | "norm-eq" => Ok(Self::NormalEquations),
+            "qr" => Ok(Self::Qr),
+            other => Err(crate::params::unknown_name(
+                "least-squares method",
+                other,
+                &Self::NAMES,
+            )),
+        }
+    }
+}
+
 /// A least-squares fit of a B-spline to data (seed 000 (10)–(13), seed 003 TD3, The NURBS
 /// Book §9.4.1): minimises
 ///

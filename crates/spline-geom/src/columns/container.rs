@@ -34,6 +34,38 @@ pub enum Extrapolate {
     Periodic,
 }
 
+impl Extrapolate {
+    /// The names every front end spells (the tool's `--extrapolate`, Python's strings).
+    pub const NAMES: [&'static str; 3] = ["on", "off", "periodic"];
+
+    /// The mode called `name` (one of [`Self::NAMES`]).
+    ///
+    /// # Errors
+    /// [`ErrorKind::InvalidArgument`] naming the choices for any other text.
+    ///
+    /// ```
+    /// use spline_geom::Extrapolate;
+    /// assert_eq!(Extrapolate::from_name("periodic")?, Extrapolate::Periodic);
+    /// assert!(Extrapolate::from_name("clip").is_err());
+    /// # Ok::<(), spline_core::Error>(())
+    /// ```
+    pub fn from_name(name: &str) -> Result<Self> {
+        match name.trim() {
+            "on" => Ok(Self::On),
+            "off" => Ok(Self::Off),
+            "periodic" => Ok(Self::Periodic),
+            other => Err(Error::new(
+                ErrorKind::InvalidArgument,
+                format!(
+                    "unknown extrapolation {:?} (one of {})",
+                    other.chars().take(40).collect::<String>(),
+                    Self::NAMES.join(", ")
+                ),
+            )),
+        }
+    }
+}
+
 /// A spline of degree `k` on a knot vector `t` with `m` columns of coefficients: the
 /// container behind `scipy.interpolate.BSpline` with the trailing dimensions of `c`
 /// flattened.

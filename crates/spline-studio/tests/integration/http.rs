@@ -209,3 +209,28 @@ fn malformed_requests_get_json_errors_and_the_server_goes_on() {
     );
     assert_eq!((status, &a["point"]), (200, &json!([1.0, 1.0])));
 }
+
+#[test]
+fn the_correction_report_carries_its_angle_error() {
+    let points: Vec<[f64; 2]> = (0..30)
+        .map(|k| {
+            let t = f64::from(k) / 29.0 * std::f64::consts::PI;
+            [t.cos(), 0.5 * t.sin()]
+        })
+        .collect();
+    let (status, answer) = post(
+        "approximate",
+        &json!({"points": points, "degree": 3, "control_points": 6, "correct": 5}),
+    );
+    assert_eq!(status, 200, "{answer}");
+    let c = &answer["correction"];
+    let last = c["angles"]
+        .as_array()
+        .unwrap()
+        .last()
+        .unwrap()
+        .as_f64()
+        .unwrap();
+    let error = c["angle_error"].as_f64().unwrap();
+    assert_eq!(error, (std::f64::consts::FRAC_PI_2 - last).abs());
+}
