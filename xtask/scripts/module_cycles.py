@@ -382,22 +382,14 @@ class Crate:
                     mod.invocations.append((t, ln, fname))
                 prev = toks[i - 1][1] if i > 0 else None
                 if prev != '::' and i + 1 < end and toks[i + 1][1] == '::':
-                    if t in ('crate', 'self', 'super') or (prev == '$' and t == 'crate'):
-                        path = [t]
-                        j = i + 1
-                        while j + 1 < end and toks[j][1] == '::' and toks[j + 1][0] == 'id':
-                            path.append(toks[j + 1][1]); j += 2
-                        mod.refs.append((path, mod.path, ln, 'path', fname))
-                        i = j
-                        continue
-                    else:
-                        path = [t]
-                        j = i + 1
-                        while j + 1 < end and toks[j][1] == '::' and toks[j + 1][0] == 'id':
-                            path.append(toks[j + 1][1]); j += 2
-                        mod.refs.append((path, mod.path, ln, 'bare-path', fname))
-                        i = j
-                        continue
+                    anchored = t in ('crate', 'self', 'super') or (prev == '$' and t == 'crate')
+                    path = [t]
+                    j = i + 1
+                    while j + 1 < end and toks[j][1] == '::' and toks[j + 1][0] == 'id':
+                        path.append(toks[j + 1][1]); j += 2
+                    mod.refs.append((path, mod.path, ln, 'path' if anchored else 'bare-path', fname))
+                    i = j
+                    continue
             i += 1
 
     # --------------------------------------------------------------- resolution

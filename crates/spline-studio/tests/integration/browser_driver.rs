@@ -47,14 +47,7 @@ pub(super) fn target_dir() -> PathBuf {
 }
 
 pub(super) fn start_studio() -> SocketAddr {
-    let (tx, rx) = std::sync::mpsc::channel();
-    std::thread::spawn(move || {
-        spline_studio::run("127.0.0.1", 0, |addr| {
-            let _ = tx.send(addr);
-        })
-    });
-    rx.recv_timeout(Duration::from_secs(30))
-        .expect("the studio binds a port")
+    crate::http::server()
 }
 
 pub(super) async fn connect(port: u16, profile: &std::path::Path) -> TestResult<Client> {

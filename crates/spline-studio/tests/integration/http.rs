@@ -9,7 +9,8 @@ use std::net::{SocketAddr, TcpStream};
 use std::sync::OnceLock;
 use std::time::Duration;
 
-fn server() -> SocketAddr {
+/// The studio on a free port, started once for every test of this binary.
+pub(crate) fn server() -> SocketAddr {
     static ADDR: OnceLock<SocketAddr> = OnceLock::new();
     *ADDR.get_or_init(|| {
         let (tx, rx) = std::sync::mpsc::channel();
