@@ -194,7 +194,11 @@ impl SmoothingOptions {
             max_rounds: 40,
             max_refinements: 6,
             barrier: BarrierOptions {
-                gap_tolerance: 1e-7,
+                // The bound m/t on the objective's distance to the optimum, in units of the
+                // start's largest squared distance. Measured on the UIUC airfoils: 1e-5 gives
+                // the deviations of 1e-7 (median and p90 to 3 digits, geometric mean of the
+                // ratios 0.99994, no refusal more or less), 4 % faster (two centrings less).
+                gap_tolerance: 1e-5,
                 max_newton_iterations: 60,
                 // The fit's valleys (control points sliding along the curve) make Newton
                 // crawl at large t. Measured on the 2,174 UIUC airfoils (20 control points):
