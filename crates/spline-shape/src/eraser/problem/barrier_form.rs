@@ -7,6 +7,10 @@ use crate::eraser::Objective;
 use nalgebra::{DMatrix, DVector, Vector2};
 use nalgebra_sparse::{CooMatrix, CsrMatrix};
 
+/// The most local variables of a segment: `2(p + 1)` for the highest degree a knot vector
+/// allows.
+const MAX_LOCAL: usize = 2 * spline_core::MAX_ORDER;
+
 impl BarrierProblem for EraserProblem {
     fn dimension(&self) -> usize {
         2 * self.n + usize::from(self.minimax()) + usize::from(self.relaxed)
@@ -184,18 +188,28 @@ impl BarrierProblem for EraserProblem {
             segment_jacobians.extend_from_slice(jacobian);
         }
         let block = q1 * nl;
+        let mut columns = [0; MAX_LOCAL];
+        let mut row = [0.0; MAX_LOCAL];
+        let (columns, row) = (&mut columns[..nl], &mut row[..nl]);
         for piece in &self.pieces {
             let first = 2 * self.kernel.first_point(piece.segment);
+            for (c, column) in columns.iter_mut().enumerate() {
+                *column = self.column(first + c);
+            }
             let jac = &segment_jacobians[piece.segment * block..(piece.segment + 1) * block];
             for r in 0..q1 {
                 let sub = &piece.subdivision[r * q1..(r + 1) * q1];
                 let factor = -piece.sign / piece.scale[r];
-                for c in 0..nl {
-                    let mut acc = 0.0;
-                    for (k, &s) in sub.iter().enumerate() {
-                        acc += s * jac[k * nl + c];
+                // Row r of sub · jac, the rows of jac added in turn (each entry the same sum,
+                // in the same order, as a dot product down a column of jac).
+                row.fill(0.0);
+                for (&s, jac_row) in sub.iter().zip(jac.chunks_exact(nl)) {
+                    for (acc, &j) in row.iter_mut().zip(jac_row) {
+                        *acc += s * j;
                     }
-                    out.push(self.column(first + c), factor * acc);
+                }
+                for (&column, &acc) in columns.iter().zip(row.iter()) {
+                    out.push(column, factor * acc);
                 }
                 if self.relaxed {
                     out.push(self.tau_index(), -piece.shift[r]);
@@ -279,14 +293,19 @@ impl BarrierProblem for EraserProblem {
         }
         self.fill_control(x, control);
         block.resize(nl * nl, 0.0);
+        let mut columns = [0; MAX_LOCAL];
+        let columns = &mut columns[..nl];
         for (s, w) in omega.chunks(q1).enumerate() {
             block.iter_mut().for_each(|b| *b = 0.0);
             self.kernel
                 .segment(s, control, workspace, values, None, Some((w, block)));
             let first = 2 * self.kernel.first_point(s);
-            for a in 0..nl {
-                for b in 0..nl {
-                    out[(self.column(first + a), self.column(first + b))] += block[a * nl + b];
+            for (a, column) in columns.iter_mut().enumerate() {
+                *column = self.column(first + a);
+            }
+            for (a, &i) in columns.iter().enumerate() {
+                for (&j, &v) in columns.iter().zip(&block[a * nl..(a + 1) * nl]) {
+                    out[(i, j)] += v;
                 }
             }
         }
