@@ -37,7 +37,9 @@ pub(super) fn centre_trust_region(
         metric.fill(0.0);
         problem.add_objective_hessian(x, t, metric);
         add_weighted_outer_products(metric, &ws.jac, &ws.inv);
-        ws.hessian.copy_from(&ws.metric);
+        ws.hessian
+            .as_mut_slice()
+            .copy_from_slice(ws.metric.as_slice());
         if !problem.add_weighted_constraint_hessian(x, &ws.inv, &mut ws.hessian)
             && problem.weighted_constraint_hessian_into(x, &ws.inv, &mut ws.curvature)
         {
@@ -164,9 +166,10 @@ pub(super) fn centre_trust_region(
 }
 
 /// Adds $\sum_i w_i^2 \nabla f_i \nabla f_i^T$ to `metric` (the Jacobian's sparse rows and
-/// the weights `w_i = 1/f_i`), column by column: each row's scaled values `w² ∇f_i` once,
-/// then contiguous updates down the columns of the (column-major) matrix. Entry `(a, b)`
-/// gains `(w² ∂_a f_i) ∂_b f_i` row after row, the same sums as an entry-by-entry loop.
+/// the weights `w_i = 1/f_i`). Consecutive rows with the same columns (the conditions of one
+/// piece, the distances of data points on one span) are summed in a small dense block
+/// first, `(w² ∂_a f_i) ∂_b f_i` row after row, and the block is added to the matrix once:
+/// the scattered updates of the (column-major) matrix happen once per group, not per row.
 fn add_weighted_outer_products(
     metric: &mut DMatrix<f64>,
     jacobian: &super::workspace::SparseRows,
@@ -176,6 +179,18 @@ fn add_weighted_outer_products(
     let n = metric.nrows();
     let data = metric.as_mut_slice();
     let mut scaled = [0.0; SHORT_ROW];
+    let mut block = [0.0; SHORT_ROW * SHORT_ROW];
+    let mut group: &[usize] = &[];
+    let flush = |data: &mut [f64], group: &[usize], block: &mut [f64]| {
+        let k = group.len().max(1);
+        for (&cb, block_column) in group.iter().zip(block.chunks_exact_mut(k)) {
+            let column = &mut data[cb * n..(cb + 1) * n];
+            for (&ca, v) in group.iter().zip(block_column.iter_mut()) {
+                column[ca] += *v;
+                *v = 0.0;
+            }
+        }
+    };
     for ((cols, vals), &w) in jacobian.rows().zip(weights.iter()) {
         if cols.len() > SHORT_ROW {
             for (&ca, &va) in cols.iter().zip(vals) {
@@ -186,17 +201,25 @@ fn add_weighted_outer_products(
             }
             continue;
         }
+        if cols != group {
+            flush(data, group, &mut block[..group.len() * group.len()]);
+            group = cols;
+        }
+        let k = cols.len();
+        if k == 0 {
+            continue;
+        }
         for (s, &v) in scaled.iter_mut().zip(vals) {
             *s = w * w * v;
         }
-        let scaled = &scaled[..cols.len()];
-        for (&cb, &vb) in cols.iter().zip(vals) {
-            let column = &mut data[cb * n..(cb + 1) * n];
-            for (&ca, &wa) in cols.iter().zip(scaled) {
-                column[ca] += wa * vb;
+        let scaled = &scaled[..k];
+        for (block_column, &vb) in block[..k * k].chunks_exact_mut(k).zip(vals) {
+            for (b, &wa) in block_column.iter_mut().zip(scaled) {
+                *b += wa * vb;
             }
         }
     }
+    flush(data, group, &mut block[..group.len() * group.len()]);
 }
 
 /// Factorisations of `H + λM` that Moré–Sorensen's iteration may take for one radius.
@@ -224,11 +247,15 @@ fn more_sorensen(ws: &mut Workspace, radius: f64, lambda: &mut f64) -> Option<(f
             .hessian_storage
             .take()
             .unwrap_or_else(|| DMatrix::zeros(n, n));
-        storage.copy_from(&ws.hessian);
+        // H + λM over the contiguous storage (nalgebra's element iterators step column by
+        // column and do not vectorise).
+        let (target, hessian) = (storage.as_mut_slice(), ws.hessian.as_slice());
         if current > 0.0 {
-            for (h, m) in storage.iter_mut().zip(ws.metric.iter()) {
-                *h += current * m;
+            for ((s, &h), &m) in target.iter_mut().zip(hessian).zip(ws.metric.as_slice()) {
+                *s = h + current * m;
             }
+        } else {
+            target.copy_from_slice(hessian);
         }
         let factor = match cholesky_in(storage) {
             Ok(factor) => factor,
@@ -302,7 +329,9 @@ fn newton_step(ws: &mut Workspace) -> bool {
         .hessian_storage
         .take()
         .unwrap_or_else(|| DMatrix::zeros(ws.n, ws.n));
-    storage.copy_from(&ws.hessian);
+    storage
+        .as_mut_slice()
+        .copy_from_slice(ws.hessian.as_slice());
     let factor = match cholesky_in(storage) {
         Ok(factor) => factor,
         Err(storage) => {
@@ -350,7 +379,7 @@ fn positive_definite_factor(
     let mut shift = 0.0;
     for _ in 0..20 {
         let mut shifted = storage.take().unwrap_or_else(|| DMatrix::zeros(n, n));
-        shifted.copy_from(m);
+        shifted.as_mut_slice().copy_from_slice(m.as_slice());
         for i in 0..n {
             shifted[(i, i)] += shift;
         }
@@ -459,6 +488,59 @@ fn trust_region_step(
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The grouped sums are `Jᵀ diag(w²) J` of the dense Jacobian (to rounding): runs of
+    /// rows with the same columns, rows whose columns change, an empty row, a row longer
+    /// than the block, columns out of order (a closed curve's wrapped ones sorted) and
+    /// the matrix's earlier contents kept.
+    #[test]
+    fn grouped_outer_products_are_the_dense_product() {
+        use super::super::workspace::SparseRows;
+        let n = 50;
+        let mut seed = 0x5851_f42d_4c95_7f2d_u64;
+        let mut next = || {
+            seed ^= seed << 13;
+            seed ^= seed >> 7;
+            seed ^= seed << 17;
+            (seed >> 11) as f64 / (1u64 << 53) as f64 - 0.5
+        };
+        let mut rows = SparseRows::new(n);
+        let mut dense = DMatrix::zeros(0, n);
+        let patterns: Vec<Vec<usize>> = vec![
+            (4..12).chain([40]).collect(),
+            (4..12).chain([40]).collect(),
+            (4..12).chain([40]).collect(),
+            (6..14).collect(),
+            vec![],
+            (6..14).collect(),
+            (0..40).collect(),
+            vec![0, 1, 2, 3, 46, 47, 48, 49],
+            vec![0, 1, 2, 3, 46, 47, 48, 49],
+            (10..18).chain([41]).collect(),
+        ];
+        for cols in &patterns {
+            let row = dense.nrows();
+            dense = dense.insert_row(row, 0.0);
+            for &c in cols {
+                let v = next();
+                rows.push(c, v);
+                dense[(row, c)] = v;
+            }
+            rows.end_row();
+        }
+        let weights = DVector::from_fn(
+            patterns.len(),
+            |i, _| if i == 2 { 0.0 } else { 1.0 + next() },
+        );
+        let start = DMatrix::from_fn(n, n, |i, j| (i + 2 * j) as f64 * 0.01);
+        let mut metric = start.clone();
+        add_weighted_outer_products(&mut metric, &rows, &weights);
+        let w2 = DMatrix::from_diagonal(&weights.map(|w| w * w));
+        let expected = start + dense.transpose() * w2 * &dense;
+        let error = (&metric - &expected).abs().max();
+        assert!(error <= 1e-14, "largest difference {error:e}");
+        assert_eq!(metric[(20, 45)], expected[(20, 45)], "untouched entry");
+    }
 
     /// `cholesky_in` succeeds exactly when nalgebra's `cholesky()` does, with the same factor
     /// bit for bit, on positive definite, semi-definite, indefinite and non-finite matrices.

@@ -86,12 +86,10 @@ impl BarrierProblem for EraserProblem {
         dense.fill(0.0);
         let weight = if self.relaxed { self.pull } else { 1.0 };
         self.add_distance_hessians(x, weight, None, dense);
-        for j in 0..n {
-            for i in 0..n {
-                let v = dense[(i, j)];
-                if v != 0.0 {
-                    out[(i, j)] += scale * v;
-                }
+        debug_assert_eq!(out.shape(), dense.shape());
+        for (o, &v) in out.as_mut_slice().iter_mut().zip(dense.as_slice()) {
+            if v != 0.0 {
+                *o += scale * v;
             }
         }
     }
@@ -145,14 +143,21 @@ impl BarrierProblem for EraserProblem {
         let q1 = self.kernel.coefficients_per_segment();
         let nl = self.kernel.local_variables();
         out.clear(self.dimension());
+        // Rows are appended whole (`push_row`): one length update per row, not per entry.
+        let mut row_columns = [0; MAX_LOCAL + 1];
         if self.minimax() {
             let feet = self.feet(x, true);
             for foot in &feet.feet {
-                for (a, v) in foot.gradient.iter().enumerate() {
-                    out.push(self.column(2 * foot.first + a), v / self.unit);
+                let k = foot.gradient.len();
+                for (a, column) in row_columns[..k].iter_mut().enumerate() {
+                    *column = self.column(2 * foot.first + a);
                 }
-                out.push(2 * self.n, -1.0);
-                out.end_row();
+                row_columns[k] = 2 * self.n;
+                let values = out.push_row(&row_columns[..=k]);
+                for (value, v) in values.iter_mut().zip(&foot.gradient) {
+                    *value = v / self.unit;
+                }
+                values[k] = -1.0;
             }
         }
         let mut scratch = self.scratch.borrow_mut();
@@ -188,12 +193,14 @@ impl BarrierProblem for EraserProblem {
             segment_jacobians.extend_from_slice(jacobian);
         }
         let block = q1 * nl;
-        let mut columns = [0; MAX_LOCAL];
         let mut row = [0.0; MAX_LOCAL];
-        let (columns, row) = (&mut columns[..nl], &mut row[..nl]);
+        let row = &mut row[..nl];
+        // A piece's rows: its segment's local variables, then τ in phase I.
+        let width = nl + usize::from(self.relaxed);
+        row_columns[nl] = self.tau_index();
         for piece in &self.pieces {
             let first = 2 * self.kernel.first_point(piece.segment);
-            for (c, column) in columns.iter_mut().enumerate() {
+            for (c, column) in row_columns[..nl].iter_mut().enumerate() {
                 *column = self.column(first + c);
             }
             let jac = &segment_jacobians[piece.segment * block..(piece.segment + 1) * block];
@@ -208,13 +215,13 @@ impl BarrierProblem for EraserProblem {
                         *acc += s * j;
                     }
                 }
-                for (&column, &acc) in columns.iter().zip(row.iter()) {
-                    out.push(column, factor * acc);
+                let values = out.push_row(&row_columns[..width]);
+                for (value, &acc) in values.iter_mut().zip(row.iter()) {
+                    *value = factor * acc;
                 }
                 if self.relaxed {
-                    out.push(self.tau_index(), -piece.shift[r]);
+                    values[nl] = -piece.shift[r];
                 }
-                out.end_row();
             }
         }
         if self.relaxed {
