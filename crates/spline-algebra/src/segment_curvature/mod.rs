@@ -361,29 +361,74 @@ impl<T: Scalar> SegmentCurvature<T> {
                 jacobian.as_deref_mut(),
             );
         }
-        if let Some((hw, out)) = hessian {
-            let nn = n * n;
-            let (q1, q2, q3) = (2 * p - 1, 2 * p - 3, 2 * p - 2);
-            let (h1, rest) = seg.hessians.split_at(q1 * nn);
-            let (h2, rest) = rest.split_at(q2 * nn);
-            let (h3, h4) = rest.split_at(q3 * nn);
-            let SegmentWorkspace {
-                h1: a1,
-                h2: a2,
-                h3: a3,
-                h4: a4,
-                right_sums,
-                left_sums,
-                gradient_sums,
-                ..
-            } = ws;
-            let mut sums = ProductSums {
-                right: right_sums,
-                left: left_sums,
-                gradients: gradient_sums,
-            };
-            sums.add_weighted_hessian((a1, h1), (a2, h2), &w.h1h2, T::one(), hw, out);
-            sums.add_weighted_hessian((a3, h3), (a4, h4), &w.h3h4, -three, hw, out);
+        if let Some(hessian) = hessian {
+            self.add_segment_hessian(s, ws, hessian);
         }
+    }
+
+    /// The weighted sum of the Hessians of segment `s`'s coefficients,
+    /// $\sum_k w_k \nabla^2 g_k$ with `(weights, out)` as in [`Self::segment`], *added* to
+    /// `out`, from the quadratic forms `ws` holds: those of the last [`Self::segment`] call
+    /// on `ws`, which must have been for segment `s` at the control points wanted and with
+    /// a Jacobian or a Hessian asked (a call for values only keeps no gradients). A caller
+    /// that keeps one workspace per segment gets the Jacobians and, once the weights are
+    /// known, the Hessians with the forms built once — the same numbers, bit for bit, as
+    /// [`Self::segment`] with both.
+    ///
+    /// ```
+    /// use nalgebra::Vector2;
+    /// use spline_algebra::SegmentCurvature;
+    /// use spline_core::KnotVector;
+    /// let knots = KnotVector::new(3, vec![0.0, 0.0, 0.0, 0.0, 0.4, 1.0, 1.0, 1.0, 1.0])?;
+    /// let points: Vec<Vector2<f64>> = [(0.0, 0.0), (1.0, 2.0), (2.0, -1.0), (3.0, 1.0), (4.0, 0.5)]
+    ///     .iter().map(|&(x, y)| Vector2::new(x, y)).collect();
+    /// let kernel = SegmentCurvature::new(&knots)?;
+    /// let (q1, n) = (kernel.coefficients_per_segment(), kernel.local_variables());
+    /// let weights: Vec<f64> = (0..q1).map(|k| 1.0 + k as f64).collect();
+    /// let (mut values, mut jacobian) = (vec![0.0; q1], vec![0.0; q1 * n]);
+    /// let mut at_once = vec![0.0; n * n];
+    /// let mut ws = kernel.workspace();
+    /// kernel.segment(1, &points, &mut ws, &mut values, None, Some((&weights, &mut at_once)));
+    /// let mut later = vec![0.0; n * n];
+    /// kernel.segment(1, &points, &mut ws, &mut values, Some(&mut jacobian), None);
+    /// kernel.add_segment_hessian(1, &mut ws, (&weights, &mut later));
+    /// assert_eq!(at_once, later);
+    /// # Ok::<(), spline_core::Error>(())
+    /// ```
+    ///
+    /// # Panics
+    /// If `s` is not a segment index or the slices have the wrong lengths.
+    pub fn add_segment_hessian(
+        &self,
+        s: usize,
+        ws: &mut SegmentWorkspace<T>,
+        (hw, out): (&[T], &mut [T]),
+    ) {
+        let p = self.degree;
+        let n = self.local_variables();
+        let w = &self.weights;
+        let three: T = from_count(3);
+        let nn = n * n;
+        let (q1, q2, q3) = (2 * p - 1, 2 * p - 3, 2 * p - 2);
+        let (h1, rest) = self.segments[s].hessians.split_at(q1 * nn);
+        let (h2, rest) = rest.split_at(q2 * nn);
+        let (h3, h4) = rest.split_at(q3 * nn);
+        let SegmentWorkspace {
+            h1: a1,
+            h2: a2,
+            h3: a3,
+            h4: a4,
+            right_sums,
+            left_sums,
+            gradient_sums,
+            ..
+        } = ws;
+        let mut sums = ProductSums {
+            right: right_sums,
+            left: left_sums,
+            gradients: gradient_sums,
+        };
+        sums.add_weighted_hessian((a1, h1), (a2, h2), &w.h1h2, T::one(), hw, out);
+        sums.add_weighted_hessian((a3, h3), (a4, h4), &w.h3h4, -three, hw, out);
     }
 }

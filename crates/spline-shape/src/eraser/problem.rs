@@ -49,6 +49,11 @@ struct Scratch {
     dense: DMatrix<f64>,
     /// One row of the Jacobian while its entries are sorted by column.
     sorted_row: Vec<(usize, f64)>,
+    /// One workspace per segment, holding its quadratic forms from the Jacobian's pass, and
+    /// the control points they are of: the weighted Hessian at the same point (the next
+    /// call of a Newton step) combines them without building them again.
+    forms: Vec<SegmentWorkspace<f64>>,
+    forms_control: Vec<Vector2<f64>>,
 }
 
 /// `‖C(u) − centre‖² < radius²` (the bounds of `excursions.rs`).
@@ -130,6 +135,10 @@ impl EraserProblem {
             block: Vec::new(),
             dense: DMatrix::zeros(0, 0),
             sorted_row: Vec::new(),
+            forms: (0..kernel.num_segments())
+                .map(|_| kernel.workspace())
+                .collect(),
+            forms_control: Vec::new(),
         };
         let mut problem = Self {
             pieces: Vec::new(),

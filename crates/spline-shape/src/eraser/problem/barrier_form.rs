@@ -162,12 +162,13 @@ impl BarrierProblem for EraserProblem {
         }
         let mut scratch = self.scratch.borrow_mut();
         let Scratch {
-            workspace,
             values,
             jacobian,
             control,
             segment_jacobians,
             sorted_row,
+            forms,
+            forms_control,
             ..
         } = &mut *scratch;
         self.fill_control(x, control);
@@ -187,11 +188,12 @@ impl BarrierProblem for EraserProblem {
             out.end_row();
         }
         segment_jacobians.clear();
-        for s in 0..self.kernel.num_segments() {
+        for (s, forms) in forms.iter_mut().enumerate() {
             self.kernel
-                .segment(s, control, workspace, values, Some(jacobian), None);
+                .segment(s, control, forms, values, Some(jacobian), None);
             segment_jacobians.extend_from_slice(jacobian);
         }
+        forms_control.clone_from(control);
         let block = q1 * nl;
         let mut row = [0.0; MAX_LOCAL];
         let row = &mut row[..nl];
@@ -282,6 +284,8 @@ impl BarrierProblem for EraserProblem {
             control,
             omega,
             block,
+            forms,
+            forms_control,
             ..
         } = &mut *scratch;
         omega.clear();
@@ -299,13 +303,20 @@ impl BarrierProblem for EraserProblem {
             }
         }
         self.fill_control(x, control);
+        // The forms of the Jacobian's pass, if it was at these control points.
+        let built = forms_control == control;
         block.resize(nl * nl, 0.0);
         let mut columns = [0; MAX_LOCAL];
         let columns = &mut columns[..nl];
         for (s, w) in omega.chunks(q1).enumerate() {
             block.iter_mut().for_each(|b| *b = 0.0);
-            self.kernel
-                .segment(s, control, workspace, values, None, Some((w, block)));
+            if built {
+                self.kernel
+                    .add_segment_hessian(s, &mut forms[s], (w, block));
+            } else {
+                self.kernel
+                    .segment(s, control, workspace, values, None, Some((w, block)));
+            }
             let first = 2 * self.kernel.first_point(s);
             for (a, column) in columns.iter_mut().enumerate() {
                 *column = self.column(first + a);
