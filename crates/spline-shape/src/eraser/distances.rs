@@ -58,8 +58,11 @@ pub(super) struct Distances {
 pub(super) struct TaylorForm {
     /// `p + 1` coefficients per span, spans from the first (`span − p`); empty spans zero.
     coefficients: Vec<Vector2<f64>>,
-    /// The basis functions and derivatives at a left knot (scratch).
-    basis: Vec<f64>,
+    /// The basis functions' right derivatives at every span's left knot (`(p + 1)²` a span,
+    /// as `basis_derivatives` writes them) for the knots `table_knots`: they depend on the
+    /// knots only, and the form is filled for every new set of control points.
+    table: Vec<f64>,
+    table_knots: Vec<f64>,
 }
 
 impl TaylorForm {
@@ -69,15 +72,27 @@ impl TaylorForm {
         let width = p + 1;
         let n = knots.num_basis();
         let k = knots.knots();
+        let square = width * width;
+        if self.table_knots.as_slice() != k {
+            self.table_knots.clear();
+            self.table_knots.extend_from_slice(k);
+            self.table.clear();
+            self.table.resize((n - p) * square, 0.0);
+            for span in p..n {
+                if k[span] < k[span + 1] {
+                    // Right derivatives at the span's left knot: this span's polynomial.
+                    let block = &mut self.table[(span - p) * square..(span - p + 1) * square];
+                    knots.basis_derivatives(span, k[span], p, block);
+                }
+            }
+        }
         self.coefficients.clear();
         self.coefficients.resize((n - p) * width, Vector2::zeros());
-        self.basis.resize(width * width, 0.0);
         for span in p..n {
             if !(k[span] < k[span + 1]) {
                 continue;
             }
-            // Right derivatives at the span's left knot: this span's polynomial.
-            knots.basis_derivatives(span, k[span], p, &mut self.basis);
+            let basis = &self.table[(span - p) * square..(span - p + 1) * square];
             let mut factorial = 1.0;
             for order in 0..=p {
                 if order > 1 {
@@ -85,7 +100,7 @@ impl TaylorForm {
                 }
                 let mut c = Vector2::zeros();
                 for (a, point) in control[span - p..=span].iter().enumerate() {
-                    c += point * self.basis[order * width + a];
+                    c += point * basis[order * width + a];
                 }
                 self.coefficients[(span - p) * width + order] = c / factorial;
             }
@@ -194,11 +209,14 @@ impl FootSolver<'_> {
         } else {
             anchor
         };
-        let eval = |u: f64| -> (usize, [Vector2<f64>; 3]) {
-            let span = self.knots.span_in_domain(u);
+        // The span of a step's parameter is most often the current one (a check, not a
+        // search: `span_in_domain_from`).
+        let eval = |u: f64, hint: usize| -> (usize, [Vector2<f64>; 3]) {
+            let span = self.knots.span_in_domain_from(u, hint);
             (span, self.form.eval(self.knots, span, u))
         };
-        let (mut span, mut d) = eval(u);
+        // The first from this data point's last foot (`out` is its own from call to call).
+        let (mut span, mut d) = eval(u, out.first + p);
         if !fixed && !found {
             let mut dist2 = (d[0] - q).norm_squared();
             for _ in 0..30 {
@@ -223,7 +241,7 @@ impl FootSolver<'_> {
                     if (candidate - u).abs() <= FOOT_PARAMETER_RESOLUTION {
                         break;
                     }
-                    let (s2, d2) = eval(candidate);
+                    let (s2, d2) = eval(candidate, span);
                     let c2 = (d2[0] - q).norm_squared();
                     if c2 <= dist2 {
                         moved = true;
