@@ -182,8 +182,10 @@ fn add_weighted_outer_products(
     let mut block = [0.0; SHORT_ROW * SHORT_ROW];
     let mut group: &[usize] = &[];
     let flush = |data: &mut [f64], group: &[usize], block: &mut [f64]| {
-        let k = group.len().max(1);
-        for (&cb, block_column) in group.iter().zip(block.chunks_exact_mut(k)) {
+        if group.is_empty() {
+            return;
+        }
+        for (&cb, block_column) in group.iter().zip(block.chunks_exact_mut(group.len())) {
             let column = &mut data[cb * n..(cb + 1) * n];
             for (&ca, v) in group.iter().zip(block_column.iter_mut()) {
                 column[ca] += *v;

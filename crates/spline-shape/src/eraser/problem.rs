@@ -187,6 +187,14 @@ impl EraserProblem {
         2 * point + k % 2
     }
 
+    /// The variables of the local coordinates `first, first + 1, …` into `out` (one per
+    /// entry): [`EraserProblem::column`] of each, looked up once for a whole block.
+    pub(super) fn local_columns(&self, first: usize, out: &mut [usize]) {
+        for (a, column) in out.iter_mut().enumerate() {
+            *column = self.column(first + a);
+        }
+    }
+
     fn piece(&self, segment: usize, lo: f64, hi: f64) -> Piece {
         let (a, b) = self.kernel.interval(segment);
         let mid = a + (b - a) * 0.5 * (lo + hi);
@@ -524,10 +532,12 @@ impl EraserProblem {
                 }
                 continue;
             }
-            for a in 0..nl {
-                for b in 0..nl {
-                    out[(self.column(base + a), self.column(base + b))] +=
-                        w * foot.hessian[a * nl + b];
+            let mut columns = [0; 2 * spline_core::MAX_ORDER];
+            let columns = &mut columns[..nl];
+            self.local_columns(base, columns);
+            for (&i, row) in columns.iter().zip(foot.hessian.chunks_exact(nl)) {
+                for (&j, &h) in columns.iter().zip(row) {
+                    out[(i, j)] += w * h;
                 }
             }
         }

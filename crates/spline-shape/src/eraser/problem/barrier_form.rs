@@ -149,9 +149,7 @@ impl BarrierProblem for EraserProblem {
             let feet = self.feet(x, true);
             for foot in &feet.feet {
                 let k = foot.gradient.len();
-                for (a, column) in row_columns[..k].iter_mut().enumerate() {
-                    *column = self.column(2 * foot.first + a);
-                }
+                self.local_columns(2 * foot.first, &mut row_columns[..k]);
                 row_columns[k] = 2 * self.n;
                 let values = out.push_row(&row_columns[..=k]);
                 for (value, v) in values.iter_mut().zip(&foot.gradient) {
@@ -202,9 +200,7 @@ impl BarrierProblem for EraserProblem {
         row_columns[nl] = self.tau_index();
         for piece in &self.pieces {
             let first = 2 * self.kernel.first_point(piece.segment);
-            for (c, column) in row_columns[..nl].iter_mut().enumerate() {
-                *column = self.column(first + c);
-            }
+            self.local_columns(first, &mut row_columns[..nl]);
             let jac = &segment_jacobians[piece.segment * block..(piece.segment + 1) * block];
             for r in 0..q1 {
                 let sub = &piece.subdivision[r * q1..(r + 1) * q1];
@@ -318,9 +314,7 @@ impl BarrierProblem for EraserProblem {
                     .segment(s, control, workspace, values, None, Some((w, block)));
             }
             let first = 2 * self.kernel.first_point(s);
-            for (a, column) in columns.iter_mut().enumerate() {
-                *column = self.column(first + a);
-            }
+            self.local_columns(first, columns);
             for (a, &i) in columns.iter().enumerate() {
                 for (&j, &v) in columns.iter().zip(&block[a * nl..(a + 1) * nl]) {
                     out[(i, j)] += v;
