@@ -190,7 +190,7 @@ type SummaryLine = (
 /// newton_steps, summary))`. A closed curve comes as its wrapped container (as the CLI writes
 /// it).
 #[pyfunction]
-#[pyo3(signature = (points, control_points, max_deviation, degree, curvature_extrema, extrema, objective, thorough, closed, knot_exponents))]
+#[pyo3(signature = (points, control_points, max_deviation, degree, curvature_extrema, extrema, objective, thorough, knot_search, closed, knot_exponents))]
 #[allow(clippy::too_many_arguments)]
 fn smooth(
     py: Python<'_>,
@@ -202,6 +202,7 @@ fn smooth(
     extrema: Vec<String>,
     objective: &str,
     thorough: bool,
+    knot_search: bool,
     closed: bool,
     knot_exponents: Option<Vec<f64>>,
 ) -> PyResult<(Curve, SmoothReport)> {
@@ -216,6 +217,7 @@ fn smooth(
         extrema: &extrema,
         objective,
         thorough,
+        knot_search,
         closed,
         knot_exponents: knot_exponents.map(Ok),
     };

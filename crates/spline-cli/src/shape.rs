@@ -52,6 +52,10 @@ pub struct SmoothArgs {
     /// Try every knot density and keep the closest curve (slower).
     #[arg(long)]
     thorough: bool,
+    /// After the knot densities, move the interior knots one at a time while that brings
+    /// the curve closer to the data (open data; tens to hundreds of times slower).
+    #[arg(long)]
+    knot_search: bool,
     /// The data are a closed contour: the result is a closed (periodic) curve, written as
     /// an unclamped curve whose last p control points repeat the first p (as `interpolate
     /// --closed`); the extrema alternate round it, as many maxima as minima (--curvature-extrema
@@ -87,6 +91,7 @@ fn request(args: &SmoothArgs) -> Result<SmoothRequest> {
         extrema: &args.extrema,
         objective: &args.objective,
         thorough: args.thorough,
+        knot_search: args.knot_search,
         closed: args.closed,
         knot_exponents: args
             .knot_exponents

@@ -63,6 +63,7 @@ def smooth(
     extrema: List[str],
     objective: str,
     thorough: bool,
+    knot_search: bool,
     closed: bool,
     knot_exponents: Optional[List[float]],
 ) -> Tuple[

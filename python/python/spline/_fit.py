@@ -104,6 +104,7 @@ def smooth(
     extrema: Sequence[str] = (),
     objective: str = "max",
     thorough: bool = False,
+    knot_search: bool = False,
     closed: bool = False,
     knot_exponents: Optional[Sequence[float]] = None,
 ) -> SmoothedCurve:
@@ -120,6 +121,8 @@ def smooth(
       bounding box), with ``control_points``;
     - ``objective``: ``"max"`` (largest deviation) or ``"least-squares"``;
     - ``thorough``: try every knot density; ``knot_exponents``: the exponents tried;
+      ``knot_search``: then move the interior knots one at a time while the curve comes
+      closer (open data; tens to hundreds of times slower);
     - ``closed``: the data are a closed contour; the result is periodic, returned as its
       wrapped container (the last ``degree`` control points repeat the first ones).
     """
@@ -139,6 +142,7 @@ def smooth(
         [str(e) for e in extrema],
         objective,
         bool(thorough),
+        bool(knot_search),
         bool(closed),
         None if knot_exponents is None else [float(b) for b in knot_exponents],
     )

@@ -197,6 +197,8 @@ pub struct SmoothWords<'a> {
     pub objective: &'a str,
     /// [`SmoothingOptions::thorough`].
     pub thorough: bool,
+    /// [`SmoothingOptions::knot_search`].
+    pub knot_search: bool,
     /// [`SmoothingOptions::closed`].
     pub closed: bool,
     /// [`SmoothingOptions::knot_exponents`] (`None`: the default).
@@ -222,6 +224,7 @@ impl SmoothRequest {
     ///     extrema: &[],
     ///     objective: "max",
     ///     thorough: false,
+    ///     knot_search: false,
     ///     closed: false,
     ///     knot_exponents: None,
     /// };
@@ -278,6 +281,7 @@ impl SmoothRequest {
         let mut request = Self::new(control);
         request.degree = words.degree;
         request.thorough = words.thorough;
+        request.knot_search = words.knot_search;
         request.closed = words.closed;
         if let Some(exponents) = words.knot_exponents {
             request.knot_exponents = exponents?;

@@ -10,6 +10,7 @@ use super::types::{
 };
 use nalgebra::Vector2;
 use spline_algebra::planar_features;
+use spline_core::KnotVector;
 use spline_core::{Error, ErrorKind, Result};
 use spline_fit::{curvature_knots_with, two_sided_deviation};
 use spline_geom::Curve2;
@@ -194,7 +195,7 @@ fn run<T: Topology>(
                        exponent: f64,
                        placed: &[f64],
                        first_sign: f64,
-                       best: &Option<SmoothedCurve>|
+                       best: Option<&SmoothedCurve>|
      -> Result<Option<SmoothedCurve>> {
         newton_steps += found.newton_steps;
         let world = found.curve.map_control_points(|c| c * size + middle);
@@ -208,9 +209,7 @@ fn run<T: Topology>(
             left_the_data = true;
             return Ok(None);
         }
-        let better = best
-            .as_ref()
-            .is_none_or(|b| deviation.to_curve.max < b.deviation.to_curve.max);
+        let better = best.is_none_or(|b| deviation.to_curve.max < b.deviation.to_curve.max);
         if !better {
             return Ok(None);
         }
@@ -269,7 +268,7 @@ fn run<T: Topology>(
                 previous.knot_exponent,
                 &previous.allowed_extrema,
                 previous.first_sign,
-                &best,
+                best.as_ref(),
             )?;
         }
     }
@@ -304,9 +303,28 @@ fn run<T: Topology>(
             Err(e) => return Err(e),
         };
         let Some(found) = found else { continue };
-        if let Some(better) = measure(found, exponent, &placed, first_sign, &best)? {
+        if let Some(better) = measure(found, exponent, &placed, first_sign, best.as_ref())? {
             best = Some(better);
         }
+    }
+    // 4. With `knot_search`, the interior knots moved one at a time while that brings the
+    // curve closer to the data.
+    if options.knot_search
+        && !T::CLOSED
+        && warm.is_none()
+        && let Some(found) = best.take()
+    {
+        let knots = found.curve.knots().clone();
+        let task = Task {
+            points: &unit,
+            params: &params,
+            knots: &knots,
+            extrema: &placed,
+            first_sign,
+            options,
+        };
+        let to_unit = |c: &Vector2<f64>| (c - middle) / size;
+        best = Some(search_knots::<T>(task, found, to_unit, &mut measure)?);
     }
     match best {
         Some(mut result) => {
@@ -336,6 +354,94 @@ fn run<T: Topology>(
             ),
         )),
     }
+}
+
+/// The most problems [`search_knots`] solves.
+const KNOT_SEARCH_SOLVES: usize = 400;
+
+/// The largest and smallest steps of [`search_knots`], in parts of the gap to the
+/// neighbouring knot.
+const KNOT_SEARCH_STEPS: (f64, f64) = (0.25, 1.0 / 32.0);
+
+/// [`SmoothingOptions::knot_search`]: a pattern search over the free interior knots of
+/// `found` (those not at an allowed extremum, not repeated). Each in turn moves by a step
+/// towards either neighbour (a part of the gap to it, so the order of the knots holds) and
+/// the problem is solved on the moved knots, from `found`'s control points where that
+/// works (`to_unit` maps them to the data's unit frame) and afresh otherwise; a move that
+/// brings the curve closer is kept. The step halves after a pass over the knots without a
+/// move kept, from a quarter of the gap down to 1/32, and the search stops after
+/// [`KNOT_SEARCH_SOLVES`] problems. The result is `found` or closer to the data.
+fn search_knots<T: Topology>(
+    task: Task<'_>,
+    found: SmoothedCurve,
+    to_unit: impl Fn(&Vector2<f64>) -> Vector2<f64>,
+    measure: &mut impl FnMut(
+        Attempt,
+        f64,
+        &[f64],
+        f64,
+        Option<&SmoothedCurve>,
+    ) -> Result<Option<SmoothedCurve>>,
+) -> Result<SmoothedCurve> {
+    let p = found.curve.degree();
+    let exponent = found.knot_exponent;
+    let mut knots = found.curve.knots().knots().to_vec();
+    let mut best = found;
+    let (mut step, smallest) = KNOT_SEARCH_STEPS;
+    let mut solves = 0;
+    'search: while step >= smallest {
+        let mut moved = false;
+        for i in p + 1..knots.len() - p - 1 {
+            let free = !task.extrema.contains(&knots[i])
+                && knots[i] != knots[i - 1]
+                && knots[i] != knots[i + 1];
+            if !free {
+                continue;
+            }
+            for towards in [i + 1, i - 1] {
+                if solves == KNOT_SEARCH_SOLVES {
+                    break 'search;
+                }
+                solves += 1;
+                let mut trial = knots.clone();
+                trial[i] += step * (knots[towards] - knots[i]);
+                let Ok(trial_knots) = KnotVector::new(p, trial.clone()) else {
+                    continue;
+                };
+                let moved_task = Task {
+                    knots: &trial_knots,
+                    ..task
+                };
+                let points = best.curve.control_points().iter().map(&to_unit).collect();
+                let start = Curve2::new_unchecked(trial_knots.clone(), points);
+                let warm = attempt_from::<T>(moved_task, &start, false);
+                let found = match warm {
+                    Ok(Some(found)) => Ok(Some(found)),
+                    Ok(None) => attempt_screened::<T>(moved_task),
+                    Err(e) if recoverable(&e) => attempt_screened::<T>(moved_task),
+                    Err(e) => Err(e),
+                };
+                let found = match found {
+                    Ok(Some(found)) => found,
+                    Ok(None) => continue,
+                    Err(e) if recoverable(&e) => continue,
+                    Err(e) => return Err(e),
+                };
+                if let Some(closer) =
+                    measure(found, exponent, task.extrema, task.first_sign, Some(&best))?
+                {
+                    best = closer;
+                    knots = trial;
+                    moved = true;
+                    break;
+                }
+            }
+        }
+        if !moved {
+            step /= 2.0;
+        }
+    }
+    Ok(best)
 }
 
 /// The kind of the extremum of the oriented curvature at `u`.

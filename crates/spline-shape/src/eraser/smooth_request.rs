@@ -95,6 +95,8 @@ pub struct SmoothRequest {
     pub objective: Objective,
     /// [`SmoothingOptions::thorough`].
     pub thorough: bool,
+    /// [`SmoothingOptions::knot_search`].
+    pub knot_search: bool,
     /// [`SmoothingOptions::closed`].
     pub closed: bool,
     /// [`SmoothingOptions::knot_exponents`].
@@ -113,6 +115,7 @@ impl SmoothRequest {
             degree: defaults.degree,
             objective: defaults.objective,
             thorough: defaults.thorough,
+            knot_search: defaults.knot_search,
             closed: defaults.closed,
             knot_exponents: defaults.knot_exponents,
         }
@@ -124,6 +127,7 @@ impl SmoothRequest {
         options.degree = self.degree;
         options.objective = self.objective;
         options.thorough = self.thorough;
+        options.knot_search = self.knot_search;
         options.closed = self.closed;
         options.knot_exponents.clone_from(&self.knot_exponents);
         options.extrema = extrema;

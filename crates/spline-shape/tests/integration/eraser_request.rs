@@ -22,6 +22,7 @@ fn words(control_points: Option<usize>) -> SmoothWords<'static> {
         extrema: &[],
         objective: "max",
         thorough: false,
+        knot_search: false,
         closed: false,
         knot_exponents: None,
     }
@@ -146,6 +147,7 @@ fn words_become_the_typed_request() {
             curvature_extrema: Some(Ok(ExtremaCount::Count(2))),
             objective: "least-squares",
             thorough: true,
+            knot_search: true,
             closed: true,
             knot_exponents: Some(Ok(vec![0.4])),
             ..words(Some(12))
@@ -164,6 +166,7 @@ fn words_become_the_typed_request() {
             degree: 4,
             objective: Objective::LeastSquares,
             thorough: true,
+            knot_search: true,
             closed: true,
             knot_exponents: vec![0.4],
         }
