@@ -366,9 +366,9 @@ const KNOT_SEARCH_STEPS: (f64, f64) = (0.25, 1.0 / 32.0);
 /// [`SmoothingOptions::knot_search`]: a pattern search over the free interior knots of
 /// `found` (those not at an allowed extremum, not repeated). Each in turn moves by a step
 /// towards either neighbour (a part of the gap to it, so the order of the knots holds) and
-/// the problem is solved on the moved knots, from `found`'s control points where that
-/// works (`to_unit` maps them to the data's unit frame) and afresh otherwise; a move that
-/// brings the curve closer is kept. The step halves after a pass over the knots without a
+/// the problem is solved on the moved knots, from the closest curve's control points so far
+/// where that works (`to_unit` maps them to the data's unit frame) and afresh otherwise; a
+/// move that brings the curve closer is kept. The step halves after a pass over the knots without a
 /// move kept, from a quarter of the gap down to 1/32, and the search stops after
 /// [`KNOT_SEARCH_SOLVES`] problems. The result is `found` or closer to the data.
 fn search_knots<T: Topology>(
